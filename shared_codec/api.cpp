@@ -1,0 +1,154 @@
+#include "api.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "codecs/affine_octree/affine_octree_codec.h"
+#include "container/container_writer.h"
+#include "io/byte_writer.h"
+
+namespace animc {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+Status checkSource(const FrameSource& source) {
+  const Topology& t = source.topology();
+  if (t.vertex_count == 0) return badInput(source.where() + ": the mesh has no vertices");
+  if (t.triangles.empty()) return badInput(source.where() + ": the mesh has no triangles");
+  for (size_t i = 0; i < t.triangles.size(); ++i)
+    for (uint32_t v : t.triangles[i])
+      if (v >= t.vertex_count)
+        return badInput(source.where() + ": triangle " + std::to_string(i) + " uses vertex " +
+                        std::to_string(v) + " of " + std::to_string(t.vertex_count));
+  return Status();
+}
+
+Status checkFrame(const std::vector<float>& xyz, const FrameSource& source, int64_t frame) {
+  for (size_t i = 0; i < xyz.size(); ++i)
+    if (!std::isfinite(xyz[i]) || std::fabs(xyz[i]) > 1e30f)
+      return badInput(source.where() + ": frame " + std::to_string(frame) + " vertex " +
+                      std::to_string(i / 3) + " has a NaN, infinite or huge coordinate");
+  return Status();
+}
+
+}  // namespace
+
+Status EncodeSettings::validate() const {
+  if (codec != CodecId::kAffineOctree) return invalidArgument("unknown codec");
+  return octree.validate();
+}
+
+Result<EncodeReport> encodeSequence(FrameSource& source, const EncodeSettings& settings,
+                                    const std::string& out_path, const ProgressFn& progress,
+                                    const FrameObserver& observer) {
+  ANIMC_RETURN_IF_ERROR(settings.validate());
+  ANIMC_RETURN_IF_ERROR(checkSource(source));
+  const Topology& topology = source.topology();
+  ContainerHeader header;
+  header.codec = settings.codec;
+  ByteWriter params;
+  settings.octree.write(params);
+  header.codec_params = params.bytes();
+  header.vertex_count = topology.vertex_count;
+  header.triangle_count = topology.triangles.size();
+  header.frame_rate = source.frameRate();
+  header.iframe_interval = settings.iframe_interval;
+
+  ContainerWriter writer;
+  ANIMC_RETURN_IF_ERROR(writer.open(out_path, header, topology));
+  std::unique_ptr<FrameEncoder> encoder = makeAffineOctreeEncoder(settings.octree, topology);
+  EncodeReport report;
+  report.vertices = topology.vertex_count;
+  report.triangles = topology.triangles.size();
+  const int64_t total = source.frameCount();
+  std::vector<float> xyz;
+  std::vector<uint8_t> payload;
+  double seconds = 0;
+  for (;;) {
+    ANIMC_ASSIGN_OR_RETURN(bool more, source.next(xyz));
+    if (!more) break;
+    ANIMC_RETURN_IF_ERROR(checkFrame(xyz, source, report.frames));
+    const bool intra = report.frames == 0 ||
+                       (settings.iframe_interval > 0 && report.frames % settings.iframe_interval == 0);
+    FrameCodingStats stats;
+    payload.clear();
+    const auto t0 = Clock::now();
+    encoder->encodeFrame(xyz.data(), intra, payload, stats);
+    seconds += std::chrono::duration<double>(Clock::now() - t0).count();
+    ANIMC_RETURN_IF_ERROR(writer.addFrame(payload, stats.intra));
+    if (report.frames == 0) report.static_bytes = writer.bytesWritten();
+    report.intra_frames += stats.intra;
+    report.cells += stats.cells;
+    if (observer) observer(report.frames, xyz.data(), encoder->reconstruction());
+    ++report.frames;
+    if (progress) {
+      const int pct = total > 0 ? int(std::min<int64_t>(99, 100 * report.frames / total)) : 0;
+      if (!progress(pct, "encoding")) return cancelled();
+    }
+  }
+  if (report.frames == 0) return badInput(source.where() + ": the sequence has no frames");
+  ANIMC_RETURN_IF_ERROR(writer.finish());
+  report.file_bytes = writer.bytesWritten();
+  report.encode_seconds = seconds;
+  if (progress) progress(100, "encoded");
+  return report;
+}
+
+Result<std::unique_ptr<AmsSource>> AmsSource::open(const std::string& path, const DecoderLimits& limits) {
+  std::unique_ptr<AmsSource> s(new AmsSource());
+  s->path_ = path;
+  ANIMC_ASSIGN_OR_RETURN(s->reader_, ContainerReader::open(path, limits));
+  const ContainerHeader& h = s->reader_->info().header;
+  ByteReader params(h.codec_params.data(), h.codec_params.size());
+  s->settings_.codec = h.codec;
+  s->settings_.iframe_interval = h.iframe_interval;
+  auto options = AffineOctreeOptions::read(params);
+  if (!options.ok()) return options.status().withContext(path);
+  s->settings_.octree = options.value();
+  s->decoder_ = makeAffineOctreeDecoder(s->settings_.octree, s->reader_->topology());
+  Status st = s->seek(0);
+  if (!st.ok()) return st;
+  return s;
+}
+
+Status AmsSource::seek(int64_t frame) {
+  if (frame < 0 || frame >= frameCount())
+    return invalidArgument("frame " + std::to_string(frame) + " outside [0, " +
+                           std::to_string(frameCount()) + ")");
+  group_ = reader_->groupOf(uint64_t(frame));
+  Status s = reader_->beginGroup(group_);
+  if (!s.ok()) return s.withContext(path_);
+  next_frame_ = int64_t(reader_->groupFirstFrame(group_));
+  std::vector<float> skipped;
+  while (next_frame_ < frame) {
+    ANIMC_ASSIGN_OR_RETURN(bool got, next(skipped));
+    if (!got) return corrupt(path_ + ": frame group ends early");
+  }
+  return Status();
+}
+
+Result<bool> AmsSource::next(std::vector<float>& xyz) {
+  if (next_frame_ >= frameCount()) return false;
+  auto got = reader_->nextFrame(payload_);
+  if (!got.ok()) return got.status().withContext(where());
+  if (!got.value()) {  // end of this group: the next one starts with an intra frame
+    Status s = reader_->beginGroup(++group_);
+    if (!s.ok()) return s.withContext(path_);
+    got = reader_->nextFrame(payload_);
+    if (!got.ok()) return got.status().withContext(where());
+    if (!got.value()) return corrupt(where() + ": empty frame group");
+  }
+  bool intra = false;
+  Status s = decoder_->decodeFrame(ByteReader(payload_.data(), payload_.size()), xyz, &intra);
+  if (!s.ok()) return s.withContext(where());
+  if (next_frame_ == int64_t(reader_->groupFirstFrame(group_)) && !intra)
+    return corrupt(where() + ": a frame group does not start with an intra frame");
+  ++next_frame_;
+  return true;
+}
+
+std::string AmsSource::where() const { return path_ + " frame " + std::to_string(next_frame_); }
+
+}  // namespace animc

@@ -1,0 +1,77 @@
+// The flat API of the codec library, used by animc and the MeshLab plugins alike:
+// encode a stream of frames to an .ams file, and read one back as a stream of frames.
+#pragma once
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "codecs/affine_octree/options.h"
+#include "codecs/codec_ids.h"
+#include "codecs/frame_codec.h"
+#include "container/container_reader.h"
+#include "core/sequence.h"
+#include "core/status.h"
+
+namespace animc {
+
+struct EncodeSettings {
+  CodecId codec = CodecId::kAffineOctree;
+  AffineOctreeOptions octree;
+  uint32_t iframe_interval = 0;  // an intra frame every K frames; 0 = the first frame only
+
+  Status validate() const;
+};
+
+struct EncodeReport {
+  uint32_t vertices = 0;
+  uint64_t triangles = 0;
+  int64_t frames = 0;
+  uint64_t intra_frames = 0;
+  uint64_t cells = 0;  // octree leaves over all inter frames
+  uint64_t file_bytes = 0;
+  uint64_t static_bytes = 0;  // header, connectivity and the first frame
+  double encode_seconds = 0;  // coding only: excludes reading the input
+};
+
+// Sees each original frame with its reconstruction as the decoder will produce it, so the
+// caller can measure errors without decoding the file again.
+using FrameObserver =
+    std::function<void(int64_t frame, const float* original, const std::vector<double>& reconstructed)>;
+
+// Encodes every frame of source into out_path (written atomically: on any error, nothing
+// appears there). progress is called once per frame.
+Result<EncodeReport> encodeSequence(FrameSource& source, const EncodeSettings& settings,
+                                    const std::string& out_path, const ProgressFn& progress = {},
+                                    const FrameObserver& observer = {});
+
+// An .ams file as a stream of frames; seek() gives random access through the frame index,
+// decoding only the frame group that holds the frame asked for.
+class AmsSource final : public FrameSource {
+ public:
+  static Result<std::unique_ptr<AmsSource>> open(const std::string& path,
+                                                 const DecoderLimits& limits = {});
+
+  const Topology& topology() const override { return reader_->topology(); }
+  int64_t frameCount() const override { return int64_t(reader_->info().frame_count); }
+  double frameRate() const override { return reader_->info().header.frame_rate; }
+  Result<bool> next(std::vector<float>& xyz) override;
+  std::string where() const override;
+
+  Status seek(int64_t frame);
+  const ContainerInfo& info() const { return reader_->info(); }
+  const EncodeSettings& settings() const { return settings_; }
+
+ private:
+  AmsSource() = default;
+  std::string path_;
+  std::unique_ptr<ContainerReader> reader_;
+  std::unique_ptr<FrameDecoder> decoder_;
+  EncodeSettings settings_;
+  int64_t next_frame_ = 0;
+  size_t group_ = 0;
+  std::vector<uint8_t> payload_;
+};
+
+}  // namespace animc

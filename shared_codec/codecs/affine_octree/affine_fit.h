@@ -1,0 +1,49 @@
+// Least-squares affine motion of one octree cell: reference positions u (normalised) to
+// current positions q, over the vertices idx[0..n).
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace animc {
+
+// The paper's form: q ≈ A·[u; 1], A row-major 3x4.
+struct Affine34 {
+  double a[12];
+};
+
+// A = Fc·Fpᵀ·(Fp·Fpᵀ)⁻¹. When Fp·Fpᵀ is ill-conditioned (reciprocal condition below
+// kSingularRcond: the points are nearly coplanar, collinear or coincident) the inverse is
+// replaced by a pseudo-inverse keeping the eigen-directions that carry the first 95 % of
+// its energy, as the paper prescribes. Returns whether that happened.
+constexpr double kSingularRcond = 1e-7;
+constexpr double kKeptEnergy = 0.95;
+bool fitAffinePaper(const std::vector<double>& u, const std::vector<double>& q, const uint32_t* idx,
+                    size_t n, Affine34& out);
+
+// Our form: q ≈ u + t + L·(u − c), c the centroid of the cell's reference vertices, so t is
+// the centroid's displacement and L is small for near-rigid motion. The fit is pulled towards
+// a prior L (the cell's motion in the previous frame) with weight kRidge, which keeps it
+// well-posed for one, two or coplanar vertices without any special case.
+struct CentredAffine {
+  double t[3] = {0, 0, 0};
+  double L[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+};
+constexpr double kRidge = 1e-3;
+
+struct CellFrame {
+  double centroid[3];
+  double radius;  // largest distance of a vertex from the centroid (>= tiny)
+};
+CellFrame cellFrame(const std::vector<double>& u, const uint32_t* idx, size_t n);
+
+void fitCentred(const std::vector<double>& u, const std::vector<double>& q, const uint32_t* idx,
+                size_t n, const CellFrame& frame, const double prior_L[9], CentredAffine& out);
+
+inline void applyCentred(const CentredAffine& m, const double c[3], const double* u, double* out) {
+  const double d[3] = {u[0] - c[0], u[1] - c[1], u[2] - c[2]};
+  for (int r = 0; r < 3; ++r)
+    out[r] = u[r] + m.t[r] + (m.L[3 * r] * d[0] + m.L[3 * r + 1] * d[1] + m.L[3 * r + 2] * d[2]);
+}
+
+}  // namespace animc

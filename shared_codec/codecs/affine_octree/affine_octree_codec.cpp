@@ -1,0 +1,178 @@
+#include "codecs/affine_octree/affine_octree_codec.h"
+
+#include <cmath>
+
+#include "codecs/affine_octree/iframe_coder.h"
+#include "codecs/affine_octree/octree_shared.h"
+#include "codecs/affine_octree/paper_octree.h"
+#include "codecs/affine_octree/predictive_octree.h"
+
+namespace animc {
+namespace {
+
+constexpr uint8_t kIntraFrame = 0;
+constexpr uint8_t kInterFrame = 1;
+// A frame whose vertices sit further than this from the reference cube (in cube sides) is
+// coded as an intra frame: the inter coders' ranges are not meant for teleporting meshes.
+constexpr double kMaxUnitCoordinate = 1e6;
+
+// The root cube of an inter frame is that of the *reconstructed* previous frame, which can
+// stick out of the original's box by up to the error itself on each side. Testing against
+// ME/(1+2·ME) keeps every error within ME of the original frames' cube as well, which is what
+// an independent check (shared/tools/seqmetrics.py) measures.
+double innerMaxError(double max_error) { return max_error / (1.0 + 2.0 * max_error); }
+
+void denormalize(const RootCube& cube, const std::vector<double>& unit, std::vector<double>& out) {
+  out.resize(unit.size());
+  for (size_t i = 0; i < unit.size(); i += 3)
+    for (int a = 0; a < 3; ++a) out[i + a] = cube.min[a] + cube.side * unit[i + a];
+}
+
+// State both sides keep: the last two reconstructed frames.
+struct LoopState {
+  std::vector<double> current, before;
+  bool has_current = false, has_before = false;
+  std::vector<double> u, u0, recon_unit;
+
+  // Normalises the references into the root cube of `current`.
+  RootCube prepare() {
+    const RootCube cube = boundingCube(current);
+    normalize(cube, current, u);
+    if (has_before) normalize(cube, before, u0);
+    return cube;
+  }
+  void advance(const RootCube& cube) {
+    before.swap(current);
+    has_before = true;
+    denormalize(cube, recon_unit, current);
+  }
+  void restart() {
+    has_current = true;
+    has_before = false;
+  }
+};
+
+class AffineOctreeEncoder final : public FrameEncoder {
+ public:
+  AffineOctreeEncoder(const AffineOctreeOptions& options, const Topology& topology)
+      : options_(options), intra_(topology), paper_(options.bits), vertex_count_(topology.vertex_count) {}
+
+  void encodeFrame(const float* xyz, bool intra, std::vector<uint8_t>& out,
+                   FrameCodingStats& stats) override {
+    x_.assign(xyz, xyz + 3 * size_t(vertex_count_));
+    stats = FrameCodingStats();
+    const size_t start = out.size();
+    if (!intra && state_.has_current && encodeInter(out, stats)) return;
+    out.resize(start);
+    encodeIntra(out, stats);
+  }
+  const std::vector<double>& reconstruction() const override { return state_.current; }
+
+ private:
+  bool encodeInter(std::vector<uint8_t>& out, FrameCodingStats& stats) {
+    const RootCube cube = state_.prepare();
+    normalize(cube, x_, q_);
+    for (double c : q_)
+      if (std::fabs(c) > kMaxUnitCoordinate) return false;
+    PFrameInput in{&state_.u, state_.has_before ? &state_.u0 : nullptr, &q_, innerMaxError(options_.max_error),
+                   options_.max_depth};
+    out.push_back(kInterFrame);
+    if (options_.profile == Profile::kPaper) {
+      PaperFrameStats s;
+      paper_.encode(in, out, state_.recon_unit, s);
+      stats.cells = s.affine_cells + s.position_cells;
+      stats.position_cells = s.position_cells;
+    } else {
+      PredictiveFrameStats s;
+      if (!predictive_.encode(in, out, state_.recon_unit, s)) return false;
+      stats.cells = s.leaves;
+    }
+    state_.advance(cube);
+    return true;
+  }
+
+  void encodeIntra(std::vector<uint8_t>& out, FrameCodingStats& stats) {
+    stats.intra = true;
+    out.push_back(kIntraFrame);
+    intra_.encode(x_, intraStep(options_, boundingCube(x_).side), out, state_.current);
+    state_.restart();
+    paper_.reset();
+    predictive_.reset();
+  }
+
+  AffineOctreeOptions options_;
+  IFrameCoder intra_;
+  PaperOctreeEncoder paper_;
+  PredictiveOctreeEncoder predictive_;
+  uint32_t vertex_count_;
+  LoopState state_;
+  std::vector<double> x_, q_;
+};
+
+class AffineOctreeDecoder final : public FrameDecoder {
+ public:
+  AffineOctreeDecoder(const AffineOctreeOptions& options, const Topology& topology)
+      : options_(options), intra_(topology), paper_(options.bits), vertex_count_(topology.vertex_count) {}
+
+  Status decodeFrame(ByteReader payload, std::vector<float>& xyz, bool* intra) override {
+    ANIMC_ASSIGN_OR_RETURN(uint8_t type, payload.u8("Frame_Type"));
+    if (type == kIntraFrame) {
+      ANIMC_RETURN_IF_ERROR(intra_.decode(payload, state_.current));
+      state_.restart();
+      paper_.reset();
+      predictive_.reset();
+    } else if (type == kInterFrame) {
+      if (!state_.has_current) return corrupt("inter frame without a preceding intra frame");
+      ANIMC_RETURN_IF_ERROR(decodeInter(payload));
+    } else {
+      return corrupt("unknown frame type " + std::to_string(type));
+    }
+    if (intra) *intra = type == kIntraFrame;
+    xyz.resize(3 * size_t(vertex_count_));
+    for (size_t i = 0; i < xyz.size(); ++i) {
+      if (!std::isfinite(state_.current[i]) || std::fabs(state_.current[i]) > 1e30)
+        return corrupt("decoded vertex " + std::to_string(i / 3) + " is out of range");
+      xyz[i] = float(state_.current[i]);
+    }
+    return Status();
+  }
+
+ private:
+  Status decodeInter(ByteReader payload) {
+    const RootCube cube = state_.prepare();
+    PFrameInput in{&state_.u, state_.has_before ? &state_.u0 : nullptr, nullptr,
+                   innerMaxError(options_.max_error), options_.max_depth};
+    if (options_.profile == Profile::kPaper)
+      ANIMC_RETURN_IF_ERROR(paper_.decode(in, payload, state_.recon_unit));
+    else
+      ANIMC_RETURN_IF_ERROR(predictive_.decode(in, payload, state_.recon_unit));
+    state_.advance(cube);
+    return Status();
+  }
+
+  AffineOctreeOptions options_;
+  IFrameCoder intra_;
+  PaperOctreeDecoder paper_;
+  PredictiveOctreeDecoder predictive_;
+  uint32_t vertex_count_;
+  LoopState state_;
+};
+
+}  // namespace
+
+double intraStep(const AffineOctreeOptions& options, double side) {
+  if (options.profile == Profile::kPaper) return side / double((1u << options.bits) - 1);
+  return residualStep(options.max_error) * side;
+}
+
+std::unique_ptr<FrameEncoder> makeAffineOctreeEncoder(const AffineOctreeOptions& options,
+                                                      const Topology& topology) {
+  return std::make_unique<AffineOctreeEncoder>(options, topology);
+}
+
+std::unique_ptr<FrameDecoder> makeAffineOctreeDecoder(const AffineOctreeOptions& options,
+                                                      const Topology& topology) {
+  return std::make_unique<AffineOctreeDecoder>(options, topology);
+}
+
+}  // namespace animc

@@ -1,0 +1,19 @@
+// The Affine-Octree codec as seen by the container: intra frames through IFrameCoder,
+// inter frames through the profile's octree coder, closed loop on the reconstruction.
+#pragma once
+#include <memory>
+
+#include "codecs/affine_octree/options.h"
+#include "codecs/frame_codec.h"
+
+namespace animc {
+
+std::unique_ptr<FrameEncoder> makeAffineOctreeEncoder(const AffineOctreeOptions& options,
+                                                      const Topology& topology);
+std::unique_ptr<FrameDecoder> makeAffineOctreeDecoder(const AffineOctreeOptions& options,
+                                                      const Topology& topology);
+
+// Grid step of intra frames for a frame whose root cube has the given side.
+double intraStep(const AffineOctreeOptions& options, double side);
+
+}  // namespace animc

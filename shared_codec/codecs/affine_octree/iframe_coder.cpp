@@ -1,0 +1,115 @@
+#include "codecs/affine_octree/iframe_coder.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "entropy/integer_coder.h"
+#include "io/byte_writer.h"
+
+namespace animc {
+namespace {
+
+constexpr int kContexts = 3;  // by the size of the previous residual on the same axis
+using IFrameModel = IntegerModel<kContexts>;
+
+int contextOf(int64_t previous) {
+  const int64_t m = previous < 0 ? -previous : previous;
+  return m == 0 ? 0 : (m < 4 ? 1 : 2);
+}
+
+// Grid indices beyond this cannot come from a valid encoder (see encode()).
+constexpr double kMaxGridIndex = 1u << 30;
+
+}  // namespace
+
+IFrameCoder::IFrameCoder(const Topology& topology) : vertex_count_(topology.vertex_count) {
+  std::vector<std::vector<uint32_t>> lower(vertex_count_);
+  for (const Triangle& t : topology.triangles)
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        if (t[j] < t[i]) lower[t[i]].push_back(t[j]);
+  lower_begin_.assign(vertex_count_ + 1, 0);
+  for (uint32_t v = 0; v < vertex_count_; ++v) {
+    std::sort(lower[v].begin(), lower[v].end());
+    lower[v].erase(std::unique(lower[v].begin(), lower[v].end()), lower[v].end());
+    lower_begin_[v + 1] = lower_begin_[v] + uint32_t(lower[v].size());
+    lower_.insert(lower_.end(), lower[v].begin(), lower[v].end());
+  }
+}
+
+void IFrameCoder::predict(const std::vector<int64_t>& q, uint32_t v, int64_t pred[3]) const {
+  const uint32_t b = lower_begin_[v], e = lower_begin_[v + 1];
+  if (b == e) {
+    for (int a = 0; a < 3; ++a) pred[a] = v > 0 ? q[3 * size_t(v - 1) + a] : 0;
+    return;
+  }
+  for (int a = 0; a < 3; ++a) {
+    int64_t sum = 0;
+    for (uint32_t i = b; i < e; ++i) sum += q[3 * size_t(lower_[i]) + a];
+    const int64_t n = int64_t(e - b);
+    pred[a] = (sum >= 0 ? sum + n / 2 : sum - n / 2) / n;  // rounded mean
+  }
+}
+
+void IFrameCoder::encode(const std::vector<double>& xyz, double step, std::vector<uint8_t>& out,
+                         std::vector<double>& recon) const {
+  double min[3];
+  for (int a = 0; a < 3; ++a) min[a] = xyz.empty() ? 0.0 : xyz[a];
+  for (size_t i = 0; i < xyz.size(); i += 3)
+    for (int a = 0; a < 3; ++a) min[a] = std::min(min[a], xyz[i + a]);
+  ByteWriter header;
+  for (double m : min) header.f64(m);
+  header.f64(step);
+  out.insert(out.end(), header.bytes().begin(), header.bytes().end());
+
+  std::vector<int64_t> q(xyz.size());
+  for (size_t i = 0; i < xyz.size(); ++i)
+    q[i] = int64_t(std::llround(std::min((xyz[i] - min[i % 3]) / step, kMaxGridIndex)));
+  IFrameModel model;
+  RangeEncoder rc(out);
+  int64_t previous[3] = {0, 0, 0};
+  for (uint32_t v = 0; v < vertex_count_; ++v) {
+    int64_t pred[3];
+    predict(q, v, pred);
+    for (int a = 0; a < 3; ++a) {
+      const int64_t r = q[3 * size_t(v) + a] - pred[a];
+      encodeInt(rc, model, contextOf(previous[a]), r);
+      previous[a] = r;
+    }
+  }
+  rc.finish();
+  recon.resize(xyz.size());
+  for (size_t i = 0; i < xyz.size(); ++i) recon[i] = min[i % 3] + double(q[i]) * step;
+}
+
+Status IFrameCoder::decode(ByteReader& in, std::vector<double>& recon) const {
+  double min[3];
+  for (double& m : min) {
+    ANIMC_ASSIGN_OR_RETURN(m, in.f64("IFrame_Min"));
+    if (!std::isfinite(m) || std::fabs(m) > 1e30) return corrupt("intra frame: corner out of range");
+  }
+  ANIMC_ASSIGN_OR_RETURN(double step, in.f64("IFrame_Step"));
+  if (!(step > 0 && step < 1e30)) return corrupt("intra frame: grid step out of range");
+  RangeDecoder rc(in.cursor(), in.remaining());
+  IFrameModel model;
+  std::vector<int64_t> q(3 * size_t(vertex_count_));
+  int64_t previous[3] = {0, 0, 0};
+  for (uint32_t v = 0; v < vertex_count_; ++v) {
+    int64_t pred[3];
+    predict(q, v, pred);
+    for (int a = 0; a < 3; ++a) {
+      const int64_t r = decodeInt(rc, model, contextOf(previous[a]));
+      const int64_t value = pred[a] + r;
+      if (value < -int64_t(kMaxGridIndex) || value > int64_t(kMaxGridIndex))
+        return corrupt("intra frame: vertex " + std::to_string(v) + " off the grid");
+      q[3 * size_t(v) + a] = value;
+      previous[a] = r;
+    }
+    if (rc.overran()) return corrupt("intra frame: coded data ends early");
+  }
+  recon.resize(q.size());
+  for (size_t i = 0; i < q.size(); ++i) recon[i] = min[i % 3] + double(q[i]) * step;
+  return Status();
+}
+
+}  // namespace animc

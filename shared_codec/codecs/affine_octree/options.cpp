@@ -1,0 +1,58 @@
+#include "codecs/affine_octree/options.h"
+
+#include <cmath>
+#include <string>
+
+namespace animc {
+
+const char* codecName(CodecId id) {
+  switch (id) {
+    case CodecId::kAffineOctree: return "affine-octree";
+  }
+  return "unknown";
+}
+
+const char* profileName(Profile p) {
+  switch (p) {
+    case Profile::kPaper: return "paper";
+    case Profile::kDefault: return "default";
+  }
+  return "unknown";
+}
+
+Status AffineOctreeOptions::validate() const {
+  if (profile != Profile::kPaper && profile != Profile::kDefault)
+    return invalidArgument("unknown profile " + std::to_string(int(profile)));
+  if (!(max_error >= kMinMaxError && max_error <= kMaxMaxError))
+    return invalidArgument("max error " + std::to_string(max_error) + " outside [" +
+                           std::to_string(kMinMaxError) + ", " + std::to_string(kMaxMaxError) +
+                           "] (a fraction of the root cube's side: 0.01 = 1%)");
+  if (bits < kMinBits || bits > kMaxBits)
+    return invalidArgument("bits " + std::to_string(bits) + " outside [8, 24]");
+  if (max_depth < 1 || max_depth > kMaxDepthLimit)
+    return invalidArgument("max depth " + std::to_string(max_depth) + " outside [1, 16]");
+  return Status();
+}
+
+void AffineOctreeOptions::write(ByteWriter& w) const {
+  w.u8(uint8_t(profile));
+  w.f64(max_error);
+  w.u8(uint8_t(bits));
+  w.u8(uint8_t(max_depth));
+}
+
+Result<AffineOctreeOptions> AffineOctreeOptions::read(ByteReader& r) {
+  AffineOctreeOptions o;
+  ANIMC_ASSIGN_OR_RETURN(uint8_t profile, r.u8("Profile"));
+  ANIMC_ASSIGN_OR_RETURN(o.max_error, r.f64("Max_Error"));
+  ANIMC_ASSIGN_OR_RETURN(uint8_t bits, r.u8("Bits"));
+  ANIMC_ASSIGN_OR_RETURN(uint8_t depth, r.u8("Max_Depth"));
+  o.profile = Profile(profile);
+  o.bits = bits;
+  o.max_depth = depth;
+  Status s = o.validate();
+  if (!s.ok()) return corrupt("codec parameters: " + s.message());
+  return o;
+}
+
+}  // namespace animc

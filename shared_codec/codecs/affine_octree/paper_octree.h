@@ -1,0 +1,79 @@
+// P-frames of the "paper" profile: the Affine-Octree method as published. A cell whose
+// quantised affine leaves every vertex within ME is a leaf; otherwise it splits into eight,
+// and cells of at most four vertices (or at the depth limit) store positions.
+// docs/affine_octree.md lists every choice the paper leaves open.
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "codecs/affine_octree/affine_fit.h"
+#include "codecs/affine_octree/octree_shared.h"
+#include "codecs/affine_octree/options.h"
+#include "codecs/affine_octree/pframe.h"
+#include "core/status.h"
+#include "entropy/bit_tree.h"
+#include "io/byte_reader.h"
+
+namespace animc {
+
+// The fixed quantisation ranges (the paper's predefined amin/amax), in root-cube units.
+constexpr double kPaperAffineMin = -2.0;
+constexpr double kPaperAffineMax = 2.0;
+constexpr double kPaperPositionMin = -1.0;
+constexpr double kPaperPositionMax = 2.0;
+constexpr uint32_t kPaperMaxLeafPositions = 4;
+
+struct PaperModels {
+  BitModel split[kMaxDepthLimit + 1];
+  BitModel positions_leaf;  // a cell of more than 4 vertices at the depth limit
+  BitModel escape;          // a stored position outside the quantisation range: raw bits
+  WideSymbolModel affine[12];
+  WideSymbolModel position[3];
+};
+
+struct PaperFrameStats {
+  uint64_t affine_cells = 0;
+  uint64_t position_cells = 0;
+};
+
+class PaperOctreeEncoder {
+ public:
+  explicit PaperOctreeEncoder(int bits) : bits_(bits) {}
+  void reset() { models_ = std::make_unique<PaperModels>(); }
+  // Codes one frame; recon receives the decoder's reconstruction (normalised units).
+  void encode(const PFrameInput& in, std::vector<uint8_t>& out, std::vector<double>& recon,
+              PaperFrameStats& stats);
+
+ private:
+  struct Walk;
+  void encodeCell(Walk& w, const Cell& cell);
+  void encodePositions(Walk& w, const Cell& cell);
+
+  int bits_;
+  std::unique_ptr<PaperModels> models_ = std::make_unique<PaperModels>();
+  std::vector<uint32_t> order_, scratch_;
+};
+
+class PaperOctreeDecoder {
+ public:
+  explicit PaperOctreeDecoder(int bits) : bits_(bits) {}
+  void reset() { models_ = std::make_unique<PaperModels>(); }
+  Status decode(const PFrameInput& in, ByteReader payload, std::vector<double>& recon);
+
+ private:
+  struct Walk;
+  Status decodeCell(Walk& w, const Cell& cell);
+  Status decodePositions(Walk& w, const Cell& cell);
+
+  int bits_;
+  std::unique_ptr<PaperModels> models_ = std::make_unique<PaperModels>();
+  std::vector<uint32_t> order_, scratch_;
+};
+
+// Shared arithmetic of the two sides.
+uint32_t quantizeUnit(double value, double lo, double hi, int bits);
+double dequantizeUnit(uint32_t q, double lo, double hi, int bits);
+void applyAffine34(const double a[12], const double* u, double* out);
+
+}  // namespace animc

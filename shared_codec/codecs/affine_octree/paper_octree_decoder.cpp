@@ -1,0 +1,71 @@
+#include <cmath>
+#include <cstring>
+#include <string>
+
+#include "codecs/affine_octree/paper_octree.h"
+
+namespace animc {
+
+struct PaperOctreeDecoder::Walk {
+  const PFrameInput& in;
+  RangeDecoder rc;
+  std::vector<double>& recon;
+};
+
+Status PaperOctreeDecoder::decode(const PFrameInput& in, ByteReader payload,
+                                  std::vector<double>& recon) {
+  const std::vector<double>& u = *in.reference;
+  const uint32_t n = uint32_t(u.size() / 3);
+  order_.resize(n);
+  for (uint32_t i = 0; i < n; ++i) order_[i] = i;
+  recon.resize(u.size());
+  Walk w{in, RangeDecoder(payload.cursor(), payload.remaining()), recon};
+  ANIMC_RETURN_IF_ERROR(decodeCell(w, Cell{{0, 0, 0}, 1.0, 0, n, 0}));
+  if (w.rc.overran()) return corrupt("octree frame: coded data ends early or is damaged");
+  return Status();
+}
+
+Status PaperOctreeDecoder::decodeCell(Walk& w, const Cell& cell) {
+  const uint32_t n = cell.end - cell.begin;
+  if (n == 0) return Status();
+  if (w.rc.overran()) return corrupt("octree frame: coded data ends early or is damaged");
+  if (n <= kPaperMaxLeafPositions) return decodePositions(w, cell);
+  const std::vector<double>& u = *w.in.reference;
+  if (cell.depth < w.in.max_depth && w.rc.decode(models_->split[cell.depth])) {
+    Cell children[8];
+    splitCell(cell, u, order_, scratch_, children);
+    for (const Cell& child : children) ANIMC_RETURN_IF_ERROR(decodeCell(w, child));
+    return Status();
+  }
+  if (w.rc.decode(models_->positions_leaf)) return decodePositions(w, cell);
+  double a[12];
+  for (int i = 0; i < 12; ++i)
+    a[i] = dequantizeUnit(decodeWide(w.rc, models_->affine[i], bits_), kPaperAffineMin,
+                          kPaperAffineMax, bits_);
+  for (uint32_t i = cell.begin; i < cell.end; ++i)
+    applyAffine34(a, &u[3 * size_t(order_[i])], &w.recon[3 * size_t(order_[i])]);
+  return Status();
+}
+
+Status PaperOctreeDecoder::decodePositions(Walk& w, const Cell& cell) {
+  for (uint32_t i = cell.begin; i < cell.end; ++i) {
+    double* r = &w.recon[3 * size_t(order_[i])];
+    const bool escape = w.rc.decode(models_->escape);
+    for (int a = 0; a < 3; ++a) {
+      if (escape) {
+        const uint64_t hi = w.rc.decodeRaw(32);
+        const uint64_t bits = (hi << 32) | w.rc.decodeRaw(32);
+        std::memcpy(&r[a], &bits, 8);
+        if (!std::isfinite(r[a]) || std::fabs(r[a]) > 1e12)
+          return corrupt("octree frame: stored position of vertex " +
+                         std::to_string(order_[i]) + " out of range");
+      } else {
+        r[a] = dequantizeUnit(decodeWide(w.rc, models_->position[a], bits_), kPaperPositionMin,
+                              kPaperPositionMax, bits_);
+      }
+    }
+  }
+  return Status();
+}
+
+}  // namespace animc

@@ -1,0 +1,100 @@
+// P-frames of the "default" profile: the Affine-Octree family with the paper's open headroom
+// taken (docs/affine_octree.md, "default profile", gives each change with its measured gain):
+//  - the affine is expressed about the cell centroid (t = centroid motion, L = deformation);
+//  - it is predicted from the same cell's motion between the two previous reconstructed
+//    frames (the decoder refits it, nothing is sent), and only the correction is coded;
+//  - quantisation steps follow from ME instead of a fixed 16 bits;
+//  - every vertex gets a residual on a grid of step 2·ME/√3, which bounds its error by ME
+//    whatever the split, so splits are chosen by estimated rate, not by error;
+//  - all symbols go through context-modelled adaptive binary coding.
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "codecs/affine_octree/affine_fit.h"
+#include "codecs/affine_octree/octree_shared.h"
+#include "codecs/affine_octree/options.h"
+#include "codecs/affine_octree/pframe.h"
+#include "core/status.h"
+#include "entropy/integer_coder.h"
+#include "io/byte_reader.h"
+
+namespace animc {
+
+constexpr int kCtxTranslation = 0;
+constexpr int kCtxLinear = 1;
+constexpr int kCtxResidual = 2;  // 2, 3, 4 by the previous residual's size
+constexpr uint32_t kMinLinearVertices = 4;  // fewer vertices: translation only, L from the prior
+constexpr double kTranslationStep = 0.5;    // in units of the residual step
+constexpr double kLinearStep = 0.5;         // in residual steps per cell radius
+constexpr int64_t kMaxCodedMagnitude = int64_t(1) << 30;
+
+inline int residualContext(int64_t previous) {
+  const int64_t m = previous < 0 ? -previous : previous;
+  return kCtxResidual + (m == 0 ? 0 : (m == 1 ? 1 : 2));
+}
+
+struct PredictiveModels {
+  BitModel split[kMaxDepthLimit + 1];
+  BitModel residuals_zero[2];
+  IntegerModel<5> ints;
+};
+
+// The residual grid step for a given ME: the worst error of rounding each axis is step/2,
+// so the vertex error is at most √3·step/2 < ME. The margin covers floating-point rounding.
+double residualStep(double max_error);
+
+// Leaf arithmetic shared by encoder and decoder.
+struct LeafModel {
+  CellFrame frame;
+  CentredAffine prior;
+};
+LeafModel leafModel(const PFrameInput& in, const uint32_t* idx, size_t n);
+// coded[0..2] translation, coded[3..11] linear part, in quantisation steps.
+CentredAffine codedAffine(const LeafModel& m, const int64_t coded[12], double step);
+
+struct PredictiveFrameStats {
+  uint64_t leaves = 0;
+  uint64_t nonzero_residuals = 0;
+};
+
+class PredictiveOctreeEncoder {
+ public:
+  void reset() { models_ = std::make_unique<PredictiveModels>(); }
+  // False when a value would not fit the stream (a jump of ~2^30 steps): code an I-frame.
+  bool encode(const PFrameInput& in, std::vector<uint8_t>& out, std::vector<double>& recon,
+              PredictiveFrameStats& stats);
+
+ private:
+  struct Node {
+    bool split;
+    int64_t coded[12];
+  };
+  struct Walk;
+  double search(Walk& w, const Cell& cell);
+  double evaluateLeaf(Walk& w, const Cell& cell, Node& node, bool& all_zero);
+  void codeCell(Walk& w, const Cell& cell);
+  void codeLeaf(Walk& w, const Cell& cell, const Node& node);
+
+  std::unique_ptr<PredictiveModels> models_ = std::make_unique<PredictiveModels>();
+  std::vector<uint32_t> order_, scratch_;
+  std::vector<Node> plan_;
+  std::vector<int64_t> residual_;
+};
+
+class PredictiveOctreeDecoder {
+ public:
+  void reset() { models_ = std::make_unique<PredictiveModels>(); }
+  Status decode(const PFrameInput& in, ByteReader payload, std::vector<double>& recon);
+
+ private:
+  struct Walk;
+  Status decodeCell(Walk& w, const Cell& cell);
+  Status decodeLeaf(Walk& w, const Cell& cell);
+
+  std::unique_ptr<PredictiveModels> models_ = std::make_unique<PredictiveModels>();
+  std::vector<uint32_t> order_, scratch_;
+};
+
+}  // namespace animc

@@ -1,0 +1,66 @@
+#include <cmath>
+
+#include "codecs/affine_octree/predictive_octree.h"
+
+namespace animc {
+struct PredictiveOctreeDecoder::Walk {
+  const PFrameInput& in;
+  double step;
+  RangeDecoder rc;
+  std::vector<double>& recon;
+};
+
+Status PredictiveOctreeDecoder::decode(const PFrameInput& in, ByteReader payload,
+                                       std::vector<double>& recon) {
+  const uint32_t n = uint32_t(in.reference->size() / 3);
+  order_.resize(n);
+  for (uint32_t i = 0; i < n; ++i) order_[i] = i;
+  recon.resize(in.reference->size());
+  Walk w{in, residualStep(in.max_error), RangeDecoder(payload.cursor(), payload.remaining()), recon};
+  ANIMC_RETURN_IF_ERROR(decodeCell(w, Cell{{0, 0, 0}, 1.0, 0, n, 0}));
+  if (w.rc.overran()) return corrupt("octree frame: coded data ends early or is damaged");
+  return Status();
+}
+
+Status PredictiveOctreeDecoder::decodeCell(Walk& w, const Cell& cell) {
+  const uint32_t n = cell.end - cell.begin;
+  if (n == 0) return Status();
+  if (w.rc.overran()) return corrupt("octree frame: coded data ends early or is damaged");
+  if (cell.depth < w.in.max_depth && n > 1 && w.rc.decode(models_->split[cell.depth])) {
+    Cell children[8];
+    splitCell(cell, *w.in.reference, order_, scratch_, children);
+    for (const Cell& child : children) ANIMC_RETURN_IF_ERROR(decodeCell(w, child));
+    return Status();
+  }
+  return decodeLeaf(w, cell);
+}
+
+Status PredictiveOctreeDecoder::decodeLeaf(Walk& w, const Cell& cell) {
+  const uint32_t n = cell.end - cell.begin;
+  const uint32_t* idx = &order_[cell.begin];
+  PredictiveModels& pm = *models_;
+  int64_t coded[12] = {0};
+  for (int r = 0; r < 3; ++r) coded[r] = decodeInt(w.rc, pm.ints, kCtxTranslation);
+  if (n >= kMinLinearVertices)
+    for (int k = 0; k < 9; ++k) coded[3 + k] = decodeInt(w.rc, pm.ints, kCtxLinear);
+  const LeafModel m = leafModel(w.in, idx, n);
+  const CentredAffine a = codedAffine(m, coded, w.step);
+  const std::vector<double>& u = *w.in.reference;
+  for (uint32_t i = 0; i < n; ++i) {
+    const size_t v = 3 * size_t(idx[i]);
+    applyCentred(a, m.frame.centroid, &u[v], &w.recon[v]);
+  }
+  if (w.rc.decode(pm.residuals_zero[n <= kMinLinearVertices])) return Status();
+  int64_t previous[3] = {0, 0, 0};
+  for (uint32_t i = 0; i < n; ++i) {
+    const size_t v = 3 * size_t(idx[i]);
+    for (int ax = 0; ax < 3; ++ax) {
+      const int64_t r = decodeInt(w.rc, pm.ints, residualContext(previous[ax]));
+      w.recon[v + ax] += double(r) * w.step;
+      previous[ax] = r;
+    }
+  }
+  return Status();
+}
+
+}  // namespace animc

@@ -1,0 +1,163 @@
+#include <algorithm>
+#include <cmath>
+
+#include "codecs/affine_octree/predictive_octree.h"
+
+namespace animc {
+struct PredictiveOctreeEncoder::Walk {
+  const PFrameInput& in;
+  double step;
+  bool overflow = false;
+  size_t cursor = 0;  // next plan node while coding
+  RangeEncoder* rc = nullptr;
+  std::vector<double>* recon = nullptr;
+  PredictiveFrameStats* stats = nullptr;
+};
+
+bool PredictiveOctreeEncoder::encode(const PFrameInput& in, std::vector<uint8_t>& out,
+                                     std::vector<double>& recon, PredictiveFrameStats& stats) {
+  const uint32_t n = uint32_t(in.reference->size() / 3);
+  const Cell root{{0, 0, 0}, 1.0, 0, n, 0};
+  Walk w{in, residualStep(in.max_error)};
+  // Pass 1: choose the tree by estimated rate (the search reorders `order_` freely).
+  order_.resize(n);
+  for (uint32_t i = 0; i < n; ++i) order_[i] = i;
+  plan_.clear();
+  search(w, root);
+  if (w.overflow) return false;
+  // Pass 2: code the chosen tree exactly as the decoder will walk it.
+  for (uint32_t i = 0; i < n; ++i) order_[i] = i;
+  RangeEncoder rc(out);
+  recon.resize(in.reference->size());
+  w.rc = &rc;
+  w.recon = &recon;
+  w.stats = &stats;
+  codeCell(w, root);
+  rc.finish();
+  return true;
+}
+
+double PredictiveOctreeEncoder::search(Walk& w, const Cell& cell) {
+  const uint32_t n = cell.end - cell.begin;
+  if (n == 0) return 0;
+  const size_t mark = plan_.size();
+  plan_.push_back(Node{false, {}});
+  bool all_zero = false;
+  const double leaf_bits = evaluateLeaf(w, cell, plan_[mark], all_zero);
+  const bool can_split = cell.depth < w.in.max_depth && n > 1;
+  if (!can_split) return leaf_bits;
+  const double leaf_cost = leaf_bits + bitCost(models_->split[cell.depth], 0);
+  if (all_zero) return leaf_cost;  // nothing left for children to save but parameters
+  const Node leaf = plan_[mark];
+  plan_[mark].split = true;
+  double split_cost = bitCost(models_->split[cell.depth], 1);
+  Cell children[8];
+  splitCell(cell, *w.in.reference, order_, scratch_, children);
+  for (const Cell& child : children) {
+    split_cost += search(w, child);
+    if (split_cost >= leaf_cost) break;
+  }
+  if (split_cost < leaf_cost) return split_cost;
+  plan_.resize(mark + 1);
+  plan_[mark] = leaf;
+  return leaf_cost;
+}
+
+double PredictiveOctreeEncoder::evaluateLeaf(Walk& w, const Cell& cell, Node& node, bool& all_zero) {
+  const uint32_t n = cell.end - cell.begin;
+  const uint32_t* idx = &order_[cell.begin];
+  const std::vector<double>& u = *w.in.reference;
+  const std::vector<double>& q = *w.in.target;
+  const LeafModel m = leafModel(w.in, idx, n);
+  CentredAffine fit;
+  fitCentred(u, q, idx, n, m.frame, m.prior.L, fit);
+  const double st = w.step * kTranslationStep;
+  const double sl = w.step * kLinearStep / m.frame.radius;
+  const bool linear = n >= kMinLinearVertices;
+  const PredictiveModels& pm = *models_;
+  double bits = 0;
+  for (int r = 0; r < 3; ++r) {
+    node.coded[r] = std::llround((fit.t[r] - m.prior.t[r]) / st);
+    bits += intCost(pm.ints, kCtxTranslation, node.coded[r]);
+  }
+  for (int k = 0; k < 9; ++k) {
+    node.coded[3 + k] = linear ? std::llround((fit.L[k] - m.prior.L[k]) / sl) : 0;
+    if (linear) bits += intCost(pm.ints, kCtxLinear, node.coded[3 + k]);
+  }
+  for (int64_t c : node.coded)
+    if (c > kMaxCodedMagnitude || c < -kMaxCodedMagnitude) w.overflow = true;
+  const CentredAffine a = codedAffine(m, node.coded, w.step);
+  double residual_bits = 0;
+  all_zero = true;
+  int64_t previous[3] = {0, 0, 0};
+  for (uint32_t i = 0; i < n; ++i) {
+    double p[3];
+    const size_t v = 3 * size_t(idx[i]);
+    applyCentred(a, m.frame.centroid, &u[v], p);
+    for (int ax = 0; ax < 3; ++ax) {
+      const double k = std::nearbyint((q[v + ax] - p[ax]) / w.step);
+      if (std::fabs(k) > double(kMaxCodedMagnitude)) w.overflow = true;
+      const int64_t r = w.overflow ? 0 : int64_t(k);
+      all_zero = all_zero && r == 0;
+      residual_bits += intCost(pm.ints, residualContext(previous[ax]), r);
+      previous[ax] = r;
+    }
+  }
+  const BitModel& zero_flag = pm.residuals_zero[n <= kMinLinearVertices];
+  return bits + (all_zero ? bitCost(zero_flag, 1) : bitCost(zero_flag, 0) + residual_bits);
+}
+
+void PredictiveOctreeEncoder::codeCell(Walk& w, const Cell& cell) {
+  const uint32_t n = cell.end - cell.begin;
+  if (n == 0) return;
+  const Node& node = plan_[w.cursor++];
+  if (cell.depth < w.in.max_depth && n > 1) {
+    w.rc->encode(models_->split[cell.depth], node.split);
+    if (node.split) {
+      Cell children[8];
+      splitCell(cell, *w.in.reference, order_, scratch_, children);
+      for (const Cell& child : children) codeCell(w, child);
+      return;
+    }
+  }
+  codeLeaf(w, cell, node);
+}
+
+void PredictiveOctreeEncoder::codeLeaf(Walk& w, const Cell& cell, const Node& node) {
+  const uint32_t n = cell.end - cell.begin;
+  const uint32_t* idx = &order_[cell.begin];
+  const std::vector<double>& u = *w.in.reference;
+  const std::vector<double>& q = *w.in.target;
+  RangeEncoder& rc = *w.rc;
+  PredictiveModels& pm = *models_;
+  ++w.stats->leaves;
+  for (int r = 0; r < 3; ++r) encodeInt(rc, pm.ints, kCtxTranslation, node.coded[r]);
+  if (n >= kMinLinearVertices)
+    for (int k = 0; k < 9; ++k) encodeInt(rc, pm.ints, kCtxLinear, node.coded[3 + k]);
+  const LeafModel m = leafModel(w.in, idx, n);
+  const CentredAffine a = codedAffine(m, node.coded, w.step);
+  residual_.resize(3 * size_t(n));
+  bool all_zero = true;
+  for (uint32_t i = 0; i < n; ++i) {
+    const size_t v = 3 * size_t(idx[i]);
+    double* out = &(*w.recon)[v];
+    applyCentred(a, m.frame.centroid, &u[v], out);
+    for (int ax = 0; ax < 3; ++ax) {
+      const int64_t r = int64_t(std::nearbyint((q[v + ax] - out[ax]) / w.step));
+      residual_[3 * size_t(i) + ax] = r;
+      out[ax] += double(r) * w.step;
+      all_zero = all_zero && r == 0;
+    }
+  }
+  rc.encode(pm.residuals_zero[n <= kMinLinearVertices], all_zero);
+  if (all_zero) return;
+  int64_t previous[3] = {0, 0, 0};
+  for (size_t i = 0; i < residual_.size(); ++i) {
+    const int64_t r = residual_[i];
+    if (r != 0) ++w.stats->nonzero_residuals;
+    encodeInt(rc, pm.ints, residualContext(previous[i % 3]), r);
+    previous[i % 3] = r;
+  }
+}
+
+}  // namespace animc

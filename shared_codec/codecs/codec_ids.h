@@ -1,0 +1,19 @@
+// Every on-wire identifier of the codecs, in one place (docs/format.md mirrors this file).
+#pragma once
+#include <cstdint>
+
+namespace animc {
+
+enum class CodecId : uint8_t {
+  kAffineOctree = 1,
+};
+
+enum class Profile : uint8_t {
+  kPaper = 0,    // the Affine-Octree paper as published (docs/affine_octree.md, "paper")
+  kDefault = 1,  // our predictive variant of the same octree (docs/affine_octree.md, "default")
+};
+
+const char* codecName(CodecId id);
+const char* profileName(Profile p);
+
+}  // namespace animc

@@ -1,0 +1,230 @@
+#include "container/container_reader.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "container/connectivity_coder.h"
+#include "container/crc32.h"
+#include "io/byte_reader.h"
+
+namespace animc {
+namespace {
+
+constexpr uint64_t kMaxHeadBytes = 1 << 16;
+constexpr uint64_t kGroupFieldBytes = 12;  // First_Frame u64 + Frame_Count u32
+
+std::string at(uint64_t offset) { return " at byte " + std::to_string(offset); }
+
+}  // namespace
+
+ContainerReader::~ContainerReader() {
+  if (file_) std::fclose(file_);
+}
+
+Status ContainerReader::readAt(uint64_t offset, void* out, size_t size, const char* what) {
+  if (offset > info_.file_bytes || size > info_.file_bytes - offset)
+    return truncated(std::string(what) + at(offset) + ": file ends early");
+  if (fseeko(file_, off_t(offset), SEEK_SET) != 0 || std::fread(out, 1, size, file_) != size)
+    return ioError(path_ + ": read failed" + at(offset));
+  return Status();
+}
+
+Result<std::vector<uint8_t>> ContainerReader::readSection(uint64_t offset, const char* tag,
+                                                          uint64_t max_bytes) {
+  uint8_t head[12];
+  ANIMC_RETURN_IF_ERROR(readAt(offset, head, 12, tag));
+  if (std::memcmp(head, tag, 4) != 0)
+    return corrupt(std::string("expected section ") + tag + at(offset));
+  ByteReader r(head + 4, 8, offset + 4);
+  ANIMC_ASSIGN_OR_RETURN(uint64_t length, r.u64("Section_Length"));
+  if (length > max_bytes) return limitExceeded(std::string(tag) + " section too large" + at(offset));
+  if (length + kSectionOverhead > info_.file_bytes - offset)
+    return truncated(std::string(tag) + " section" + at(offset) + " runs past the end of the file");
+  std::vector<uint8_t> payload(length + 4);
+  ANIMC_RETURN_IF_ERROR(readAt(offset + 12, payload.data(), payload.size(), tag));
+  ByteReader crc_reader(payload.data() + length, 4, offset + 12 + length);
+  ANIMC_ASSIGN_OR_RETURN(uint32_t crc, crc_reader.u32("Section_CRC"));
+  if (crc != crc32Update(0, payload.data(), length))
+    return corrupt(std::string(tag) + " section" + at(offset) + ": CRC mismatch");
+  payload.resize(length);
+  info_.sections.push_back({tag, offset, length});
+  return payload;
+}
+
+Result<std::unique_ptr<ContainerReader>> ContainerReader::open(const std::string& path,
+                                                               const DecoderLimits& limits) {
+  std::unique_ptr<ContainerReader> r(new ContainerReader());
+  r->path_ = path;
+  r->limits_ = limits;
+  r->file_ = std::fopen(path.c_str(), "rb");
+  if (!r->file_) return ioError(path + ": cannot open: " + std::strerror(errno));
+  if (fseeko(r->file_, 0, SEEK_END) != 0) return ioError(path + ": cannot seek");
+  r->info_.file_bytes = uint64_t(ftello(r->file_));
+  Status s = r->openHeader();
+  if (!s.ok()) return s.withContext(path);
+  return r;
+}
+
+Status ContainerReader::openHeader() {
+  uint8_t start[kFileHeaderBytes];
+  if (info_.file_bytes < kFileHeaderBytes + kEndSectionBytes)
+    return truncated("file too short to be an .ams file (" + std::to_string(info_.file_bytes) + " bytes)");
+  ANIMC_RETURN_IF_ERROR(readAt(0, start, sizeof start, "File_Header"));
+  if (std::memcmp(start, kMagic, 4) != 0) return corrupt("not an .ams file (bad magic)");
+  ByteReader h(start + 4, 4, 4);
+  ANIMC_ASSIGN_OR_RETURN(info_.format_version, h.u16("Format_Version"));
+  ANIMC_ASSIGN_OR_RETURN(uint16_t reserved, h.u16("Reserved"));
+  if (info_.format_version != kFormatVersion)
+    return Status(StatusCode::kUnsupportedVersion,
+                  "format version " + std::to_string(info_.format_version) + " (this build reads 1)");
+  if (reserved != 0) return corrupt("reserved header bits are set");
+
+  ANIMC_ASSIGN_OR_RETURN(std::vector<uint8_t> head, readSection(kFileHeaderBytes, kTagHead, kMaxHeadBytes));
+  ByteReader r(head.data(), head.size(), kFileHeaderBytes + 12);
+  ContainerHeader& hd = info_.header;
+  ANIMC_ASSIGN_OR_RETURN(uint8_t codec, r.u8("Codec_Id"));
+  if (codec != uint8_t(CodecId::kAffineOctree)) return corrupt("unknown codec id " + std::to_string(codec));
+  hd.codec = CodecId(codec);
+  ANIMC_ASSIGN_OR_RETURN(uint64_t params_bytes, r.varint("Codec_Params_Length"));
+  if (params_bytes > r.remaining()) return r.truncatedAt("Codec_Params");
+  hd.codec_params.assign(r.cursor(), r.cursor() + params_bytes);
+  ANIMC_RETURN_IF_ERROR(r.skip(params_bytes, "Codec_Params"));
+  ANIMC_ASSIGN_OR_RETURN(hd.vertex_count, r.u32("Vertex_Count"));
+  ANIMC_ASSIGN_OR_RETURN(hd.triangle_count, r.u64("Triangle_Count"));
+  ANIMC_ASSIGN_OR_RETURN(hd.frame_rate, r.f64("Frame_Rate"));
+  ANIMC_ASSIGN_OR_RETURN(hd.iframe_interval, r.u32("IFrame_Interval"));
+  if (r.remaining() != 0) return corrupt("HEAD section has " + std::to_string(r.remaining()) + " unread bytes");
+  if (hd.vertex_count == 0 || hd.vertex_count > limits_.max_vertices)
+    return limitExceeded("Vertex_Count " + std::to_string(hd.vertex_count) + " outside [1, " +
+                         std::to_string(limits_.max_vertices) + "]");
+  if (hd.triangle_count > limits_.max_triangles)
+    return limitExceeded("Triangle_Count " + std::to_string(hd.triangle_count) + " above the limit");
+  if (!(hd.frame_rate > 0 && hd.frame_rate < 1e6)) return corrupt("Frame_Rate out of range");
+
+  const uint64_t conn_offset = kFileHeaderBytes + kSectionOverhead + head.size();
+  ANIMC_ASSIGN_OR_RETURN(std::vector<uint8_t> conn,
+                         readSection(conn_offset, kTagConnectivity, info_.file_bytes));
+  ANIMC_RETURN_IF_ERROR(decodeConnectivity(ByteReader(conn.data(), conn.size(), conn_offset + 12),
+                                           hd.vertex_count, hd.triangle_count, topology_));
+  ANIMC_RETURN_IF_ERROR(openIndex(conn_offset + kSectionOverhead + conn.size()));
+  return measureFirstFrame();
+}
+
+Status ContainerReader::openIndex(uint64_t conn_end) {
+  const uint64_t end_offset = info_.file_bytes - kEndSectionBytes;
+  ANIMC_ASSIGN_OR_RETURN(std::vector<uint8_t> end, readSection(end_offset, kTagEnd, 8));
+  ByteReader e(end.data(), end.size(), end_offset + 12);
+  ANIMC_ASSIGN_OR_RETURN(uint64_t index_offset, e.u64("Index_Offset"));
+  if (index_offset < conn_end || index_offset > end_offset)
+    return corrupt("Index_Offset " + std::to_string(index_offset) + " outside the file's data");
+  ANIMC_ASSIGN_OR_RETURN(std::vector<uint8_t> index, readSection(index_offset, kTagIndex, end_offset - index_offset));
+  if (index_offset + kSectionOverhead + index.size() != end_offset)
+    return corrupt("bytes between INDX and END");
+  ByteReader r(index.data(), index.size(), index_offset + 12);
+  ANIMC_ASSIGN_OR_RETURN(info_.frame_count, r.u64("Frame_Count"));
+  ANIMC_ASSIGN_OR_RETURN(uint32_t group_count, r.u32("Group_Count"));
+  if (info_.frame_count == 0 || info_.frame_count > limits_.max_frames ||
+      info_.frame_count > info_.file_bytes)
+    return corrupt("Frame_Count " + std::to_string(info_.frame_count) + " impossible for this file");
+  if (group_count == 0 || group_count > info_.frame_count || r.remaining() != 16 * uint64_t(group_count))
+    return corrupt("Group_Count " + std::to_string(group_count) + " does not match the index size");
+  groups_.resize(group_count);
+  for (uint32_t g = 0; g < group_count; ++g) {
+    ANIMC_ASSIGN_OR_RETURN(groups_[g].offset, r.u64("Group_Offset"));
+    ANIMC_ASSIGN_OR_RETURN(groups_[g].first_frame, r.u64("Group_First_Frame"));
+    const uint64_t min_offset = g == 0 ? conn_end : groups_[g - 1].offset + kSectionOverhead + kGroupFieldBytes + 1;
+    const bool first_ok = g == 0 ? groups_[g].first_frame == 0
+                                 : groups_[g].first_frame > groups_[g - 1].first_frame;
+    if ((g == 0 && groups_[g].offset != conn_end) || groups_[g].offset < min_offset ||
+        groups_[g].offset >= index_offset || !first_ok || groups_[g].first_frame >= info_.frame_count)
+      return corrupt("index entry " + std::to_string(g) + " is inconsistent");
+  }
+  for (uint32_t g = 0; g < group_count; ++g) {
+    groups_[g].end = g + 1 < group_count ? groups_[g + 1].offset : index_offset;
+    info_.sections.push_back({kTagGroup, groups_[g].offset, groups_[g].end - groups_[g].offset - kSectionOverhead});
+  }
+  return Status();
+}
+
+Status ContainerReader::measureFirstFrame() {
+  // The first frame's length tells what motion does not pay for (motion-only bpvf).
+  ANIMC_RETURN_IF_ERROR(beginGroup(0));
+  const uint64_t first_frame_start = cursor_;
+  std::vector<uint8_t> payload;
+  ANIMC_ASSIGN_OR_RETURN(bool got, nextFrame(payload));
+  if (!got) return corrupt("first group has no frames");
+  info_.static_bytes = first_frame_start + (cursor_ - first_frame_start);
+  std::sort(info_.sections.begin(), info_.sections.end(),
+            [](const SectionInfo& a, const SectionInfo& b) { return a.offset < b.offset; });
+  return Status();
+}
+
+size_t ContainerReader::groupOf(uint64_t frame) const {
+  size_t g = 0;
+  while (g + 1 < groups_.size() && groups_[g + 1].first_frame <= frame) ++g;
+  return g;
+}
+
+}  // namespace animc
+
+namespace animc {
+
+Status ContainerReader::beginGroup(size_t g) {
+  if (g >= groups_.size()) return invalidArgument("no frame group " + std::to_string(g));
+  const Group& group = groups_[g];
+  uint8_t head[12 + kGroupFieldBytes];
+  ANIMC_RETURN_IF_ERROR(readAt(group.offset, head, sizeof head, "GRUP"));
+  if (std::memcmp(head, kTagGroup, 4) != 0) return corrupt("expected section GRUP" + at(group.offset));
+  ByteReader r(head + 4, sizeof head - 4, group.offset + 4);
+  ANIMC_ASSIGN_OR_RETURN(uint64_t length, r.u64("Section_Length"));
+  ANIMC_ASSIGN_OR_RETURN(uint64_t first_frame, r.u64("First_Frame"));
+  ANIMC_ASSIGN_OR_RETURN(uint32_t frame_count, r.u32("Frame_Count"));
+  const uint64_t next_first = g + 1 < groups_.size() ? groups_[g + 1].first_frame : info_.frame_count;
+  if (length < kGroupFieldBytes || group.offset + kSectionOverhead + length != group.end)
+    return corrupt("GRUP section" + at(group.offset) + ": length does not match the index");
+  if (first_frame != group.first_frame || frame_count != next_first - first_frame)
+    return corrupt("GRUP section" + at(group.offset) + ": frame numbers do not match the index");
+  // Verify the CRC before decoding anything, streaming so memory stays small.
+  const uint64_t frames_begin = group.offset + 12 + kGroupFieldBytes;
+  const uint64_t frames_end = group.offset + 12 + length;
+  std::vector<uint8_t> block(std::min<uint64_t>(frames_end - frames_begin, 1 << 20));
+  uint32_t crc = 0;
+  for (uint64_t pos = frames_begin; pos < frames_end;) {
+    const size_t n = size_t(std::min<uint64_t>(block.size(), frames_end - pos));
+    ANIMC_RETURN_IF_ERROR(readAt(pos, block.data(), n, "GRUP"));
+    crc = crc32Update(crc, block.data(), n);
+    pos += n;
+  }
+  uint8_t stored[4];
+  ANIMC_RETURN_IF_ERROR(readAt(frames_end, stored, 4, "GRUP CRC"));
+  ByteReader c(stored, 4, frames_end);
+  ANIMC_ASSIGN_OR_RETURN(uint32_t expected, c.u32("Section_CRC"));
+  if (crc != expected) return corrupt("GRUP section" + at(group.offset) + ": CRC mismatch");
+  cursor_ = frames_begin;
+  frames_end_ = frames_end;
+  frames_left_ = frame_count;
+  return Status();
+}
+
+Result<bool> ContainerReader::nextFrame(std::vector<uint8_t>& payload) {
+  if (frames_left_ == 0) {
+    if (cursor_ != frames_end_) return corrupt("GRUP has bytes after its last frame" + at(cursor_));
+    return false;
+  }
+  uint8_t len_bytes[10];
+  const size_t avail = size_t(std::min<uint64_t>(10, frames_end_ - cursor_));
+  ANIMC_RETURN_IF_ERROR(readAt(cursor_, len_bytes, avail, "Frame_Length"));
+  ByteReader r(len_bytes, avail, cursor_);
+  ANIMC_ASSIGN_OR_RETURN(uint64_t length, r.varint("Frame_Length"));
+  const uint64_t start = cursor_ + r.position();
+  if (length > limits_.max_frame_bytes || length > frames_end_ - start)
+    return corrupt("Frame_Length " + std::to_string(length) + at(cursor_) + " runs past its group");
+  payload.resize(size_t(length));
+  ANIMC_RETURN_IF_ERROR(readAt(start, payload.data(), payload.size(), "frame"));
+  cursor_ = start + length;
+  --frames_left_;
+  return true;
+}
+
+}  // namespace animc

@@ -1,0 +1,72 @@
+// Reads an .ams file without trusting it: every count, offset and length is checked against
+// the file size and DecoderLimits before anything is allocated, and every section's CRC is
+// verified before its content is used. Frame groups are read one frame at a time, so memory
+// stays O(largest frame) whatever the file size.
+#pragma once
+#include <cstdint>
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "container/container_writer.h"
+#include "container/format.h"
+#include "core/sequence.h"
+#include "core/status.h"
+
+namespace animc {
+
+struct SectionInfo {
+  std::string tag;
+  uint64_t offset = 0;  // of the tag
+  uint64_t payload_bytes = 0;
+};
+
+struct ContainerInfo {
+  uint16_t format_version = 0;
+  ContainerHeader header;
+  uint64_t frame_count = 0;
+  uint64_t file_bytes = 0;
+  uint64_t static_bytes = 0;  // header, HEAD, CONN and the first frame: what motion does not pay
+  std::vector<SectionInfo> sections;  // HEAD, CONN, each GRUP, INDX, END in file order
+};
+
+class ContainerReader {
+ public:
+  ~ContainerReader();
+  static Result<std::unique_ptr<ContainerReader>> open(const std::string& path,
+                                                       const DecoderLimits& limits = {});
+
+  const ContainerInfo& info() const { return info_; }
+  const Topology& topology() const { return topology_; }
+  size_t groupCount() const { return groups_.size(); }
+  size_t groupOf(uint64_t frame) const;
+  uint64_t groupFirstFrame(size_t group) const { return groups_[group].first_frame; }
+
+  // Verifies group g's CRC and makes nextFrame() return its frames in order.
+  Status beginGroup(size_t group);
+  // The next frame's payload of the current group; false after its last frame.
+  Result<bool> nextFrame(std::vector<uint8_t>& payload);
+
+ private:
+  ContainerReader() = default;
+  Status readAt(uint64_t offset, void* out, size_t size, const char* what);
+  Result<std::vector<uint8_t>> readSection(uint64_t offset, const char* tag, uint64_t max_bytes);
+  Status openHeader();
+  Status openIndex(uint64_t conn_end);
+  Status measureFirstFrame();
+
+  struct Group {
+    uint64_t offset, first_frame, end;  // end: offset of whatever follows the section
+  };
+  std::FILE* file_ = nullptr;
+  std::string path_;
+  DecoderLimits limits_;
+  ContainerInfo info_;
+  Topology topology_;
+  std::vector<Group> groups_;
+  // Current group cursor.
+  uint64_t cursor_ = 0, frames_end_ = 0, frames_left_ = 0;
+};
+
+}  // namespace animc

@@ -1,0 +1,114 @@
+#include "container/container_writer.h"
+
+#include "container/connectivity_coder.h"
+#include "container/crc32.h"
+#include "container/format.h"
+#include "io/byte_writer.h"
+
+namespace animc {
+
+Status ContainerWriter::put(const void* data, size_t size, bool in_crc) {
+  if (in_crc) group_crc_ = crc32Update(group_crc_, static_cast<const uint8_t*>(data), size);
+  return file_.write(data, size);
+}
+
+Status ContainerWriter::writeSection(const char* tag, const std::vector<uint8_t>& payload) {
+  ByteWriter w;
+  w.append(reinterpret_cast<const uint8_t*>(tag), 4);
+  w.u64(payload.size());
+  w.append(payload);
+  w.u32(crc32Update(0, payload.data(), payload.size()));
+  return file_.write(w.bytes().data(), w.size());
+}
+
+Status ContainerWriter::open(const std::string& path, const ContainerHeader& header,
+                             const Topology& topology) {
+  ANIMC_RETURN_IF_ERROR(file_.open(path));
+  ByteWriter start;
+  start.append(kMagic, 4);
+  start.u16(kFormatVersion);
+  start.u16(0);
+  ANIMC_RETURN_IF_ERROR(file_.write(start.bytes().data(), start.size()));
+  ByteWriter head;
+  head.u8(uint8_t(header.codec));
+  head.varint(header.codec_params.size());
+  head.append(header.codec_params);
+  head.u32(header.vertex_count);
+  head.u64(header.triangle_count);
+  head.f64(header.frame_rate);
+  head.u32(header.iframe_interval);
+  ANIMC_RETURN_IF_ERROR(writeSection(kTagHead, head.bytes()));
+  std::vector<uint8_t> conn;
+  encodeConnectivity(topology, conn);
+  return writeSection(kTagConnectivity, conn);
+}
+
+Status ContainerWriter::addFrame(const std::vector<uint8_t>& payload, bool intra) {
+  if (!group_open_ && !intra) return invalidArgument("the first frame must be intra");
+  if (intra) {
+    ANIMC_RETURN_IF_ERROR(closeGroup());
+    groups_.push_back({file_.tell(), frames_});
+    // Length and frame count are patched by closeGroup().
+    ByteWriter w;
+    w.append(reinterpret_cast<const uint8_t*>(kTagGroup), 4);
+    w.u64(0);
+    ANIMC_RETURN_IF_ERROR(file_.write(w.bytes().data(), w.size()));
+    group_crc_ = 0;
+    group_frames_ = 0;
+    ByteWriter first;
+    first.u64(frames_);
+    first.u32(0);
+    ANIMC_RETURN_IF_ERROR(put(first.bytes().data(), first.size(), false));
+    group_open_ = true;
+  }
+  ByteWriter len;
+  len.varint(payload.size());
+  ANIMC_RETURN_IF_ERROR(put(len.bytes().data(), len.size(), true));
+  ANIMC_RETURN_IF_ERROR(put(payload.data(), payload.size(), true));
+  ++group_frames_;
+  ++frames_;
+  return Status();
+}
+
+Status ContainerWriter::closeGroup() {
+  if (!group_open_) return Status();
+  const uint64_t start = groups_.back().offset;
+  const uint64_t end = file_.tell();
+  // The group's CRC covers its frames; First_Frame and Frame_Count, known only now, are
+  // checked against INDX instead (docs/format.md, GRUP).
+  ByteWriter fields;
+  fields.u64(groups_.back().first_frame);
+  fields.u32(group_frames_);
+  ByteWriter patch;
+  patch.u64(end - start - 12);
+  ANIMC_RETURN_IF_ERROR(file_.seek(start + 4));
+  ANIMC_RETURN_IF_ERROR(file_.write(patch.bytes().data(), patch.size()));
+  ANIMC_RETURN_IF_ERROR(file_.write(fields.bytes().data(), fields.size()));
+  ANIMC_RETURN_IF_ERROR(file_.seek(end));
+  ByteWriter crc;
+  crc.u32(group_crc_);
+  ANIMC_RETURN_IF_ERROR(file_.write(crc.bytes().data(), crc.size()));
+  group_open_ = false;
+  return Status();
+}
+
+Status ContainerWriter::finish() {
+  if (frames_ == 0) return invalidArgument("no frames to write");
+  ANIMC_RETURN_IF_ERROR(closeGroup());
+  const uint64_t index_offset = file_.tell();
+  ByteWriter index;
+  index.u64(frames_);
+  index.u32(uint32_t(groups_.size()));
+  for (const GroupEntry& g : groups_) {
+    index.u64(g.offset);
+    index.u64(g.first_frame);
+  }
+  ANIMC_RETURN_IF_ERROR(writeSection(kTagIndex, index.bytes()));
+  ByteWriter end;
+  end.u64(index_offset);
+  ANIMC_RETURN_IF_ERROR(writeSection(kTagEnd, end.bytes()));
+  final_bytes_ = file_.tell();
+  return file_.commit();
+}
+
+}  // namespace animc

@@ -1,0 +1,50 @@
+// Writes an .ams file as frames arrive (memory O(one frame group's bookkeeping), not O(file)):
+// header and CONN first, one GRUP section per frame group streamed to disk, then INDX and END.
+// Nothing is visible at the target path until finish() succeeds.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "codecs/codec_ids.h"
+#include "core/atomic_file.h"
+#include "core/sequence.h"
+#include "core/status.h"
+
+namespace animc {
+
+struct ContainerHeader {
+  CodecId codec = CodecId::kAffineOctree;
+  std::vector<uint8_t> codec_params;  // serialised by the codec's options
+  uint32_t vertex_count = 0;
+  uint64_t triangle_count = 0;
+  double frame_rate = 25.0;
+  uint32_t iframe_interval = 0;
+};
+
+class ContainerWriter {
+ public:
+  Status open(const std::string& path, const ContainerHeader& header, const Topology& topology);
+  // Appends one coded frame; intra frames start a new GRUP section.
+  Status addFrame(const std::vector<uint8_t>& payload, bool intra);
+  Status finish();
+
+  // Bytes so far; after finish(), the size of the file.
+  uint64_t bytesWritten() const { return file_.isOpen() ? file_.tell() : final_bytes_; }
+
+ private:
+  Status writeSection(const char* tag, const std::vector<uint8_t>& payload);
+  Status closeGroup();
+  Status put(const void* data, size_t size, bool in_crc);
+
+  AtomicFile file_;
+  uint64_t frames_ = 0;
+  struct GroupEntry { uint64_t offset, first_frame; };
+  std::vector<GroupEntry> groups_;
+  bool group_open_ = false;
+  uint32_t group_frames_ = 0;
+  uint32_t group_crc_ = 0;
+  uint64_t final_bytes_ = 0;
+};
+
+}  // namespace animc

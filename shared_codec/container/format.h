@@ -1,0 +1,38 @@
+// The .ams container, version 1. docs/format.md describes every byte; this header is its
+// single home in code. All integers little-endian.
+//
+//   File_Header  Magic "\x89AMS", Format_Version u16, Reserved u16 (= 0)
+//   Section*     Tag[4], Length u64, Payload[Length], CRC32(Payload) u32
+//     HEAD  codec, its parameters, vertex and triangle counts, frame rate, I-frame interval
+//     CONN  the triangle list, order preserved, range coded
+//     GRUP  one per frame group: First_Frame u64, Frame_Count u32, then per frame
+//           Frame_Length varint + codec payload (the first frame of a group is intra);
+//           its CRC covers the frames only, the two counts are checked against INDX
+//     INDX  Frame_Count u64, Group_Count u32, then per group Offset u64 + First_Frame u64
+//     END   Index_Offset u64; always the last 24 bytes of the file
+#pragma once
+#include <cstdint>
+
+namespace animc {
+
+constexpr uint8_t kMagic[4] = {0x89, 'A', 'M', 'S'};
+constexpr uint16_t kFormatVersion = 1;
+constexpr uint64_t kFileHeaderBytes = 8;
+constexpr uint64_t kSectionOverhead = 4 + 8 + 4;  // tag, length, CRC
+constexpr uint64_t kEndSectionBytes = kSectionOverhead + 8;
+
+constexpr char kTagHead[5] = "HEAD";
+constexpr char kTagConnectivity[5] = "CONN";
+constexpr char kTagGroup[5] = "GRUP";
+constexpr char kTagIndex[5] = "INDX";
+constexpr char kTagEnd[5] = "END ";
+
+// Decoder ceilings (a file asking for more is refused before anything is allocated).
+struct DecoderLimits {
+  uint64_t max_vertices = uint64_t(1) << 26;
+  uint64_t max_triangles = uint64_t(1) << 27;
+  uint64_t max_frames = uint64_t(1) << 32;
+  uint64_t max_frame_bytes = uint64_t(1) << 31;
+};
+
+}  // namespace animc

@@ -1,0 +1,120 @@
+#include "core/atomic_file.h"
+
+#include <atomic>
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <system_error>
+
+#ifdef _WIN32
+#include <io.h>
+#include <process.h>
+#else
+#include <unistd.h>
+#endif
+
+namespace animc {
+namespace {
+
+long processId() {
+#ifdef _WIN32
+  return static_cast<long>(_getpid());
+#else
+  return static_cast<long>(getpid());
+#endif
+}
+
+// Several AtomicFiles may target the same path in one process (threads, retries).
+std::string nextTempPath(const std::string& path) {
+  static std::atomic<uint64_t> counter{0};
+  return path + ".tmp-" + std::to_string(processId()) + "-" + std::to_string(counter++);
+}
+
+bool syncToDisk(std::FILE* file) {
+#ifdef _WIN32
+  return _commit(_fileno(file)) == 0;
+#else
+  return fsync(fileno(file)) == 0;
+#endif
+}
+
+}  // namespace
+
+AtomicFile::~AtomicFile() { abandon(); }
+
+Status AtomicFile::open(const std::string& path) {
+  if (file_) return invalidArgument(path + ": AtomicFile is already open for " + path_);
+  path_ = path;
+  temp_path_ = nextTempPath(path);
+  failed_ = false;
+  file_ = std::fopen(temp_path_.c_str(), "wb");
+  if (!file_) return ioError(path + ": cannot create " + temp_path_ + ": " + std::strerror(errno));
+  return Status();
+}
+
+Status AtomicFile::fail(const char* what) {
+  failed_ = true;
+  return ioError(path_ + ": " + what + " failed: " + std::strerror(errno));
+}
+
+Status AtomicFile::write(const void* data, size_t size) {
+  if (!file_) return invalidArgument(path_ + ": write to a closed AtomicFile");
+  if (size == 0) return Status();
+  if (std::fwrite(data, 1, size, file_) != size) return fail("write");
+  return Status();
+}
+
+Status AtomicFile::seek(uint64_t offset) {
+  if (!file_) return invalidArgument(path_ + ": seek in a closed AtomicFile");
+#ifdef _WIN32
+  int rc = _fseeki64(file_, static_cast<__int64>(offset), SEEK_SET);
+#else
+  int rc = fseeko(file_, static_cast<off_t>(offset), SEEK_SET);
+#endif
+  if (rc != 0) return fail("seek");
+  return Status();
+}
+
+uint64_t AtomicFile::tell() const {
+  if (!file_) return 0;
+#ifdef _WIN32
+  __int64 pos = _ftelli64(file_);
+#else
+  off_t pos = ftello(file_);
+#endif
+  return pos < 0 ? 0 : static_cast<uint64_t>(pos);
+}
+
+Status AtomicFile::commit(Sync sync) {
+  if (!file_) return invalidArgument(path_ + ": commit of a closed AtomicFile");
+  if (failed_) {
+    abandon();
+    return ioError(path_ + ": not committed because an earlier write failed");
+  }
+  // Remember the first failure's errno: fclose must run even after a failed flush.
+  int error = 0;
+  if (std::fflush(file_) != 0 || (sync == Sync::kFsync && !syncToDisk(file_))) error = errno;
+  if (std::fclose(file_) != 0 && error == 0) error = errno;
+  file_ = nullptr;
+  if (error != 0) {
+    std::remove(temp_path_.c_str());
+    return ioError(path_ + ": flushing failed: " + std::strerror(error));
+  }
+  // std::filesystem::rename replaces an existing target on every platform.
+  std::error_code ec;
+  std::filesystem::rename(temp_path_, path_, ec);
+  if (ec) {
+    std::remove(temp_path_.c_str());
+    return ioError(path_ + ": cannot rename " + temp_path_ + " over it: " + ec.message());
+  }
+  return Status();
+}
+
+void AtomicFile::abandon() {
+  if (!file_) return;
+  std::fclose(file_);
+  file_ = nullptr;
+  std::remove(temp_path_.c_str());
+}
+
+}  // namespace animc

@@ -1,0 +1,45 @@
+// Writes a file so that readers only ever see the old content or the complete new content:
+// data goes to "<path>.tmp-<pid>-<counter>" and commit() renames it over the target.
+// A file that is never committed (error, early return) is removed by the destructor.
+#pragma once
+#include <cstdint>
+#include <cstdio>
+#include <string>
+
+#include "core/status.h"
+
+namespace animc {
+
+class AtomicFile {
+ public:
+  enum class Sync { kNone, kFsync };  // kFsync: flush to disk before the rename
+
+  AtomicFile() = default;
+  ~AtomicFile();
+  AtomicFile(const AtomicFile&) = delete;
+  AtomicFile& operator=(const AtomicFile&) = delete;
+
+  // Creates the temporary file beside `path`; fails if one is already open.
+  Status open(const std::string& path);
+  Status write(const void* data, size_t size);
+  // Moves the write position (to patch a header once the counts are known).
+  Status seek(uint64_t offset);
+  uint64_t tell() const;
+  // Flushes, closes and renames the temporary over the target; the object is then closed.
+  Status commit(Sync sync = Sync::kNone);
+  // Closes and deletes the temporary without touching the target.
+  void abandon();
+
+  bool isOpen() const { return file_ != nullptr; }
+  const std::string& path() const { return path_; }
+
+ private:
+  Status fail(const char* what);
+
+  std::FILE* file_ = nullptr;
+  std::string path_;
+  std::string temp_path_;
+  bool failed_ = false;  // a write or seek failed: commit() must refuse
+};
+
+}  // namespace animc

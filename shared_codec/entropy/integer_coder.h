@@ -1,0 +1,80 @@
+// Signed integers through the binary range coder: a zero flag, a sign, an Elias-gamma style
+// exponent in unary with adaptive bits, the two leading mantissa bits adaptive and the rest
+// raw. Small values (the common case after prediction) cost a fraction of a bit.
+#pragma once
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+
+#include "entropy/range_coder.h"
+
+namespace animc {
+
+constexpr int kMaxExponent = 32;  // |v| < 2^32, so a corrupt stream cannot loop or overflow
+
+template <int kContexts>
+struct IntegerModel {
+  BitModel zero[kContexts];
+  BitModel sign[kContexts];
+  BitModel exponent[kContexts][kMaxExponent];
+  BitModel mantissa[kMaxExponent][4];  // leading two bits, as a 2-level bit tree
+};
+
+template <class Model>
+void encodeInt(RangeEncoder& rc, Model& m, int ctx, int64_t v) {
+  rc.encode(m.zero[ctx], v != 0);
+  if (v == 0) return;
+  rc.encode(m.sign[ctx], v < 0);
+  const uint64_t mag = uint64_t(v < 0 ? -v : v);  // >= 1
+  int e = 63 - __builtin_clzll(mag);               // mag in [2^e, 2^(e+1))
+  for (int i = 0; i < e; ++i) rc.encode(m.exponent[ctx][i], 1);
+  if (e < kMaxExponent - 1) rc.encode(m.exponent[ctx][e], 0);
+  int left = e;
+  int node = 1;
+  for (int i = 0; i < 2 && left > 0; ++i) {
+    const int bit = int((mag >> (left - 1)) & 1);
+    rc.encode(m.mantissa[e][node], bit);
+    node = node * 2 + bit;
+    --left;
+  }
+  if (left > 0) rc.encodeRaw(uint32_t(mag & ((uint64_t(1) << left) - 1)), left);
+}
+
+template <class Model>
+int64_t decodeInt(RangeDecoder& rc, Model& m, int ctx) {
+  if (!rc.decode(m.zero[ctx])) return 0;
+  const bool negative = rc.decode(m.sign[ctx]);
+  int e = 0;
+  while (e < kMaxExponent - 1 && rc.decode(m.exponent[ctx][e])) ++e;
+  uint64_t mag = 1;
+  int left = e;
+  int node = 1;
+  for (int i = 0; i < 2 && left > 0; ++i) {
+    const int bit = rc.decode(m.mantissa[e][node]);
+    node = node * 2 + bit;
+    mag = (mag << 1) | uint64_t(bit);
+    --left;
+  }
+  if (left > 0) mag = (mag << left) | rc.decodeRaw(left);
+  return negative ? -int64_t(mag) : int64_t(mag);
+}
+
+// Estimated cost in bits of coding bit with model m, without coding it (rate decisions).
+inline double bitCost(const BitModel& m, int bit) {
+  const double p = (bit ? double(kProbOne - m.p0) : double(m.p0)) / kProbOne;
+  return -std::log2(p);
+}
+
+template <class Model>
+double intCost(const Model& m, int ctx, int64_t v) {
+  double bits = bitCost(m.zero[ctx], v != 0);
+  if (v == 0) return bits;
+  const uint64_t mag = uint64_t(v < 0 ? -v : v);
+  const int e = 63 - __builtin_clzll(mag);
+  bits += 1.0;  // sign
+  for (int i = 0; i < e; ++i) bits += bitCost(m.exponent[ctx][i], 1);
+  if (e < kMaxExponent - 1) bits += bitCost(m.exponent[ctx][e], 0);
+  return bits + e;  // mantissa bits counted as raw
+}
+
+}  // namespace animc

@@ -1,0 +1,138 @@
+// Binary adaptive range coder (carry-propagating, byte-wise output, 15-bit probabilities).
+// Header-only so the per-bit calls inline into the codec loops. The decoder reads zeros past
+// the end of its input and counts them; callers turn too many into kCorrupt.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+namespace animc {
+
+constexpr int kProbBits = 15;
+constexpr uint32_t kProbOne = 1u << kProbBits;
+
+// Probability that the next bit is 0, adapting fast at first and then more slowly, so that
+// short streams (one frame of a small mesh) still learn their statistics.
+struct BitModel {
+  uint16_t p0 = kProbOne / 2;
+  uint8_t seen = 0;
+
+  void update(int bit) {
+    static constexpr uint8_t kShift[] = {2, 3, 3, 4, 4, 4, 5, 5, 5, 5, 5, 5};
+    const int shift = seen < sizeof(kShift) ? kShift[seen++] : 5;
+    if (bit) p0 -= p0 >> shift;
+    else p0 += (kProbOne - p0) >> shift;
+  }
+};
+
+class RangeEncoder {
+ public:
+  explicit RangeEncoder(std::vector<uint8_t>& out) : out_(out) {}
+
+  void encode(BitModel& m, int bit) {
+    const uint32_t bound = (range_ >> kProbBits) * m.p0;
+    if (!bit) {
+      range_ = bound;
+    } else {
+      low_ += bound;
+      range_ -= bound;
+    }
+    m.update(bit);
+    normalize();
+  }
+  // Equiprobable bits (signs, low mantissa bits): no model, no adaptation.
+  void encodeRaw(uint32_t value, int bits) {
+    for (int i = bits - 1; i >= 0; --i) {
+      range_ >>= 1;
+      if ((value >> i) & 1) low_ += range_;
+      normalize();
+    }
+  }
+  void finish() {
+    for (int i = 0; i < 5; ++i) shiftLow();
+  }
+
+ private:
+  void normalize() {
+    while (range_ < (1u << 24)) {
+      range_ <<= 8;
+      shiftLow();
+    }
+  }
+  void shiftLow() {
+    if (uint32_t(low_) < 0xFF000000u || (low_ >> 32) != 0) {
+      const uint8_t carry = uint8_t(low_ >> 32);
+      if (has_cache_) out_.push_back(uint8_t(cache_ + carry));
+      for (; pending_ff_ > 0; --pending_ff_) out_.push_back(uint8_t(0xFF + carry));
+      cache_ = uint8_t(low_ >> 24);
+      has_cache_ = true;
+    } else {
+      ++pending_ff_;
+    }
+    low_ = (low_ & 0x00FFFFFFu) << 8;
+  }
+
+  std::vector<uint8_t>& out_;
+  uint64_t low_ = 0;
+  uint32_t range_ = 0xFFFFFFFFu;
+  uint8_t cache_ = 0;
+  bool has_cache_ = false;
+  uint64_t pending_ff_ = 0;
+};
+
+class RangeDecoder {
+ public:
+  RangeDecoder(const uint8_t* data, size_t size) : p_(data), end_(data + size) {
+    for (int i = 0; i < 4; ++i) code_ = (code_ << 8) | nextByte();
+  }
+
+  int decode(BitModel& m) {
+    const uint32_t bound = (range_ >> kProbBits) * m.p0;
+    int bit;
+    if (code_ < bound) {
+      range_ = bound;
+      bit = 0;
+    } else {
+      code_ -= bound;
+      range_ -= bound;
+      bit = 1;
+    }
+    m.update(bit);
+    normalize();
+    return bit;
+  }
+  uint32_t decodeRaw(int bits) {
+    uint32_t v = 0;
+    for (int i = 0; i < bits; ++i) {
+      range_ >>= 1;
+      const uint32_t bit = code_ >= range_;
+      if (bit) code_ -= range_;
+      v = (v << 1) | bit;
+      normalize();
+    }
+    return v;
+  }
+  // A valid stream is fully consumed with at most the encoder's 4 flush bytes of slack; a
+  // corrupt one either reads far past its end or leaves the code outside the range.
+  bool overran() const { return overrun_ > 4 || code_ >= range_; }
+
+ private:
+  void normalize() {
+    while (range_ < (1u << 24)) {
+      range_ <<= 8;
+      code_ = (code_ << 8) | nextByte();
+    }
+  }
+  uint8_t nextByte() {
+    if (p_ < end_) return *p_++;
+    ++overrun_;
+    return 0;
+  }
+
+  const uint8_t* p_;
+  const uint8_t* end_;
+  uint32_t code_ = 0;
+  uint32_t range_ = 0xFFFFFFFFu;
+  uint32_t overrun_ = 0;
+};
+
+}  // namespace animc

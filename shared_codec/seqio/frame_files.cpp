@@ -1,0 +1,146 @@
+#include "seqio/frame_files.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <new>
+#include <string_view>
+
+#include "seqio/byte_input.h"
+#include "seqio/mesh_checks.h"
+#include "seqio/sequence_io.h"
+
+namespace animc {
+namespace fs = std::filesystem;
+namespace {
+
+bool isDigit(char c) { return c >= '0' && c <= '9'; }
+
+// Compares the digit runs starting at a[i] and b[j] by value; advances i and j past them.
+int compareNumbers(const std::string& a, size_t& i, const std::string& b, size_t& j) {
+  size_t a_end = i, b_end = j;
+  while (a_end < a.size() && isDigit(a[a_end])) ++a_end;
+  while (b_end < b.size() && isDigit(b[b_end])) ++b_end;
+  size_t a_start = i, b_start = j;
+  while (a_start + 1 < a_end && a[a_start] == '0') ++a_start;  // "007" == "7" by value
+  while (b_start + 1 < b_end && b[b_start] == '0') ++b_start;
+  int result = 0;
+  if (a_end - a_start != b_end - b_start) result = a_end - a_start < b_end - b_start ? -1 : 1;
+  else result = a.compare(a_start, a_end - a_start, b, b_start, b_end - b_start);
+  i = a_end;
+  j = b_end;
+  return result;
+}
+
+bool isFrameFile(const std::string& name) {
+  return endsWithNoCase(name, ".ply") || endsWithNoCase(name, ".off");
+}
+
+std::string trim(std::string_view line) {
+  const char* kSpace = " \t\r\n";
+  size_t begin = line.find_first_not_of(kSpace);
+  if (begin == std::string_view::npos) return std::string();
+  return std::string(line.substr(begin, line.find_last_not_of(kSpace) + 1 - begin));
+}
+
+class FrameFileSource : public FrameSource {
+ public:
+  FrameFileSource(std::vector<std::string> paths, Mesh first)
+      : paths_(std::move(paths)), topology_(std::move(first.topology)),
+        first_positions_(std::move(first.positions)) {}
+
+  const Topology& topology() const override { return topology_; }
+  int64_t frameCount() const override { return int64_t(paths_.size()); }
+  std::string where() const override {
+    return next_ < paths_.size() ? paths_[next_] : paths_.back() + " (end)";
+  }
+
+  Result<bool> next(std::vector<float>& xyz) override {
+    if (next_ == paths_.size()) return false;
+    if (next_ == 0) {
+      xyz.swap(first_positions_);
+      std::vector<float>().swap(first_positions_);
+    } else {
+      ANIMC_ASSIGN_OR_RETURN(Mesh mesh, readMesh(paths_[next_]));
+      ANIMC_RETURN_IF_ERROR(
+          checkSameTopology(mesh.topology, topology_, "frame 0").withContext(paths_[next_]));
+      xyz.swap(mesh.positions);
+    }
+    ++next_;
+    return true;
+  }
+
+ private:
+  std::vector<std::string> paths_;
+  Topology topology_;
+  std::vector<float> first_positions_;  // frame 0, read when opening to learn the topology
+  size_t next_ = 0;
+};
+
+}  // namespace
+
+bool naturalLess(const std::string& a, const std::string& b) {
+  size_t i = 0, j = 0;
+  while (i < a.size() && j < b.size()) {
+    if (isDigit(a[i]) && isDigit(b[j])) {
+      int order = compareNumbers(a, i, b, j);
+      if (order != 0) return order < 0;
+    } else {
+      if (a[i] != b[j]) return static_cast<unsigned char>(a[i]) < static_cast<unsigned char>(b[j]);
+      ++i;
+      ++j;
+    }
+  }
+  if (i < a.size() || j < b.size()) return j < b.size();  // a is a prefix of b
+  return a < b;  // equal by value ("7" and "007"): any fixed order
+}
+
+Result<std::vector<std::string>> listFrameDirectory(const std::string& dir) {
+  std::vector<std::string> names;
+  std::error_code ec;
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    std::string name = it->path().filename().string();
+    if (name.empty() || name[0] == '.' || !isFrameFile(name)) continue;
+    std::error_code type_ec;
+    if (it->is_regular_file(type_ec)) names.push_back(name);
+  }
+  if (ec) return ioError(dir + ": cannot list the directory: " + ec.message());
+  if (names.empty()) return badInput(dir + ": no .ply or .off frames in the directory");
+  std::sort(names.begin(), names.end(), naturalLess);
+  std::vector<std::string> paths;
+  for (const std::string& name : names) paths.push_back((fs::path(dir) / name).string());
+  return paths;
+}
+
+Result<std::vector<std::string>> readFrameList(const std::string& list_path) {
+  ANIMC_ASSIGN_OR_RETURN(std::vector<uint8_t> bytes, readWholeFile(list_path));
+  std::string_view text(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+  fs::path base = fs::path(list_path).parent_path();
+  std::vector<std::string> paths;
+  size_t line_number = 0;
+  for (size_t pos = 0; pos < text.size();) {
+    size_t eol = std::min(text.find('\n', pos), text.size());
+    std::string entry = trim(text.substr(pos, eol - pos));
+    pos = eol + 1;
+    ++line_number;
+    if (entry.empty() || entry[0] == '#') continue;
+    if (!isFrameFile(entry))
+      return badInput(list_path + " line " + std::to_string(line_number) + ": '" + entry +
+                      "' is not a .ply or .off file");
+    paths.push_back((base / entry).string());  // an absolute entry replaces base
+  }
+  if (paths.empty()) return badInput(list_path + ": the list names no frames");
+  return paths;
+}
+
+Result<std::unique_ptr<FrameSource>> openFrameFiles(std::vector<std::string> paths,
+                                                    const Topology* reference,
+                                                    const std::string& reference_name) {
+  if (paths.empty()) return badInput("no frames to read");
+  ANIMC_ASSIGN_OR_RETURN(Mesh first, readMesh(paths[0]));
+  if (reference)
+    ANIMC_RETURN_IF_ERROR(checkSameTopology(first.topology, *reference, "the mesh " + reference_name)
+                              .withContext(paths[0]));
+  return std::unique_ptr<FrameSource>(new FrameFileSource(std::move(paths), std::move(first)));
+}
+
+}  // namespace animc

@@ -1,0 +1,25 @@
+// Validation shared by every reader, so a bad input is rejected with the same words whatever
+// its format: non-finite or huge coordinates, empty meshes, out-of-range or changing faces.
+#pragma once
+#include <cstdint>
+#include <string>
+
+#include "core/sequence.h"
+
+namespace animc {
+
+// Coordinates beyond this are treated like NaN: they overflow any quantisation grid.
+constexpr double kMaxCoordinate = 1e30;
+
+// Checks `vertex_count` xyz triples; the message names the first bad vertex.
+Status checkPositions(const float* xyz, uint32_t vertex_count);
+// Checks one coordinate before it is narrowed to float (PLY may store doubles).
+Status checkCoordinate(double value, uint64_t vertex);
+// Non-empty, and every triangle index below vertex_count.
+Status checkTopology(const Topology& topology);
+// Same vertex count and triangle list; `other_name` says what `expected` came from
+// ("frame 0", "the mesh cow.ply"). The message does not name the file being checked.
+Status checkSameTopology(const Topology& actual, const Topology& expected,
+                         const std::string& other_name);
+
+}  // namespace animc

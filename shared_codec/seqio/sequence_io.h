@@ -1,0 +1,39 @@
+// Reading and writing animated-mesh sequences in the interchange formats: PLY and OFF frame
+// files (one file per frame), PC2 and MDD point caches (optionally .xz-compressed). Every
+// reader validates what it returns (see mesh_checks.h) and every writer writes atomically.
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "core/sequence.h"
+
+namespace animc {
+
+enum class SequenceFormat { kPly, kOff, kPc2, kMdd };
+
+// "ply", "off", "pc2" or "mdd" (any case).
+Result<SequenceFormat> formatFromName(const std::string& name);
+
+// A single .ply (ascii or binary, either byte order) or .off mesh, validated.
+Result<Mesh> readMesh(const std::string& path);
+
+// `path`: a .pc2 / .mdd file (optionally .pc2.xz / .mdd.xz, decompressed while streaming), a
+// single .ply / .off (one frame), a directory of .ply / .off frames (natural order of their
+// names: 2 before 10), or a .txt list with one frame path per line (relative paths are taken
+// from the list's directory; blank lines and lines starting with '#' are skipped).
+// `mesh_path`: the connectivity, required for PC2 / MDD; for PLY / OFF frames optional, and
+// when given the frames must have its vertex count and face list.
+Result<std::unique_ptr<FrameSource>> openSequence(const std::string& path,
+                                                  const std::string& mesh_path);
+
+// PC2 / MDD: `path` is the file. PLY / OFF: `path` is a directory (created if needed) that
+// receives frame_00000.ply, frame_00001.ply, ... (binary little-endian PLY, ASCII OFF).
+// `frame_count` must be exactly the number of frames written before finish(); `frame_rate`
+// is stored by MDD only.
+Result<std::unique_ptr<FrameSink>> createSequenceSink(const std::string& path,
+                                                      SequenceFormat format,
+                                                      const Topology& topology,
+                                                      double frame_rate, int64_t frame_count);
+
+}  // namespace animc

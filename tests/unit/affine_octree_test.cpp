@@ -1,0 +1,124 @@
+// Round trips of the Affine-Octree codec through the .ams container, both profiles.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "api.h"
+#include "codecs/affine_octree/octree_shared.h"
+#include "test_sequences.h"
+
+namespace animc {
+namespace {
+
+using testing_support::gridSequence;
+
+std::string tempPath(const std::string& name) {
+  return ::testing::TempDir() + "/animc_" + std::to_string(getpid()) + "_" + name;
+}
+
+std::vector<std::vector<float>> decodeAll(const std::string& path) {
+  auto ams = AmsSource::open(path);
+  EXPECT_TRUE(ams.ok()) << ams.status().message();
+  std::vector<std::vector<float>> frames;
+  if (!ams.ok()) return frames;
+  std::vector<float> xyz;
+  for (;;) {
+    auto more = ams.value()->next(xyz);
+    EXPECT_TRUE(more.ok()) << more.status().message();
+    if (!more.ok() || !more.value()) break;
+    frames.push_back(xyz);
+  }
+  return frames;
+}
+
+// Largest vertex error of frame f divided by the side of the root cube the codec used
+// (the bounding cube of the reconstructed frame f-1, or of frame f itself for frame 0).
+double worstRelativeError(const std::vector<std::vector<float>>& original,
+                          const std::vector<std::vector<float>>& decoded) {
+  double worst = 0;
+  for (size_t f = 0; f < original.size(); ++f) {
+    const std::vector<float>& ref = f == 0 ? original[0] : decoded[f - 1];
+    const RootCube cube = boundingCube(std::vector<double>(ref.begin(), ref.end()));
+    for (size_t i = 0; i < original[f].size(); i += 3) {
+      const double e = std::hypot(original[f][i] - decoded[f][i], original[f][i + 1] - decoded[f][i + 1],
+                                  original[f][i + 2] - decoded[f][i + 2]);
+      worst = std::max(worst, e / cube.side);
+    }
+  }
+  return worst;
+}
+
+struct Case {
+  Profile profile;
+  double max_error;
+  uint32_t iframe_interval;
+};
+
+class AffineOctreeRoundTrip : public ::testing::TestWithParam<Case> {};
+
+TEST_P(AffineOctreeRoundTrip, EveryVertexWithinMaxErrorAndDecoderMatchesEncoder) {
+  MemorySequence seq = gridSequence(24, 20, 30, 1.0, 1.0);
+  EncodeSettings settings;
+  settings.octree.profile = GetParam().profile;
+  settings.octree.max_error = GetParam().max_error;
+  settings.iframe_interval = GetParam().iframe_interval;
+  const std::string path = tempPath("roundtrip.ams");
+  std::vector<std::vector<float>> encoder_view;
+  auto report = encodeSequence(seq, settings, path, {}, [&](int64_t, const float*, const std::vector<double>& r) {
+    encoder_view.emplace_back(r.begin(), r.end());
+  });
+  ASSERT_TRUE(report.ok()) << report.status().message();
+  EXPECT_EQ(report.value().frames, 30);
+  const auto decoded = decodeAll(path);
+  ASSERT_EQ(decoded.size(), 30u);
+  EXPECT_EQ(decoded, encoder_view);  // closed loop: both sides hold the same frames
+  EXPECT_LE(worstRelativeError(seq.frames(), decoded), GetParam().max_error);
+  const uint64_t raw = 12ull * 24 * 20 * 30;
+  EXPECT_LT(report.value().file_bytes, raw / 3);
+  std::remove(path.c_str());
+}
+
+INSTANTIATE_TEST_SUITE_P(Profiles, AffineOctreeRoundTrip,
+                         ::testing::Values(Case{Profile::kPaper, 0.01, 0}, Case{Profile::kPaper, 0.001, 7},
+                                           Case{Profile::kDefault, 0.01, 0}, Case{Profile::kDefault, 0.001, 7},
+                                           Case{Profile::kDefault, 0.1, 0}));
+
+TEST(AffineOctree, RigidMotionCodesOneCellPerFrame) {
+  for (Profile profile : {Profile::kPaper, Profile::kDefault}) {
+    MemorySequence seq = gridSequence(30, 30, 12, 0.0, 1.0);
+    EncodeSettings settings;
+    settings.octree.profile = profile;
+    const std::string path = tempPath("rigid.ams");
+    auto report = encodeSequence(seq, settings, path);
+    ASSERT_TRUE(report.ok()) << report.status().message();
+    EXPECT_EQ(report.value().intra_frames, 1u);
+    EXPECT_EQ(report.value().cells, 11u) << profileName(profile);
+    std::remove(path.c_str());
+  }
+}
+
+TEST(AffineOctree, RandomAccessEqualsFullDecode) {
+  MemorySequence seq = gridSequence(16, 16, 40, 1.0, 0.5);
+  EncodeSettings settings;
+  settings.iframe_interval = 8;
+  const std::string path = tempPath("random.ams");
+  ASSERT_TRUE(encodeSequence(seq, settings, path).ok());
+  const auto full = decodeAll(path);
+  ASSERT_EQ(full.size(), 40u);
+  auto ams = AmsSource::open(path);
+  ASSERT_TRUE(ams.ok());
+  EXPECT_EQ(ams.value()->info().sections.size(), 4u + 5u);  // HEAD CONN INDX END + 5 groups
+  for (int64_t k : {39, 0, 17, 8, 23, 7}) {
+    ASSERT_TRUE(ams.value()->seek(k).ok());
+    std::vector<float> xyz;
+    auto got = ams.value()->next(xyz);
+    ASSERT_TRUE(got.ok() && got.value());
+    EXPECT_EQ(xyz, full[size_t(k)]) << "frame " << k;
+  }
+  std::remove(path.c_str());
+}
+
+}  // namespace
+}  // namespace animc

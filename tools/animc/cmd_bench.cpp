@@ -1,0 +1,107 @@
+// animc bench: median encode and decode throughput over R runs on one core, plus every
+// metric of the decoded result. The input is read into memory first so that file reading
+// and xz decompression are not timed.
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+
+#include "cli.h"
+#include "core/memory_sequence.h"
+#include "report.h"
+#include "seqio/sequence_io.h"
+
+namespace animc::cli {
+
+Result<SequenceMetrics> compareSequences(FrameSource& original, FrameSource& reconstructed);
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v.empty() ? 0 : (v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]));
+}
+
+Result<double> timeDecode(const std::string& path) {
+  const auto t0 = Clock::now();
+  ANIMC_ASSIGN_OR_RETURN(std::unique_ptr<AmsSource> ams, AmsSource::open(path));
+  std::vector<float> xyz;
+  for (;;) {
+    ANIMC_ASSIGN_OR_RETURN(bool more, ams->next(xyz));
+    if (!more) break;
+  }
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+}  // namespace
+
+int runBench(const std::vector<std::string>& argv) {
+  Args args;
+  std::set<std::string> options = kEncodeOptions;
+  options.insert({"mesh", "runs", "output"});
+  Status s = args.parse(argv, options, {"json", "progress"});
+  if (!s.ok()) return fail(s);
+  if (args.positional().size() != 1) return fail(invalidArgument("usage: animc bench IN [--mesh M] [options] [--runs R]"));
+  auto settings = encodeSettingsFrom(args);
+  if (!settings.ok()) return fail(settings.status());
+  auto runs = args.integer("runs", 5);
+  if (!runs.ok() || runs.value() < 1 || runs.value() > 1000) return fail(invalidArgument("--runs must be in [1, 1000]"));
+  auto source = openSequence(args.positional()[0], args.get("mesh"));
+  if (!source.ok()) return fail(source.status());
+  auto sequence = readAll(*source.value());
+  if (!sequence.ok()) return fail(sequence.status());
+  MemorySequence& seq = sequence.value();
+  const std::string out = args.has("output") ? args.get("output")
+                                             : "/tmp/animc-bench-" + std::to_string(getpid()) + ".ams";
+  std::vector<double> encode_s, decode_s;
+  EncodeReport report;
+  for (long long r = 0; r < runs.value(); ++r) {
+    seq.rewind();
+    const auto t0 = Clock::now();
+    auto rep = encodeSequence(seq, settings.value(), out);
+    if (!rep.ok()) return fail(rep.status());
+    encode_s.push_back(std::chrono::duration<double>(Clock::now() - t0).count());
+    report = rep.value();
+    auto d = timeDecode(out);
+    if (!d.ok()) return fail(d.status());
+    decode_s.push_back(d.value());
+  }
+  seq.rewind();
+  auto ams = AmsSource::open(out);
+  if (!ams.ok()) return fail(ams.status());
+  auto metrics = compareSequences(seq, *ams.value());
+  if (!args.has("output")) unlink(out.c_str());
+  if (!metrics.ok()) return fail(metrics.status());
+  const double vertex_frames = double(report.vertices) * double(report.frames);
+  const double encode_mvps = vertex_frames / median(encode_s) / 1e6;
+  const double decode_mvps = vertex_frames / median(decode_s) / 1e6;
+  if (args.has("json")) {
+    JsonObject o;
+    o.add("input", args.positional()[0]);
+    addSettings(o, settings.value());
+    addSizes(o, report.file_bytes, report.static_bytes, report.vertices, report.frames);
+    addMetrics(o, metrics.value(), false);
+    o.add("intra_frames", report.intra_frames);
+    o.add("cells", report.cells);
+    o.add("runs", runs.value());
+    o.add("encode_seconds_median", median(encode_s));
+    o.add("decode_seconds_median", median(decode_s));
+    o.add("encode_mvps", encode_mvps);
+    o.add("decode_mvps", decode_mvps);
+    std::printf("%s\n", o.str().c_str());
+    return 0;
+  }
+  std::printf("%s: %u vertices x %lld frames, %lld runs\n", args.positional()[0].c_str(), report.vertices,
+              (long long)report.frames, runs.value());
+  std::fputs(settingsText(settings.value()).c_str(), stdout);
+  std::fputs(sizesText(report.file_bytes, report.static_bytes, report.vertices, report.frames).c_str(), stdout);
+  std::fputs(formatMetricsText(metrics.value()).c_str(), stdout);
+  std::printf("encode: %.2f M vertices/s (median %.4f s)\ndecode: %.2f M vertices/s (median %.4f s)\n",
+              encode_mvps, median(encode_s), decode_mvps, median(decode_s));
+  return 0;
+}
+
+}  // namespace animc::cli

@@ -1,0 +1,66 @@
+#include <cstdio>
+
+#include "cli.h"
+#include "report.h"
+#include "seqio/sequence_io.h"
+
+namespace animc::cli {
+
+// Walks two sequences side by side; they must agree on vertex and frame counts.
+Result<SequenceMetrics> compareSequences(FrameSource& original, FrameSource& reconstructed) {
+  const uint32_t n = original.topology().vertex_count;
+  if (reconstructed.topology().vertex_count != n)
+    return badInput(reconstructed.where() + ": " + std::to_string(reconstructed.topology().vertex_count) +
+                    " vertices, the original has " + std::to_string(n));
+  MetricsAccumulator metrics(n);
+  std::vector<float> a, b;
+  for (;;) {
+    ANIMC_ASSIGN_OR_RETURN(bool more_a, original.next(a));
+    ANIMC_ASSIGN_OR_RETURN(bool more_b, reconstructed.next(b));
+    if (more_a != more_b)
+      return badInput(std::string(more_a ? "the reconstruction" : "the original") + " has fewer frames (" +
+                      std::to_string(metrics.frames()) + ")");
+    if (!more_a) break;
+    metrics.addFrame(a.data(), b.data());
+  }
+  return metrics.finish();
+}
+
+int runCompare(const std::vector<std::string>& argv) {
+  Args args;
+  Status s = args.parse(argv, {"mesh"}, {"json", "per-frame"});
+  if (!s.ok()) return fail(s);
+  if (args.positional().size() != 2)
+    return fail(invalidArgument("usage: animc compare ORIGINAL RECONSTRUCTED|IN.ams [--mesh M]"));
+  const std::string& recon_path = args.positional()[1];
+  auto original = openSequence(args.positional()[0], args.get("mesh"));
+  if (!original.ok()) return fail(original.status());
+  const bool is_ams = recon_path.size() > 4 && recon_path.compare(recon_path.size() - 4, 4, ".ams") == 0;
+  std::unique_ptr<FrameSource> recon;
+  std::unique_ptr<AmsSource> ams;
+  if (is_ams) {
+    auto r = AmsSource::open(recon_path);
+    if (!r.ok()) return fail(r.status());
+    ams = std::move(r).value();
+  } else {
+    auto r = openSequence(recon_path, args.get("mesh"));
+    if (!r.ok()) return fail(r.status());
+    recon = std::move(r).value();
+  }
+  FrameSource& other = ams ? static_cast<FrameSource&>(*ams) : *recon;
+  auto metrics = compareSequences(*original.value(), other);
+  if (!metrics.ok()) return fail(metrics.status());
+  const SequenceMetrics& m = metrics.value();
+  if (args.has("json")) {
+    JsonObject o;
+    if (ams) addSizes(o, ams->info().file_bytes, ams->info().static_bytes, m.vertices, m.frames);
+    addMetrics(o, m, args.has("per-frame"));
+    std::printf("%s\n", o.str().c_str());
+    return 0;
+  }
+  if (ams) std::fputs(sizesText(ams->info().file_bytes, ams->info().static_bytes, m.vertices, m.frames).c_str(), stdout);
+  std::fputs(formatMetricsText(m).c_str(), stdout);
+  return 0;
+}
+
+}  // namespace animc::cli

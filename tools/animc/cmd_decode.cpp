@@ -1,0 +1,73 @@
+#include <cstdio>
+
+#include "cli.h"
+#include "seqio/sequence_io.h"
+
+namespace animc::cli {
+namespace {
+
+bool endsWith(const std::string& s, const std::string& suffix) {
+  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+// "A:B" = frames A to B-1; either side may be omitted.
+Status parseRange(const std::string& text, int64_t count, int64_t& first, int64_t& last) {
+  first = 0;
+  last = count;
+  if (text.empty()) return Status();
+  const size_t colon = text.find(':');
+  const std::string a = text.substr(0, colon);
+  const std::string b = colon == std::string::npos ? std::to_string(std::stoll(a) + 1) : text.substr(colon + 1);
+  char* end = nullptr;
+  if (!a.empty()) first = std::strtoll(a.c_str(), &end, 10);
+  if (!a.empty() && *end) return invalidArgument("--frames: bad start '" + a + "'");
+  if (!b.empty()) last = std::strtoll(b.c_str(), &end, 10);
+  if (!b.empty() && *end) return invalidArgument("--frames: bad end '" + b + "'");
+  if (first < 0 || last > count || first >= last)
+    return invalidArgument("--frames " + text + " is empty or outside [0, " + std::to_string(count) + ")");
+  return Status();
+}
+
+}  // namespace
+
+int runDecode(const std::vector<std::string>& argv) {
+  Args args;
+  Status s = args.parse(argv, {"output", "format", "frames"}, {"progress"});
+  if (!s.ok()) return fail(s);
+  if (args.positional().size() != 1 || !args.has("output"))
+    return fail(invalidArgument("usage: animc decode IN.ams -o OUT [--format ply|off|pc2|mdd] [--frames A:B]"));
+  const std::string out = args.get("output");
+  std::string format = args.get("format");
+  if (format.empty()) format = endsWith(out, ".pc2") ? "pc2" : endsWith(out, ".mdd") ? "mdd" : endsWith(out, ".off") ? "off" : "ply";
+  auto fmt = formatFromName(format);
+  if (!fmt.ok()) return fail(fmt.status());
+  auto source = AmsSource::open(args.positional()[0]);
+  if (!source.ok()) return fail(source.status());
+  AmsSource& ams = *source.value();
+  int64_t first = 0, last = 0;
+  try {
+    s = parseRange(args.get("frames"), ams.frameCount(), first, last);
+  } catch (const std::exception&) {
+    s = invalidArgument("--frames: expected A:B");
+  }
+  if (!s.ok()) return fail(s);
+  if (!(s = ams.seek(first)).ok()) return fail(s);
+  auto sink = createSequenceSink(out, fmt.value(), ams.topology(), ams.frameRate(), last - first);
+  if (!sink.ok()) return fail(sink.status());
+  ProgressFn progress = progressLine("decode", args.has("progress"));
+  std::vector<float> xyz;
+  for (int64_t f = first; f < last; ++f) {
+    auto got = ams.next(xyz);
+    if (!got.ok()) return fail(got.status());
+    if (!got.value()) return fail(corrupt("file ends before frame " + std::to_string(f)));
+    if (!(s = sink.value()->write(xyz.data())).ok()) return fail(s);
+    if (progress) progress(int(100 * (f - first + 1) / (last - first)), "decoding");
+  }
+  if (!(s = sink.value()->finish()).ok()) return fail(s);
+  endProgressLine();
+  std::printf("%s: %lld frames of %u vertices (%s)\n", out.c_str(), (long long)(last - first),
+              ams.topology().vertex_count, format.c_str());
+  return 0;
+}
+
+}  // namespace animc::cli

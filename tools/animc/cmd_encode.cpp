@@ -1,0 +1,57 @@
+#include <cstdio>
+
+#include "cli.h"
+#include "report.h"
+#include "seqio/sequence_io.h"
+
+namespace animc::cli {
+
+int runEncode(const std::vector<std::string>& argv) {
+  Args args;
+  std::set<std::string> options = kEncodeOptions;
+  options.insert({"output", "mesh"});
+  Status s = args.parse(argv, options, {"progress", "json"});
+  if (!s.ok()) return fail(s);
+  if (args.positional().size() != 1 || !args.has("output"))
+    return fail(invalidArgument("usage: animc encode IN -o OUT.ams [options]"));
+  auto settings = encodeSettingsFrom(args);
+  if (!settings.ok()) return fail(settings.status());
+  auto source = openSequence(args.positional()[0], args.get("mesh"));
+  if (!source.ok()) return fail(source.status());
+  MetricsAccumulator metrics(source.value()->topology().vertex_count);
+  std::vector<float> recon;
+  auto observe = [&](int64_t, const float* original, const std::vector<double>& reconstructed) {
+    recon.assign(reconstructed.begin(), reconstructed.end());
+    metrics.addFrame(original, recon.data());
+  };
+  auto report = encodeSequence(*source.value(), settings.value(), args.get("output"),
+                               progressLine("encode", args.has("progress")), observe);
+  if (!report.ok()) return fail(report.status());
+  endProgressLine();
+  const EncodeReport& r = report.value();
+  const SequenceMetrics m = metrics.finish();
+  const double mvps = r.encode_seconds > 0 ? double(r.vertices) * r.frames / r.encode_seconds / 1e6 : 0;
+  if (args.has("json")) {
+    JsonObject o;
+    o.add("output", args.get("output"));
+    addSettings(o, settings.value());
+    addSizes(o, r.file_bytes, r.static_bytes, r.vertices, r.frames);
+    addMetrics(o, m, false);
+    o.add("intra_frames", r.intra_frames);
+    o.add("cells", r.cells);
+    o.add("encode_seconds", r.encode_seconds);
+    o.add("encode_mvps", mvps);
+    std::printf("%s\n", o.str().c_str());
+    return 0;
+  }
+  std::printf("%s: %u vertices, %llu triangles, %lld frames (%llu intra)\n", args.get("output").c_str(),
+              r.vertices, (unsigned long long)r.triangles, (long long)r.frames,
+              (unsigned long long)r.intra_frames);
+  std::fputs(settingsText(settings.value()).c_str(), stdout);
+  std::fputs(sizesText(r.file_bytes, r.static_bytes, r.vertices, r.frames).c_str(), stdout);
+  std::fputs(formatMetricsText(m).c_str(), stdout);
+  std::printf("encode time: %.3f s (%.2f M vertices/s)\n", r.encode_seconds, mvps);
+  return 0;
+}
+
+}  // namespace animc::cli

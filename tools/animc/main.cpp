@@ -1,0 +1,38 @@
+// animc: encode, decode, inspect, compare and benchmark animated-mesh files from a shell.
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "cli.h"
+
+namespace {
+
+constexpr const char* kUsage =
+    "usage: animc <command> ...\n"
+    "  encode IN -o OUT.ams [--mesh M] [--codec affine-octree] [--profile paper|default]\n"
+    "         [--max-error E] [--bits K] [--iframe-interval K] [--max-depth D] [--progress]\n"
+    "  decode IN.ams -o OUT [--format ply|off|pc2|mdd] [--frames A:B] [--progress]\n"
+    "  info IN.ams [--json]\n"
+    "  compare ORIGINAL RECONSTRUCTED|IN.ams [--mesh M] [--json] [--per-frame]\n"
+    "  bench IN [--mesh M] [encode options] [--runs R] [--json]\n"
+    "IN: .pc2/.mdd (optionally .xz, with --mesh), a .ply/.off frame, a folder of them or a\n"
+    ".txt list of frame files. E is a fraction of the root cube's side (0.01 = 1%).\n";
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace animc::cli;
+  if (argc < 2 || std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h") {
+    std::fputs(kUsage, argc < 2 ? stderr : stdout);
+    return argc < 2 ? 2 : 0;
+  }
+  const std::string command = argv[1];
+  const std::vector<std::string> rest(argv + 2, argv + argc);
+  if (command == "encode") return runEncode(rest);
+  if (command == "decode") return runDecode(rest);
+  if (command == "info") return runInfo(rest);
+  if (command == "compare") return runCompare(rest);
+  if (command == "bench") return runBench(rest);
+  std::fprintf(stderr, "animc: unknown command '%s'\n%s", command.c_str(), kUsage);
+  return 2;
+}

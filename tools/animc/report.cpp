@@ -1,0 +1,62 @@
+#include "report.h"
+
+#include <cstdio>
+
+namespace animc::cli {
+
+void addSettings(JsonObject& o, const EncodeSettings& s) {
+  o.add("codec", codecName(s.codec));
+  o.add("profile", profileName(s.octree.profile));
+  o.add("max_error_setting", s.octree.max_error);
+  o.add("bits", s.octree.bits);
+  o.add("max_depth", s.octree.max_depth);
+  o.add("iframe_interval", s.iframe_interval);
+}
+
+void addSizes(JsonObject& o, uint64_t file_bytes, uint64_t static_bytes, uint32_t vertices, int64_t frames) {
+  const SizeFigures f = sizeFigures(file_bytes, static_bytes, vertices, frames);
+  o.add("file_bytes", file_bytes);
+  o.add("static_bytes", static_bytes);
+  o.add("ratio", f.ratio);
+  o.add("bpvf", f.bpvf);
+  o.add("motion_bpvf", f.motion_bpvf);
+}
+
+void addMetrics(JsonObject& o, const SequenceMetrics& m, bool per_frame) {
+  o.add("frames", m.frames);
+  o.add("vertices", m.vertices);
+  o.add("kg_error", m.kg_error);
+  o.add("psnr", m.psnr);
+  o.add("max_error", m.max_error);
+  o.add("max_error_rel_cube", m.max_error_rel_cube);
+  o.add("max_error_rel_diag", m.max_error_rel_diag);
+  o.add("rms_error", m.rms_error);
+  o.add("rms_error_rel_diag", m.rms_error_rel_diag);
+  o.add("bbox_diagonal", m.bbox_diagonal);
+  if (!per_frame) return;
+  std::vector<double> rms, max;
+  for (const FrameError& e : m.per_frame) {
+    rms.push_back(e.rms);
+    max.push_back(e.max);
+  }
+  o.add("per_frame_rms", rms);
+  o.add("per_frame_max", max);
+}
+
+std::string settingsText(const EncodeSettings& s) {
+  char line[256];
+  std::snprintf(line, sizeof line, "codec: %s, profile %s, max error %g of the root cube, bits %d, "
+                "iframe interval %u\n", codecName(s.codec), profileName(s.octree.profile),
+                s.octree.max_error, s.octree.bits, s.iframe_interval);
+  return line;
+}
+
+std::string sizesText(uint64_t file_bytes, uint64_t static_bytes, uint32_t vertices, int64_t frames) {
+  const SizeFigures f = sizeFigures(file_bytes, static_bytes, vertices, frames);
+  char line[256];
+  std::snprintf(line, sizeof line, "size: %llu bytes, ratio %.2f:1, %.4f bits/vertex/frame (motion only %.4f)\n",
+                (unsigned long long)file_bytes, f.ratio, f.bpvf, f.motion_bpvf);
+  return line;
+}
+
+}  // namespace animc::cli

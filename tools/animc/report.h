@@ -1,0 +1,17 @@
+// The figures every subcommand prints, text or JSON, from the library's one metrics module.
+#pragma once
+#include <string>
+
+#include "api.h"
+#include "metrics/json_writer.h"
+#include "metrics/sequence_metrics.h"
+
+namespace animc::cli {
+
+void addSettings(JsonObject& o, const EncodeSettings& s);
+void addSizes(JsonObject& o, uint64_t file_bytes, uint64_t static_bytes, uint32_t vertices, int64_t frames);
+void addMetrics(JsonObject& o, const SequenceMetrics& m, bool per_frame);
+std::string settingsText(const EncodeSettings& s);
+std::string sizesText(uint64_t file_bytes, uint64_t static_bytes, uint32_t vertices, int64_t frames);
+
+}  // namespace animc::cli
