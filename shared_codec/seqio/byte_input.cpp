@@ -63,8 +63,9 @@ class XzInput : public ByteInput {
   Status init() {
     // LZMA_CONCATENATED: "xz -c a b > c" produces several streams that belong together.
     lzma_ret rc = lzma_stream_decoder(&stream_, UINT64_MAX, LZMA_CONCATENATED);
-    if (rc != LZMA_OK) return ioError(path_ + ": cannot start the xz decoder (code " +
-                                      std::to_string(int(rc)) + ")");
+    if (rc != LZMA_OK)
+      return ioError(path_ + ": cannot start the xz decoder (code " + std::to_string(int(rc)) +
+                     ")");
     return Status();
   }
 

@@ -12,7 +12,9 @@ namespace animc {
 namespace fs = std::filesystem;
 namespace {
 
-const char* extension(SequenceFormat format) { return format == SequenceFormat::kOff ? ".off" : ".ply"; }
+const char* extension(SequenceFormat format) {
+  return format == SequenceFormat::kOff ? ".off" : ".ply";
+}
 
 // The frame number of a name this sink would write, or -1.
 int64_t frameNumber(const std::string& name, SequenceFormat format) {
@@ -22,8 +24,8 @@ int64_t frameNumber(const std::string& name, SequenceFormat format) {
     return -1;
   std::string digits = name.substr(prefix.size(), name.size() - prefix.size() - suffix.size());
   uint64_t number;
-  if (digits.find_first_not_of("0123456789") != std::string::npos || !parseUint64(digits, &number) ||
-      number > uint64_t(INT64_MAX))
+  if (digits.find_first_not_of("0123456789") != std::string::npos ||
+      !parseUint64(digits, &number) || number > uint64_t(INT64_MAX))
     return -1;
   return int64_t(number);
 }
@@ -31,7 +33,10 @@ int64_t frameNumber(const std::string& name, SequenceFormat format) {
 class FrameDirSink : public FrameSink {
  public:
   FrameDirSink(std::string dir, SequenceFormat format, Topology topology, int64_t frame_count)
-      : dir_(std::move(dir)), format_(format), topology_(std::move(topology)), frame_count_(frame_count) {}
+      : dir_(std::move(dir)),
+        format_(format),
+        topology_(std::move(topology)),
+        frame_count_(frame_count) {}
 
   ~FrameDirSink() override {
     if (finished_) return;
@@ -51,7 +56,8 @@ class FrameDirSink : public FrameSink {
 
   Status write(const float* xyz) override {
     if (int64_t(written_.size()) == frame_count_)
-      return invalidArgument(dir_ + ": more frames written than the " + std::to_string(frame_count_) + " announced");
+      return invalidArgument(dir_ + ": more frames written than the " +
+                             std::to_string(frame_count_) + " announced");
     std::string path = (fs::path(dir_) / frameFileName(int64_t(written_.size()), format_)).string();
     ANIMC_RETURN_IF_ERROR(format_ == SequenceFormat::kOff ? writeOffFile(path, topology_, xyz)
                                                           : writePlyFile(path, topology_, xyz));
@@ -61,8 +67,8 @@ class FrameDirSink : public FrameSink {
 
   Status finish() override {
     if (int64_t(written_.size()) != frame_count_)
-      return invalidArgument(dir_ + ": " + std::to_string(written_.size()) + " frames written but " +
-                             std::to_string(frame_count_) + " announced");
+      return invalidArgument(dir_ + ": " + std::to_string(written_.size()) +
+                             " frames written but " + std::to_string(frame_count_) + " announced");
     ANIMC_RETURN_IF_ERROR(removeStaleFrames());
     finished_ = true;
     return Status();
@@ -72,7 +78,8 @@ class FrameDirSink : public FrameSink {
   // Frame files of an earlier run: higher numbers, or the other extension. A reader of the
   // directory must not mix them into this sequence.
   bool isStale(const std::string& name) const {
-    SequenceFormat other = format_ == SequenceFormat::kOff ? SequenceFormat::kPly : SequenceFormat::kOff;
+    SequenceFormat other =
+        format_ == SequenceFormat::kOff ? SequenceFormat::kPly : SequenceFormat::kOff;
     return frameNumber(name, format_) >= frame_count_ || frameNumber(name, other) >= 0;
   }
 
@@ -102,12 +109,14 @@ class FrameDirSink : public FrameSink {
 
 std::string frameFileName(int64_t index, SequenceFormat format) {
   char name[48];
-  std::snprintf(name, sizeof(name), "frame_%05lld%s", static_cast<long long>(index), extension(format));
+  std::snprintf(name, sizeof(name), "frame_%05lld%s", static_cast<long long>(index),
+                extension(format));
   return name;
 }
 
 Result<std::unique_ptr<FrameSink>> createFrameDirSink(const std::string& dir, SequenceFormat format,
-                                                      const Topology& topology, int64_t frame_count) {
+                                                      const Topology& topology,
+                                                      int64_t frame_count) {
   auto sink = std::make_unique<FrameDirSink>(dir, format, topology, frame_count);
   ANIMC_RETURN_IF_ERROR(sink->open());
   return std::unique_ptr<FrameSink>(std::move(sink));

@@ -13,8 +13,7 @@ namespace animc {
 // frame files an earlier run left in the directory (frame_<digits>.ply / .off with higher
 // numbers or the other extension), and a sink destroyed before finish() deletes the frames
 // it wrote.
-Result<std::unique_ptr<FrameSink>> createFrameDirSink(const std::string& dir,
-                                                      SequenceFormat format,
+Result<std::unique_ptr<FrameSink>> createFrameDirSink(const std::string& dir, SequenceFormat format,
                                                       const Topology& topology,
                                                       int64_t frame_count);
 

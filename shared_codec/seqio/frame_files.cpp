@@ -24,8 +24,10 @@ int compareNumbers(const std::string& a, size_t& i, const std::string& b, size_t
   while (a_start + 1 < a_end && a[a_start] == '0') ++a_start;  // "007" == "7" by value
   while (b_start + 1 < b_end && b[b_start] == '0') ++b_start;
   int result = 0;
-  if (a_end - a_start != b_end - b_start) result = a_end - a_start < b_end - b_start ? -1 : 1;
-  else result = a.compare(a_start, a_end - a_start, b, b_start, b_end - b_start);
+  if (a_end - a_start != b_end - b_start)
+    result = a_end - a_start < b_end - b_start ? -1 : 1;
+  else
+    result = a.compare(a_start, a_end - a_start, b, b_start, b_end - b_start);
   i = a_end;
   j = b_end;
   return result;
@@ -45,7 +47,8 @@ std::string trim(std::string_view line) {
 class FrameFileSource : public FrameSource {
  public:
   FrameFileSource(std::vector<std::string> paths, Mesh first)
-      : paths_(std::move(paths)), topology_(std::move(first.topology)),
+      : paths_(std::move(paths)),
+        topology_(std::move(first.topology)),
         first_positions_(std::move(first.positions)) {}
 
   const Topology& topology() const override { return topology_; }
@@ -138,8 +141,9 @@ Result<std::unique_ptr<FrameSource>> openFrameFiles(std::vector<std::string> pat
   if (paths.empty()) return badInput("no frames to read");
   ANIMC_ASSIGN_OR_RETURN(Mesh first, readMesh(paths[0]));
   if (reference)
-    ANIMC_RETURN_IF_ERROR(checkSameTopology(first.topology, *reference, "the mesh " + reference_name)
-                              .withContext(paths[0]));
+    ANIMC_RETURN_IF_ERROR(
+        checkSameTopology(first.topology, *reference, "the mesh " + reference_name)
+            .withContext(paths[0]));
   return std::unique_ptr<FrameSource>(new FrameFileSource(std::move(paths), std::move(first)));
 }
 

@@ -50,7 +50,8 @@ Result<double> scanTimes(ByteInput& input, const std::string& name, int64_t fram
     ANIMC_ASSIGN_OR_RETURN(size_t got, input.read(chunk, want * 4));
     if (got < want * 4)
       return truncated(name + ": truncated in the frame times (time " +
-                       std::to_string(done + int64_t(got / 4)) + " of " + std::to_string(frames) + ")");
+                       std::to_string(done + int64_t(got / 4)) + " of " + std::to_string(frames) +
+                       ")");
     for (size_t i = 0; i < want; ++i) scan.add(bitsToFloat(loadBe32(chunk + 4 * i)));
     done += int64_t(want);
   }
@@ -79,7 +80,8 @@ Result<std::unique_ptr<FrameSource>> openMdd(const std::string& path, const Topo
   int32_t frames = int32_t(loadBe32(header));
   int32_t points = int32_t(loadBe32(header + 4));
   ANIMC_RETURN_IF_ERROR(checkPointCount(path, points, topology, mesh_name));
-  if (frames <= 0) return badInput(path + ": header announces " + std::to_string(frames) + " frames");
+  if (frames <= 0)
+    return badInput(path + ": header announces " + std::to_string(frames) + " frames");
   uint64_t header_bytes = 8 + 4 * uint64_t(frames);
   ANIMC_RETURN_IF_ERROR(checkPointCacheSize(*input, path, header_bytes, frames, uint32_t(points)));
   PointCacheLayout layout;

@@ -17,8 +17,7 @@ namespace {
 // Yields the tokens of each non-blank line with '#' comments removed.
 class OffLines {
  public:
-  OffLines(const uint8_t* data, size_t size)
-      : text_(reinterpret_cast<const char*>(data), size) {}
+  OffLines(const uint8_t* data, size_t size) : text_(reinterpret_cast<const char*>(data), size) {}
 
   bool next(std::vector<std::string_view>* tokens) {
     tokens->clear();
@@ -54,12 +53,14 @@ struct OffCounts {
 
 Result<OffCounts> readCounts(OffLines& lines) {
   std::vector<std::string_view> tokens;
-  if (!lines.next(&tokens) || (tokens[0] != "OFF" && tokens[0] != "COFF" &&
-                               tokens[0] != "NOFF" && tokens[0] != "CNOFF"))
+  if (!lines.next(&tokens) ||
+      (tokens[0] != "OFF" && tokens[0] != "COFF" && tokens[0] != "NOFF" && tokens[0] != "CNOFF"))
     return corrupt("not an OFF file (no OFF header)");
   if (tokens.size() > 1 && tokens[1] == "BINARY") return corrupt("binary OFF is not supported");
-  if (tokens.size() == 1 && !lines.next(&tokens)) return truncated("OFF file ends before its counts");
-  if (tokens.size() > 1 && tokens[0].find("OFF") != std::string_view::npos) tokens.erase(tokens.begin());
+  if (tokens.size() == 1 && !lines.next(&tokens))
+    return truncated("OFF file ends before its counts");
+  if (tokens.size() > 1 && tokens[0].find("OFF") != std::string_view::npos)
+    tokens.erase(tokens.begin());
   OffCounts counts;
   if (tokens.size() < 2 || !parseUint64(tokens[0], &counts.vertices) ||
       !parseUint64(tokens[1], &counts.faces))
@@ -78,7 +79,8 @@ Status readVertices(OffLines& lines, Mesh* mesh) {
   float* xyz = mesh->positions.data();
   for (uint64_t v = 0; v < mesh->topology.vertex_count; ++v) {
     if (!lines.next(&tokens)) return truncated("file ends at vertex " + std::to_string(v));
-    if (tokens.size() < 3) return lineError(lines, "vertex " + std::to_string(v) + " has fewer than 3 coordinates");
+    if (tokens.size() < 3)
+      return lineError(lines, "vertex " + std::to_string(v) + " has fewer than 3 coordinates");
     for (int axis = 0; axis < 3; ++axis) {
       double value;
       if (!parseDouble(tokens[axis], &value))
@@ -95,14 +97,17 @@ Status readFace(OffLines& lines, const std::vector<std::string_view>& tokens, ui
                 uint32_t vertex_count, std::vector<uint32_t>& corners) {
   uint64_t length;
   int64_t index;
-  if (!parseUint64(tokens[0], &length)) return lineError(lines, "bad vertex count for face " + std::to_string(face));
+  if (!parseUint64(tokens[0], &length))
+    return lineError(lines, "bad vertex count for face " + std::to_string(face));
   if (length < 3)
     return badInput("face " + std::to_string(face) + " has " + std::to_string(length) +
                     " vertices (at least 3 needed)");
-  if (tokens.size() - 1 < length) return lineError(lines, "face " + std::to_string(face) + " lists too few indices");
+  if (tokens.size() - 1 < length)
+    return lineError(lines, "face " + std::to_string(face) + " lists too few indices");
   corners.clear();
   for (uint64_t i = 1; i <= length; ++i) {
-    if (!parseInt64(tokens[i], &index)) return lineError(lines, "bad vertex index in face " + std::to_string(face));
+    if (!parseInt64(tokens[i], &index))
+      return lineError(lines, "bad vertex index in face " + std::to_string(face));
     if (index < 0 || index >= int64_t(vertex_count))
       return badInput("face " + std::to_string(face) + ": vertex index " + std::to_string(index) +
                       " out of range (" + std::to_string(vertex_count) + " vertices)");
@@ -144,7 +149,8 @@ Result<Mesh> parseOff(const uint8_t* data, size_t size) {
     ANIMC_RETURN_IF_ERROR(readVertices(lines, &mesh));
     ANIMC_RETURN_IF_ERROR(readFaces(lines, counts.faces, &mesh));
   } catch (const std::bad_alloc&) {
-    return limitExceeded("out of memory reading a mesh of " + std::to_string(counts.vertices) + " vertices");
+    return limitExceeded("out of memory reading a mesh of " + std::to_string(counts.vertices) +
+                         " vertices");
   }
   ANIMC_RETURN_IF_ERROR(checkTopology(mesh.topology));
   return mesh;
@@ -162,7 +168,8 @@ Status writeOffFile(const std::string& path, const Topology& topology, const flo
       }
     }
     for (const Triangle& t : topology.triangles)
-      text += "3 " + std::to_string(t[0]) + " " + std::to_string(t[1]) + " " + std::to_string(t[2]) + "\n";
+      text += "3 " + std::to_string(t[0]) + " " + std::to_string(t[1]) + " " +
+              std::to_string(t[2]) + "\n";
   } catch (const std::bad_alloc&) {
     return limitExceeded(path + ": out of memory encoding the OFF frame");
   }

@@ -12,11 +12,11 @@ struct TypeName {
   PlyType type;
 };
 constexpr TypeName kTypeNames[] = {
-    {"char", PlyType::kInt8},     {"int8", PlyType::kInt8},       {"uchar", PlyType::kUint8},
-    {"uint8", PlyType::kUint8},   {"short", PlyType::kInt16},     {"int16", PlyType::kInt16},
-    {"ushort", PlyType::kUint16}, {"uint16", PlyType::kUint16},   {"int", PlyType::kInt32},
-    {"int32", PlyType::kInt32},   {"uint", PlyType::kUint32},     {"uint32", PlyType::kUint32},
-    {"float", PlyType::kFloat32}, {"float32", PlyType::kFloat32}, {"double", PlyType::kFloat64},
+    {"char", PlyType::kInt8},      {"int8", PlyType::kInt8},       {"uchar", PlyType::kUint8},
+    {"uint8", PlyType::kUint8},    {"short", PlyType::kInt16},     {"int16", PlyType::kInt16},
+    {"ushort", PlyType::kUint16},  {"uint16", PlyType::kUint16},   {"int", PlyType::kInt32},
+    {"int32", PlyType::kInt32},    {"uint", PlyType::kUint32},     {"uint32", PlyType::kUint32},
+    {"float", PlyType::kFloat32},  {"float32", PlyType::kFloat32}, {"double", PlyType::kFloat64},
     {"float64", PlyType::kFloat64}};
 
 bool typeFromName(std::string_view name, PlyType* type) {
@@ -43,10 +43,14 @@ Status headerError(size_t line_number, const std::string& what) {
 
 Status parseFormat(const std::vector<std::string_view>& words, size_t line, PlyHeader* header) {
   if (words.size() < 2) return headerError(line, "format line without a format");
-  if (words[1] == "ascii") header->format = PlyFormat::kAscii;
-  else if (words[1] == "binary_little_endian") header->format = PlyFormat::kBinaryLittleEndian;
-  else if (words[1] == "binary_big_endian") header->format = PlyFormat::kBinaryBigEndian;
-  else return headerError(line, "unknown format '" + std::string(words[1]) + "'");
+  if (words[1] == "ascii")
+    header->format = PlyFormat::kAscii;
+  else if (words[1] == "binary_little_endian")
+    header->format = PlyFormat::kBinaryLittleEndian;
+  else if (words[1] == "binary_big_endian")
+    header->format = PlyFormat::kBinaryBigEndian;
+  else
+    return headerError(line, "unknown format '" + std::string(words[1]) + "'");
   return Status();
 }
 
@@ -89,10 +93,18 @@ uint64_t minInstanceBytes(const PlyElement& element, bool ascii) {
 
 size_t plyTypeSize(PlyType type) {
   switch (type) {
-    case PlyType::kInt8: case PlyType::kUint8: return 1;
-    case PlyType::kInt16: case PlyType::kUint16: return 2;
-    case PlyType::kInt32: case PlyType::kUint32: case PlyType::kFloat32: return 4;
-    case PlyType::kFloat64: return 8;
+    case PlyType::kInt8:
+    case PlyType::kUint8:
+      return 1;
+    case PlyType::kInt16:
+    case PlyType::kUint16:
+      return 2;
+    case PlyType::kInt32:
+    case PlyType::kUint32:
+    case PlyType::kFloat32:
+      return 4;
+    case PlyType::kFloat64:
+      return 8;
   }
   return 1;
 }
@@ -140,9 +152,8 @@ Status checkPlyDataSize(const PlyHeader& header, size_t data_size) {
     uint64_t per_instance = minInstanceBytes(element, ascii);
     if (per_instance == 0) continue;
     if (element.count > budget / per_instance)
-      return truncated("header announces " + std::to_string(element.count) + " " +
-                       element.name + " elements but only " + std::to_string(data_size) +
-                       " bytes of data follow");
+      return truncated("header announces " + std::to_string(element.count) + " " + element.name +
+                       " elements but only " + std::to_string(data_size) + " bytes of data follow");
     budget -= element.count * per_instance;
   }
   return Status();

@@ -10,7 +10,16 @@
 namespace animc {
 
 enum class PlyFormat { kAscii, kBinaryLittleEndian, kBinaryBigEndian };
-enum class PlyType : uint8_t { kInt8, kUint8, kInt16, kUint16, kInt32, kUint32, kFloat32, kFloat64 };
+enum class PlyType : uint8_t {
+  kInt8,
+  kUint8,
+  kInt16,
+  kUint16,
+  kInt32,
+  kUint32,
+  kFloat32,
+  kFloat64
+};
 
 struct PlyProperty {
   std::string name;

@@ -125,8 +125,10 @@ Status readFaces(PlyValueReader& in, const PlyElement& element, Mesh* mesh) {
   std::vector<uint32_t> corners;
   for (uint64_t f = 0; f < element.count; ++f) {
     for (size_t k = 0; k < element.properties.size(); ++k) {
-      if (int(k) == list) ANIMC_RETURN_IF_ERROR(readFace(in, element.properties[k], f, corners, mesh));
-      else ANIMC_RETURN_IF_ERROR(skipProperty(in, element.properties[k]));
+      if (int(k) == list)
+        ANIMC_RETURN_IF_ERROR(readFace(in, element.properties[k], f, corners, mesh));
+      else
+        ANIMC_RETURN_IF_ERROR(skipProperty(in, element.properties[k]));
     }
   }
   return Status();
@@ -137,9 +139,12 @@ Status readBody(const PlyHeader& header, const PlyElement* vertices, const uint8
                 size_t size, Mesh* mesh) {
   PlyValueReader in(header.format, data, size, header.data_offset);
   for (const PlyElement& element : header.elements) {
-    if (&element == vertices) ANIMC_RETURN_IF_ERROR(readVertices(in, element, mesh));
-    else if (element.name == "face") ANIMC_RETURN_IF_ERROR(readFaces(in, element, mesh));
-    else ANIMC_RETURN_IF_ERROR(skipElement(in, element));
+    if (&element == vertices)
+      ANIMC_RETURN_IF_ERROR(readVertices(in, element, mesh));
+    else if (element.name == "face")
+      ANIMC_RETURN_IF_ERROR(readFaces(in, element, mesh));
+    else
+      ANIMC_RETURN_IF_ERROR(skipElement(in, element));
   }
   return Status();
 }

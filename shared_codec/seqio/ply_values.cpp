@@ -13,22 +13,33 @@ namespace {
 
 double integerFromBits(PlyType type, uint64_t bits) {
   switch (type) {
-    case PlyType::kInt8: return double(int8_t(bits));
-    case PlyType::kInt16: return double(int16_t(bits));
-    case PlyType::kInt32: return double(int32_t(bits));
-    default: return double(bits);  // unsigned types
+    case PlyType::kInt8:
+      return double(int8_t(bits));
+    case PlyType::kInt16:
+      return double(int16_t(bits));
+    case PlyType::kInt32:
+      return double(int32_t(bits));
+    default:
+      return double(bits);  // unsigned types
   }
 }
 
 bool inIntegerRange(PlyType type, double v) {
   switch (type) {
-    case PlyType::kInt8: return v >= -128 && v <= 127;
-    case PlyType::kUint8: return v >= 0 && v <= 255;
-    case PlyType::kInt16: return v >= -32768 && v <= 32767;
-    case PlyType::kUint16: return v >= 0 && v <= 65535;
-    case PlyType::kInt32: return v >= -2147483648.0 && v <= 2147483647.0;
-    case PlyType::kUint32: return v >= 0 && v <= 4294967295.0;
-    default: return true;
+    case PlyType::kInt8:
+      return v >= -128 && v <= 127;
+    case PlyType::kUint8:
+      return v >= 0 && v <= 255;
+    case PlyType::kInt16:
+      return v >= -32768 && v <= 32767;
+    case PlyType::kUint16:
+      return v >= 0 && v <= 65535;
+    case PlyType::kInt32:
+      return v >= -2147483648.0 && v <= 2147483647.0;
+    case PlyType::kUint32:
+      return v >= 0 && v <= 4294967295.0;
+    default:
+      return true;
   }
 }
 
@@ -45,8 +56,7 @@ bool PlyValueReader::fail(Status status) {
 
 bool PlyValueReader::readBinary(PlyType type, double* value) {
   size_t n = plyTypeSize(type);
-  if (size_ - pos_ < n)
-    return fail(truncated("data ends early at byte " + std::to_string(pos_)));
+  if (size_ - pos_ < n) return fail(truncated("data ends early at byte " + std::to_string(pos_)));
   uint64_t bits = 0;
   bool big = format_ == PlyFormat::kBinaryBigEndian;
   for (size_t i = 0; i < n; ++i) {
@@ -68,7 +78,8 @@ bool PlyValueReader::readAscii(PlyType type, double* value) {
   const char* base = reinterpret_cast<const char*>(data_);
   TokenCursor cursor(base + pos_, base + size_);
   std::string_view token;
-  if (!cursor.next(&token)) return fail(truncated("data ends early at byte " + std::to_string(pos_)));
+  if (!cursor.next(&token))
+    return fail(truncated("data ends early at byte " + std::to_string(pos_)));
   size_t token_offset = size_t(token.data() - base);
   pos_ = size_t(cursor.position() - base);
   if (!parseDouble(token, value))

@@ -11,9 +11,11 @@ namespace {
 
 std::string plyHeader(const Topology& topology) {
   return "ply\nformat binary_little_endian 1.0\ncomment written by animcompress\n"
-         "element vertex " + std::to_string(topology.vertex_count) +
+         "element vertex " +
+         std::to_string(topology.vertex_count) +
          "\nproperty float x\nproperty float y\nproperty float z\n"
-         "element face " + std::to_string(topology.triangles.size()) +
+         "element face " +
+         std::to_string(topology.triangles.size()) +
          "\nproperty list uchar int vertex_indices\nend_header\n";
 }
 

@@ -100,8 +100,7 @@ class PointCacheSink : public FrameSink {
   Status finish() override {
     if (written_ != frame_count_)
       return invalidArgument(file_.path() + ": " + std::to_string(written_) +
-                             " frames written but " + std::to_string(frame_count_) +
-                             " announced");
+                             " frames written but " + std::to_string(frame_count_) + " announced");
     return file_.commit();
   }
 
@@ -124,8 +123,8 @@ std::unique_ptr<FrameSource> makePointCacheSource(std::unique_ptr<ByteInput> inp
 
 Status readHeader(ByteInput& input, const std::string& name, void* dst, size_t size) {
   ANIMC_ASSIGN_OR_RETURN(size_t got, input.read(dst, size));
-  if (got < size) return truncated(name + ": file ends inside its " + std::to_string(size) +
-                                   "-byte header");
+  if (got < size)
+    return truncated(name + ": file ends inside its " + std::to_string(size) + "-byte header");
   return Status();
 }
 

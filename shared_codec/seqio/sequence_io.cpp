@@ -40,8 +40,8 @@ Result<std::vector<std::string>> framePaths(const std::string& path) {
                          ".pc2.xz, .mdd.xz, a directory of frames or a .txt list)");
 }
 
-Status checkSinkArguments(const std::string& path, SequenceFormat format,
-                          const Topology& topology, double frame_rate, int64_t frame_count) {
+Status checkSinkArguments(const std::string& path, SequenceFormat format, const Topology& topology,
+                          double frame_rate, int64_t frame_count) {
   if (frame_count < 1 || frame_count > kMaxInt32)
     return invalidArgument(path + ": cannot write " + std::to_string(frame_count) + " frames");
   if (topology.vertex_count == 0 || topology.vertex_count > kMaxInt32)
@@ -71,7 +71,8 @@ Result<Mesh> readMesh(const std::string& path) {
   if (!ply && !endsWithNoCase(path, ".off"))
     return invalidArgument(path + ": not a .ply or .off mesh");
   ANIMC_ASSIGN_OR_RETURN(std::vector<uint8_t> bytes, readWholeFile(path));
-  Result<Mesh> mesh = ply ? parsePly(bytes.data(), bytes.size()) : parseOff(bytes.data(), bytes.size());
+  Result<Mesh> mesh =
+      ply ? parsePly(bytes.data(), bytes.size()) : parseOff(bytes.data(), bytes.size());
   if (!mesh.ok()) return mesh.status().withContext(path);
   return mesh;
 }
@@ -89,15 +90,17 @@ Result<std::unique_ptr<FrameSource>> openSequence(const std::string& path,
 
 Result<std::unique_ptr<FrameSink>> createSequenceSink(const std::string& path,
                                                       SequenceFormat format,
-                                                      const Topology& topology,
-                                                      double frame_rate, int64_t frame_count) {
+                                                      const Topology& topology, double frame_rate,
+                                                      int64_t frame_count) {
   ANIMC_RETURN_IF_ERROR(checkSinkArguments(path, format, topology, frame_rate, frame_count));
   switch (format) {
-    case SequenceFormat::kPc2: return createPc2Sink(path, topology.vertex_count, frame_count);
+    case SequenceFormat::kPc2:
+      return createPc2Sink(path, topology.vertex_count, frame_count);
     case SequenceFormat::kMdd:
       return createMddSink(path, topology.vertex_count, frame_count, frame_rate);
     case SequenceFormat::kPly:
-    case SequenceFormat::kOff: return createFrameDirSink(path, format, topology, frame_count);
+    case SequenceFormat::kOff:
+      return createFrameDirSink(path, format, topology, frame_count);
   }
   return invalidArgument(path + ": unknown output format");
 }

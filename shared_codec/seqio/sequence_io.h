@@ -33,7 +33,7 @@ Result<std::unique_ptr<FrameSource>> openSequence(const std::string& path,
 // is stored by MDD only.
 Result<std::unique_ptr<FrameSink>> createSequenceSink(const std::string& path,
                                                       SequenceFormat format,
-                                                      const Topology& topology,
-                                                      double frame_rate, int64_t frame_count);
+                                                      const Topology& topology, double frame_rate,
+                                                      int64_t frame_count);
 
 }  // namespace animc

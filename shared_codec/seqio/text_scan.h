@@ -7,7 +7,9 @@
 
 namespace animc {
 
-inline bool isSpace(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f' || c == '\v'; }
+inline bool isSpace(char c) {
+  return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f' || c == '\v';
+}
 
 inline bool parseDouble(std::string_view text, double* value) {
   if (!text.empty() && text[0] == '+') text.remove_prefix(1);  // from_chars rejects '+'

@@ -30,8 +30,8 @@ class SeqioTest : public testing::Test {
  protected:
   void SetUp() override {
     const testing::TestInfo* info = testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::path(testing::TempDir()) / ("seqio_" + std::string(info->name()) + "_" +
-                                           std::to_string(getpid()));
+    dir_ = fs::path(testing::TempDir()) /
+           ("seqio_" + std::string(info->name()) + "_" + std::to_string(getpid()));
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }
@@ -79,7 +79,9 @@ Status writeAll(FrameSink& sink, const Frames& frames) {
 
 std::string errorOf(const Status& status) { return status.ok() ? "OK" : status.message(); }
 template <class T>
-std::string errorOf(const Result<T>& result) { return errorOf(result.status()); }
+std::string errorOf(const Result<T>& result) {
+  return errorOf(result.status());
+}
 
 // Error text from opening `path` and reading every frame.
 std::string sequenceError(const std::string& path, const std::string& mesh_path) {
@@ -100,8 +102,9 @@ struct PlyBody {
   void put(T value) {
     if (encoding == Encoding::kAscii) {
       char text[64];
-      auto end = std::is_floating_point<T>::value ? std::to_chars(text, text + 64, value).ptr
-                                                  : std::to_chars(text, text + 64, int64_t(value)).ptr;
+      auto end = std::is_floating_point<T>::value
+                     ? std::to_chars(text, text + 64, value).ptr
+                     : std::to_chars(text, text + 64, int64_t(value)).ptr;
       bytes.append(text, end).push_back(' ');
       return;
     }
@@ -112,14 +115,15 @@ struct PlyBody {
   }
 };
 
-const float kPositions[15] = {0.1f, -2.5f, 3.3333333f, 1e-7f, 4, 5, -6, 7.75f, 8, 9, 10, 11.5f,
-                              -12, 13, 1e20f};
+const float kPositions[15] = {0.1f, -2.5f, 3.3333333f, 1e-7f, 4,   5,  -6,   7.75f,
+                              8,    9,     10,         11.5f, -12, 13, 1e20f};
 
 // A PLY with properties around x, y (double), z, an ignored list, polygon faces with flags,
 // and an extra element; it holds kPositions and smallTopology().
 std::string richPly(Encoding encoding) {
   const char* names[] = {"ascii", "binary_little_endian", "binary_big_endian"};
-  std::string header = std::string("ply\nformat ") + names[int(encoding)] +
+  std::string header =
+      std::string("ply\nformat ") + names[int(encoding)] +
       " 1.0\ncomment test file\nobj_info generated\nelement vertex 5\nproperty uchar red\n"
       "property float x\nproperty double confidence\nproperty double y\n"
       "property list uchar short junk\nproperty float z\nelement face 2\nproperty int flags\n"
@@ -171,7 +175,8 @@ std::string fileBytes(const std::string& path) {
 
 // Writes frames through the PC2 sink, returns the file's bytes.
 std::string pc2Bytes(const std::string& path, const Frames& frames) {
-  auto sink = createSequenceSink(path, SequenceFormat::kPc2, smallTopology(), 25, int64_t(frames.size()));
+  auto sink =
+      createSequenceSink(path, SequenceFormat::kPc2, smallTopology(), 25, int64_t(frames.size()));
   EXPECT_TRUE(sink.ok()) << errorOf(sink);
   EXPECT_TRUE(writeAll(*sink.value(), frames).ok());
   return fileBytes(path);
@@ -199,9 +204,10 @@ TEST_F(SeqioTest, PlyAllEncodingsWithExtraPropertiesAndPolygons) {
 }
 
 TEST_F(SeqioTest, OffWithCommentsAndPolygons) {
-  writeFile("m.off", "OFF # header comment\n# a comment line\n5 2 0\n"
-                     "0.1 -2.5 3.3333333\n1e-07 4 5\n-6 7.75 8\n\n9 10 11.5\n-12 13 1e20\n"
-                     "4 0 1 2 3  255 0 0\n3 0 3 4 # trailing comment\n");
+  writeFile("m.off",
+            "OFF # header comment\n# a comment line\n5 2 0\n"
+            "0.1 -2.5 3.3333333\n1e-07 4 5\n-6 7.75 8\n\n9 10 11.5\n-12 13 1e20\n"
+            "4 0 1 2 3  255 0 0\n3 0 3 4 # trailing comment\n");
   auto mesh = readMesh(path("m.off"));
   ASSERT_TRUE(mesh.ok()) << errorOf(mesh);
   EXPECT_EQ(mesh.value().topology.triangles, smallTopology().triangles);
@@ -219,13 +225,14 @@ TEST_F(SeqioTest, BadPlyInputsAreRejectedWithReasons) {
       {"0 1 0\n", "0 1 -inf\n", "vertex 2 has a non-finite coordinate"},
       {"1 0 0\n", "1 3e30 0\n", "vertex 1: coordinate too large"},
       {"element face 1", "element face 0", "empty mesh (0 triangles)"},
-      {"0 1 0\n3 0 1 2\n", "0 1", "ends early"},
+      {"0 1 0\n3 0 1 2\n", "0 1", "announces 3 vertex elements"},
+      {"0 1 0\n3 0 1 2\n", "0.0000 1.0000 0.0000\n3 0 1", "data ends early"},
       {"0 1 0\n", "0 1 zero\n", "bad number 'zero'"},
       {"element vertex 3", "element vertex 300000000", "announces 300000000 vertex"},
       {"element vertex 3", "element vertex 99999999999", "announces"},
       {"property float z\n", "", "lacks an x, y or z"},
       {"format ascii", "format binary_middle_endian", "unknown format"},
-      {"end_header\n", "", "no end_header"},
+      {"end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", "end_he", "no end_header"},
   };
   for (const Case& c : cases) {
     writeFile("bad.ply", replaced(kTrianglePly, c.from, c.to));
@@ -243,23 +250,27 @@ TEST_F(SeqioTest, TruncatedAndAbsurdBinaryPly) {
   EXPECT_NE(errorOf(readMesh(path("huge.ply"))).find("announces 4000000000"), std::string::npos);
   std::string empty = replaced(replaced(kTrianglePly, "vertex 3", "vertex 0"), "face 1", "face 0");
   writeFile("empty.ply", empty);
-  EXPECT_NE(errorOf(readMesh(path("empty.ply"))).find("empty mesh (0 vertices)"), std::string::npos);
+  EXPECT_NE(errorOf(readMesh(path("empty.ply"))).find("empty mesh (0 vertices)"),
+            std::string::npos);
 }
 
 TEST_F(SeqioTest, BadOffInputsAreRejectedWithReasons) {
-  const std::string good = "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+  const std::string good = "OFF\n3 1 0\n0.0 0.0 0.0\n1.0 0.0 0.0\n0.0 1.0 0.0\n3 0 1 2\n";
   struct Case {
     std::string from, to, expected;
   } cases[] = {
       {"3 0 1 2", "2 0 1", "face 0 has 2 vertices"},
       {"3 0 1 2", "3 0 1 7", "vertex index 7 out of range"},
-      {"1 0 0\n", "1 0 nan\n", "vertex 1 has a non-finite coordinate"},
-      {"1 0 0\n", "1e31 0 0\n", "vertex 1: coordinate too large"},
+      {"1.0 0.0 0.0\n", "1 0 nan\n", "vertex 1 has a non-finite coordinate"},
+      {"1.0 0.0 0.0\n", "1e31 0 0\n", "vertex 1: coordinate too large"},
       {"3 1 0", "3 0 0", "empty mesh (0 triangles)"},
       {"3 1 0", "0 0 0", "empty mesh (0 vertices)"},
       {"3 1 0", "3000000 1 0", "header announces 3000000 vertices"},
-      {"0 1 0\n3 0 1 2\n", "0.000000000 1.00000000 0.0000000\n", "file ends at face 0"},
-      {"0 1 0\n3 0 1 2\n", "0 1 0\n", "announces 3 vertices and 1 faces"},
+      {"0.0 1.0 0.0\n3 0 1 2\n", "0.0 1.0 0.0\n", "file ends at face 0"},
+      {"0.0 0.0 0.0\n1.0 0.0 0.0\n0.0 1.0 0.0\n3 0 1 2\n", "0 0 0\n1 0 0\n0 1",
+       "announces 3 vertices and 1 faces"},
+      {"0.0 1.0 0.0", "0.0 1.0", "vertex 2 has fewer than 3 coordinates"},
+      {"0.0 1.0 0.0", "0.0 1.0 x", "bad number 'x'"},
       {"OFF", "PFF", "not an OFF file"},
   };
   for (const Case& c : cases) {
@@ -276,15 +287,16 @@ TEST_F(SeqioTest, RoundTripEveryFormat) {
   Topology topology = smallTopology();
   Frames frames = makeFrames(topology.vertex_count, 4);
   const char* outputs[] = {"seq_ply", "seq_off", "seq.pc2", "seq.mdd"};
-  for (SequenceFormat format : {SequenceFormat::kPly, SequenceFormat::kOff, SequenceFormat::kPc2,
-                                SequenceFormat::kMdd}) {
+  for (SequenceFormat format :
+       {SequenceFormat::kPly, SequenceFormat::kOff, SequenceFormat::kPc2, SequenceFormat::kMdd}) {
     std::string out = path(outputs[int(format)]);
     SCOPED_TRACE(out);
     auto sink = createSequenceSink(out, format, topology, 30.0, int64_t(frames.size()));
     ASSERT_TRUE(sink.ok()) << errorOf(sink);
     ASSERT_TRUE(writeAll(*sink.value(), frames).ok());
     std::string mesh = format == SequenceFormat::kPc2 || format == SequenceFormat::kMdd
-                           ? path("seq_ply/frame_00000.ply") : "";
+                           ? path("seq_ply/frame_00000.ply")
+                           : "";
     auto source = openSequence(out, mesh);
     ASSERT_TRUE(source.ok()) << errorOf(source);
     EXPECT_EQ(source.value()->topology().triangles, topology.triangles);
@@ -336,11 +348,12 @@ TEST_F(SeqioTest, FramesMustShareConnectivity) {
   fs::create_directories(path("walk"));
   writeFile("walk/0000.ply", kTrianglePly);
   writeFile("walk/0001.ply", kTrianglePly);
-  writeFile("walk/0002.ply", replaced(replaced(kTrianglePly, "vertex 3", "vertex 4"),
-                                      "0 1 0\n", "0 1 0\n0 0 1\n"));
+  writeFile("walk/0002.ply",
+            replaced(replaced(kTrianglePly, "vertex 3", "vertex 4"), "0 1 0\n", "0 1 0\n0 0 1\n"));
   EXPECT_NE(sequenceError(path("walk"), "")
                 .find("walk/0002.ply: vertex count 4 differs from frame 0 (3)"),
-            std::string::npos) << sequenceError(path("walk"), "");
+            std::string::npos)
+      << sequenceError(path("walk"), "");
   writeFile("walk/0002.ply", replaced(kTrianglePly, "3 0 1 2", "3 0 2 1"));
   EXPECT_NE(sequenceError(path("walk"), "").find("0002.ply: face list differs from frame 0"),
             std::string::npos);
@@ -486,8 +499,8 @@ TEST_F(SeqioTest, AtomicFileCommitsOrLeavesNothing) {
 
 TEST_F(SeqioTest, SinkWithoutFinishLeavesNoFile) {
   Frames frames = makeFrames(5, 3);
-  for (SequenceFormat format : {SequenceFormat::kPly, SequenceFormat::kOff, SequenceFormat::kPc2,
-                                SequenceFormat::kMdd}) {
+  for (SequenceFormat format :
+       {SequenceFormat::kPly, SequenceFormat::kOff, SequenceFormat::kPc2, SequenceFormat::kMdd}) {
     auto sink = createSequenceSink(path("out"), format, smallTopology(), 25, 3);
     ASSERT_TRUE(sink.ok()) << errorOf(sink);
     ASSERT_TRUE(sink.value()->write(frames[0].data()).ok());
@@ -517,9 +530,11 @@ TEST_F(SeqioTest, FrameDirectorySinkReplacesAnEarlierLongerRun) {
 TEST_F(SeqioTest, SinkArgumentsAndFormatNames) {
   EXPECT_EQ(formatFromName("PC2").value(), SequenceFormat::kPc2);
   EXPECT_EQ(formatFromName("off").value(), SequenceFormat::kOff);
-  EXPECT_NE(errorOf(formatFromName("obj")).find("unknown sequence format 'obj'"), std::string::npos);
+  EXPECT_NE(errorOf(formatFromName("obj")).find("unknown sequence format 'obj'"),
+            std::string::npos);
   EXPECT_FALSE(createSequenceSink(path("a.mdd"), SequenceFormat::kMdd, smallTopology(), 0, 3).ok());
-  EXPECT_FALSE(createSequenceSink(path("a.pc2"), SequenceFormat::kPc2, smallTopology(), 25, 0).ok());
+  EXPECT_FALSE(
+      createSequenceSink(path("a.pc2"), SequenceFormat::kPc2, smallTopology(), 25, 0).ok());
   Topology broken{2, {{0, 1, 2}}};
   EXPECT_FALSE(createSequenceSink(path("d"), SequenceFormat::kPly, broken, 25, 1).ok());
   EXPECT_EQ(fileCount(), 0u);

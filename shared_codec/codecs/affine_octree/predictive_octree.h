@@ -26,8 +26,8 @@ constexpr int kCtxTranslation = 0;
 constexpr int kCtxLinear = 1;
 constexpr int kCtxResidual = 2;  // 2, 3, 4 by the previous residual's size
 constexpr uint32_t kMinLinearVertices = 4;  // fewer vertices: translation only, L from the prior
-constexpr double kTranslationStep = 0.5;    // in units of the residual step
-constexpr double kLinearStep = 0.5;         // in residual steps per cell radius
+constexpr double kTranslationStep = 0.125;  // in residual steps; tuned on all shared sequences
+constexpr double kLinearStep = 0.125;         // in residual steps per cell radius
 constexpr int64_t kMaxCodedMagnitude = int64_t(1) << 30;
 
 inline int residualContext(int64_t previous) {
@@ -39,6 +39,13 @@ struct PredictiveModels {
   BitModel split[kMaxDepthLimit + 1];
   BitModel residuals_zero[2];
   IntegerModel<5> ints;
+
+  // Start from "values are mostly zero" (what prediction is for) rather than from even
+  // odds, so the rate estimates of the first frames after an I-frame do not favour
+  // needless splits.
+  PredictiveModels() {
+    for (BitModel& m : ints.zero) m.p0 = uint16_t(0.85 * kProbOne);
+  }
 };
 
 // The residual grid step for a given ME: the worst error of rounding each axis is step/2,
