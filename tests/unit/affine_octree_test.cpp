@@ -97,10 +97,11 @@ TEST(AffineOctree, RigidMotionCodesOneCellPerFrame) {
   std::remove(path.c_str());
 }
 
-// The default profile also codes rigid motion with one affine cell, but the rotation turns
-// the reference's own quantisation noise, and now and then a leaf of residual corrections is
-// cheaper split; it must stay close to one cell per frame and far below a deforming mesh.
-TEST(AffineOctree, DefaultProfileCodesRigidMotionWithAboutOneCellPerFrame) {
+// The default profile predicts rigid motion with one affine cell too, but the rotation turns
+// the reference's own per-axis quantisation noise, so a few vertices need ±1 corrections and
+// the rate search may split a cell to isolate them: at most two cells a frame, and motion
+// much cheaper than a deforming mesh's.
+TEST(AffineOctree, DefaultProfileCodesRigidMotionWithFewCells) {
   EncodeSettings settings;
   const std::string path = tempPath("rigid_default.ams");
   MemorySequence rigid = gridSequence(30, 30, 12, 0.0, 1.0);
@@ -109,7 +110,7 @@ TEST(AffineOctree, DefaultProfileCodesRigidMotionWithAboutOneCellPerFrame) {
   MemorySequence deforming = gridSequence(30, 30, 12, 1.0, 1.0);
   auto d = encodeSequence(deforming, settings, path);
   ASSERT_TRUE(d.ok()) << d.status().message();
-  EXPECT_LE(r.value().cells, 11u * 3 / 2);
+  EXPECT_LE(r.value().cells, 2 * 11u);
   const auto motion = [](const EncodeReport& e) { return e.file_bytes - e.static_bytes; };
   EXPECT_LT(motion(r.value()) * 2, motion(d.value()));
   std::remove(path.c_str());

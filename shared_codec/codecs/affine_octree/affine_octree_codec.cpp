@@ -55,7 +55,8 @@ struct LoopState {
 class AffineOctreeEncoder final : public FrameEncoder {
  public:
   AffineOctreeEncoder(const AffineOctreeOptions& options, const Topology& topology)
-      : options_(options), intra_(topology), paper_(options.bits), vertex_count_(topology.vertex_count) {}
+      : options_(options), intra_(topology), paper_(options.bits), predictive_(topology.vertex_count),
+        vertex_count_(topology.vertex_count) {}
 
   void encodeFrame(const float* xyz, bool intra, std::vector<uint8_t>& out,
                    FrameCodingStats& stats) override {
@@ -112,7 +113,8 @@ class AffineOctreeEncoder final : public FrameEncoder {
 class AffineOctreeDecoder final : public FrameDecoder {
  public:
   AffineOctreeDecoder(const AffineOctreeOptions& options, const Topology& topology)
-      : options_(options), intra_(topology), paper_(options.bits), vertex_count_(topology.vertex_count) {}
+      : options_(options), intra_(topology), paper_(options.bits), predictive_(topology.vertex_count),
+        vertex_count_(topology.vertex_count) {}
 
   Status decodeFrame(ByteReader payload, std::vector<float>& xyz, bool* intra) override {
     ANIMC_ASSIGN_OR_RETURN(uint8_t type, payload.u8("Frame_Type"));

@@ -22,32 +22,18 @@ constexpr double kMaxGridIndex = 1u << 30;
 
 }  // namespace
 
-IFrameCoder::IFrameCoder(const Topology& topology) : vertex_count_(topology.vertex_count) {
-  std::vector<std::vector<uint32_t>> lower(vertex_count_);
-  for (const Triangle& t : topology.triangles)
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j)
-        if (t[j] < t[i]) lower[t[i]].push_back(t[j]);
-  lower_begin_.assign(vertex_count_ + 1, 0);
-  for (uint32_t v = 0; v < vertex_count_; ++v) {
-    std::sort(lower[v].begin(), lower[v].end());
-    lower[v].erase(std::unique(lower[v].begin(), lower[v].end()), lower[v].end());
-    lower_begin_[v + 1] = lower_begin_[v] + uint32_t(lower[v].size());
-    lower_.insert(lower_.end(), lower[v].begin(), lower[v].end());
-  }
-}
+IFrameCoder::IFrameCoder(const Topology& topology)
+    : vertex_count_(topology.vertex_count), adjacency_(topology) {}
 
 void IFrameCoder::predict(const std::vector<int64_t>& q, uint32_t v, int64_t pred[3]) const {
-  const uint32_t b = lower_begin_[v], e = lower_begin_[v + 1];
-  if (b == e) {
-    for (int a = 0; a < 3; ++a) pred[a] = v > 0 ? q[3 * size_t(v - 1) + a] : 0;
-    return;
-  }
+  // Rounded mean of the neighbours already decoded (lower index); else the previous vertex.
+  int64_t sum[3] = {0, 0, 0};
+  int64_t n = 0;
+  for (const uint32_t* u = adjacency_.begin(v); u != adjacency_.end(v) && *u < v; ++u, ++n)
+    for (int a = 0; a < 3; ++a) sum[a] += q[3 * size_t(*u) + a];
   for (int a = 0; a < 3; ++a) {
-    int64_t sum = 0;
-    for (uint32_t i = b; i < e; ++i) sum += q[3 * size_t(lower_[i]) + a];
-    const int64_t n = int64_t(e - b);
-    pred[a] = (sum >= 0 ? sum + n / 2 : sum - n / 2) / n;  // rounded mean
+    if (n == 0) pred[a] = v > 0 ? q[3 * size_t(v - 1) + a] : 0;
+    else pred[a] = (sum[a] >= 0 ? sum[a] + n / 2 : sum[a] - n / 2) / n;
   }
 }
 

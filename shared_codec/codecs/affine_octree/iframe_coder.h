@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/adjacency.h"
 #include "core/sequence.h"
 #include "core/status.h"
 #include "io/byte_reader.h"
@@ -25,8 +26,7 @@ class IFrameCoder {
   void predict(const std::vector<int64_t>& q, uint32_t v, int64_t pred[3]) const;
 
   uint32_t vertex_count_;
-  std::vector<uint32_t> lower_begin_;  // CSR: neighbours of v with a smaller index
-  std::vector<uint32_t> lower_;
+  VertexAdjacency adjacency_;
 };
 
 }  // namespace animc

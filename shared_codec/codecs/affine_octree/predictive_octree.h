@@ -16,6 +16,7 @@
 #include "codecs/affine_octree/octree_shared.h"
 #include "codecs/affine_octree/options.h"
 #include "codecs/affine_octree/pframe.h"
+#include "codecs/affine_octree/residual_context.h"
 #include "core/status.h"
 #include "entropy/integer_coder.h"
 #include "io/byte_reader.h"
@@ -24,21 +25,16 @@ namespace animc {
 
 constexpr int kCtxTranslation = 0;
 constexpr int kCtxLinear = 1;
-constexpr int kCtxResidual = 2;  // 2, 3, 4 by the previous residual's size
+constexpr int kCtxResidual = 2;  // + ResidualContexts::context()
 constexpr uint32_t kMinLinearVertices = 4;  // fewer vertices: translation only, L from the prior
 constexpr double kTranslationStep = 0.125;  // in residual steps; tuned on all shared sequences
 constexpr double kLinearStep = 0.125;         // in residual steps per cell radius
 constexpr int64_t kMaxCodedMagnitude = int64_t(1) << 30;
 
-inline int residualContext(int64_t previous) {
-  const int64_t m = previous < 0 ? -previous : previous;
-  return kCtxResidual + (m == 0 ? 0 : (m == 1 ? 1 : 2));
-}
-
 struct PredictiveModels {
   BitModel split[kMaxDepthLimit + 1];
   BitModel residuals_zero[2];
-  IntegerModel<5> ints;
+  IntegerModel<kCtxResidual + kResidualContexts> ints;
 
   // Start from "values are mostly zero" (what prediction is for) rather than from even
   // odds, so the rate estimates of the first frames after an I-frame do not favour
@@ -68,7 +64,11 @@ struct PredictiveFrameStats {
 
 class PredictiveOctreeEncoder {
  public:
-  void reset() { models_ = std::make_unique<PredictiveModels>(); }
+  explicit PredictiveOctreeEncoder(uint32_t vertex_count) : contexts_(vertex_count) {}
+  void reset() {
+    models_ = std::make_unique<PredictiveModels>();
+    contexts_.restart();
+  }
   // False when a value would not fit the stream (a jump of ~2^30 steps): code an I-frame.
   bool encode(const PFrameInput& in, std::vector<uint8_t>& out, std::vector<double>& recon,
               PredictiveFrameStats& stats);
@@ -85,6 +85,7 @@ class PredictiveOctreeEncoder {
   void codeLeaf(Walk& w, const Cell& cell, const Node& node);
 
   std::unique_ptr<PredictiveModels> models_ = std::make_unique<PredictiveModels>();
+  ResidualContexts contexts_;
   std::vector<uint32_t> order_, scratch_;
   std::vector<Node> plan_;
   std::vector<int64_t> residual_;
@@ -92,7 +93,11 @@ class PredictiveOctreeEncoder {
 
 class PredictiveOctreeDecoder {
  public:
-  void reset() { models_ = std::make_unique<PredictiveModels>(); }
+  explicit PredictiveOctreeDecoder(uint32_t vertex_count) : contexts_(vertex_count) {}
+  void reset() {
+    models_ = std::make_unique<PredictiveModels>();
+    contexts_.restart();
+  }
   Status decode(const PFrameInput& in, ByteReader payload, std::vector<double>& recon);
 
  private:
@@ -101,6 +106,7 @@ class PredictiveOctreeDecoder {
   Status decodeLeaf(Walk& w, const Cell& cell);
 
   std::unique_ptr<PredictiveModels> models_ = std::make_unique<PredictiveModels>();
+  ResidualContexts contexts_;
   std::vector<uint32_t> order_, scratch_;
 };
 

@@ -16,6 +16,7 @@ Status PredictiveOctreeDecoder::decode(const PFrameInput& in, ByteReader payload
   order_.resize(n);
   for (uint32_t i = 0; i < n; ++i) order_[i] = i;
   recon.resize(in.reference->size());
+  contexts_.beginFrame();
   Walk w{in, residualStep(in.max_error), RangeDecoder(payload.cursor(), payload.remaining()), recon};
   ANIMC_RETURN_IF_ERROR(decodeCell(w, Cell{{0, 0, 0}, 1.0, 0, n, 0}));
   if (w.rc.overran()) return corrupt("octree frame: coded data ends early or is damaged");
@@ -50,15 +51,15 @@ Status PredictiveOctreeDecoder::decodeLeaf(Walk& w, const Cell& cell) {
     const size_t v = 3 * size_t(idx[i]);
     applyCentred(a, m.frame.centroid, &u[v], &w.recon[v]);
   }
-  if (w.rc.decode(pm.residuals_zero[n <= kMinLinearVertices])) return Status();
-  int64_t previous[3] = {0, 0, 0};
+  const bool all_zero = w.rc.decode(pm.residuals_zero[n <= kMinLinearVertices]);
   for (uint32_t i = 0; i < n; ++i) {
     const size_t v = 3 * size_t(idx[i]);
-    for (int ax = 0; ax < 3; ++ax) {
-      const int64_t r = decodeInt(w.rc, pm.ints, residualContext(previous[ax]));
-      w.recon[v + ax] += double(r) * w.step;
-      previous[ax] = r;
+    int64_t r[3] = {0, 0, 0};
+    for (int ax = 0; ax < 3 && !all_zero; ++ax) {
+      r[ax] = decodeInt(w.rc, pm.ints, kCtxResidual + contexts_.context(idx[i], ax));
+      w.recon[v + ax] += double(r[ax]) * w.step;
     }
+    contexts_.set(idx[i], r);
   }
   return Status();
 }

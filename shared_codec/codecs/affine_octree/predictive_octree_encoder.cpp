@@ -19,6 +19,7 @@ bool PredictiveOctreeEncoder::encode(const PFrameInput& in, std::vector<uint8_t>
   const uint32_t n = uint32_t(in.reference->size() / 3);
   const Cell root{{0, 0, 0}, 1.0, 0, n, 0};
   Walk w{in, residualStep(in.max_error)};
+  contexts_.beginFrame();
   // Pass 1: choose the tree by estimated rate (the search reorders `order_` freely).
   order_.resize(n);
   for (uint32_t i = 0; i < n; ++i) order_[i] = i;
@@ -89,7 +90,6 @@ double PredictiveOctreeEncoder::evaluateLeaf(Walk& w, const Cell& cell, Node& no
   const CentredAffine a = codedAffine(m, node.coded, w.step);
   double residual_bits = 0;
   all_zero = true;
-  int64_t previous[3] = {0, 0, 0};
   for (uint32_t i = 0; i < n; ++i) {
     double p[3];
     const size_t v = 3 * size_t(idx[i]);
@@ -99,8 +99,7 @@ double PredictiveOctreeEncoder::evaluateLeaf(Walk& w, const Cell& cell, Node& no
       if (std::fabs(k) > double(kMaxCodedMagnitude)) w.overflow = true;
       const int64_t r = w.overflow ? 0 : int64_t(k);
       all_zero = all_zero && r == 0;
-      residual_bits += intCost(pm.ints, residualContext(previous[ax]), r);
-      previous[ax] = r;
+      residual_bits += intCost(pm.ints, kCtxResidual + contexts_.context(idx[i], ax), r);
     }
   }
   const BitModel& zero_flag = pm.residuals_zero[n <= kMinLinearVertices];
@@ -150,13 +149,13 @@ void PredictiveOctreeEncoder::codeLeaf(Walk& w, const Cell& cell, const Node& no
     }
   }
   rc.encode(pm.residuals_zero[n <= kMinLinearVertices], all_zero);
-  if (all_zero) return;
-  int64_t previous[3] = {0, 0, 0};
-  for (size_t i = 0; i < residual_.size(); ++i) {
-    const int64_t r = residual_[i];
-    if (r != 0) ++w.stats->nonzero_residuals;
-    encodeInt(rc, pm.ints, residualContext(previous[i % 3]), r);
-    previous[i % 3] = r;
+  for (uint32_t i = 0; i < n; ++i) {
+    const int64_t* r = &residual_[3 * size_t(i)];
+    for (int ax = 0; ax < 3 && !all_zero; ++ax) {
+      if (r[ax] != 0) ++w.stats->nonzero_residuals;
+      encodeInt(rc, pm.ints, kCtxResidual + contexts_.context(idx[i], ax), r[ax]);
+    }
+    contexts_.set(idx[i], r);
   }
 }
 

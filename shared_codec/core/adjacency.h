@@ -1,0 +1,22 @@
+// Vertex neighbourhoods of a triangle list in compressed rows: neighbours(v) is the sorted
+// list of vertices sharing an edge with v. Built once per sequence, O(N + T) memory.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "core/sequence.h"
+
+namespace animc {
+
+class VertexAdjacency {
+ public:
+  explicit VertexAdjacency(const Topology& topology);
+  const uint32_t* begin(uint32_t v) const { return &neighbours_[first_[v]]; }
+  const uint32_t* end(uint32_t v) const { return &neighbours_[0] + first_[v + 1]; }
+
+ private:
+  std::vector<uint32_t> first_;
+  std::vector<uint32_t> neighbours_;
+};
+
+}  // namespace animc

@@ -1,0 +1,69 @@
+#!/usr/bin/python3
+"""Make a long PC2 sequence from a short one, for memory (streaming) tests.
+
+usage: long_sequence.py SOURCE.pc2[.xz] OUT.pc2 FRAMES
+
+The source frames are played back and forth (0, 1, ..., n-1, n-2, ..., 1, 0, 1, ...) so
+that the motion stays continuous at every turn, until FRAMES frames are written. The
+output is written frame block by frame block, so memory stays at the size of the source
+(100 000 frames of sydney_md2, 342 vertices, is ~410 MB on disk and a few MB in memory).
+PC2 layout: README of the data folder (magic, version, point count, start, rate, count,
+then float32 x y z frame after frame, little-endian)."""
+import lzma
+import struct
+import sys
+
+import numpy as np
+
+PC2_MAGIC = b'POINTCACHE2\0'
+BLOCK_FRAMES = 1000  # frames written per write() call
+
+
+def read_pc2(path):
+    """Return (frames as float32 array [F, N, 3], start frame, sample rate)."""
+    opener = lzma.open if path.endswith('.xz') else open
+    with opener(path, 'rb') as f:
+        head = f.read(32)
+        if len(head) < 32 or head[:12] != PC2_MAGIC:
+            raise ValueError(f'{path}: not a PC2 file')
+        _version, n, start, rate, frames = struct.unpack('<iiffi', head[12:32])
+        data = np.frombuffer(f.read(frames * n * 12), dtype='<f4')
+    if data.size != frames * n * 3:
+        raise ValueError(f'{path}: truncated ({data.size // 3} of {frames * n} points)')
+    return data.reshape(frames, n, 3), start, rate
+
+
+def ping_pong_indices(source_frames, first, count):
+    """Source frame index of output frames first .. first+count-1 (back and forth)."""
+    if source_frames == 1:
+        return np.zeros(count, dtype=np.int64)
+    period = 2 * (source_frames - 1)
+    phase = np.arange(first, first + count, dtype=np.int64) % period
+    return np.where(phase < source_frames, phase, period - phase)
+
+
+def write_long_sequence(source, out, frames):
+    """Write `frames` frames of `source` played back and forth to the PC2 file `out`.
+    Returns the number of bytes written."""
+    seq, start, rate = read_pc2(source)
+    n = seq.shape[1]
+    with open(out, 'wb') as f:
+        f.write(PC2_MAGIC + struct.pack('<iiffi', 1, n, start, rate, frames))
+        for first in range(0, frames, BLOCK_FRAMES):
+            count = min(BLOCK_FRAMES, frames - first)
+            f.write(seq[ping_pong_indices(len(seq), first, count)].tobytes())
+    return 32 + frames * n * 12
+
+
+def main():
+    if len(sys.argv) != 4:
+        sys.exit(__doc__)
+    frames = int(sys.argv[3])
+    if frames < 1:
+        sys.exit('FRAMES must be >= 1')
+    size = write_long_sequence(sys.argv[1], sys.argv[2], frames)
+    print(f'{sys.argv[2]}: {frames} frames, {size} bytes', file=sys.stderr)
+
+
+if __name__ == '__main__':
+    main()
