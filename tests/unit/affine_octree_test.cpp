@@ -97,11 +97,11 @@ TEST(AffineOctree, RigidMotionCodesOneCellPerFrame) {
   std::remove(path.c_str());
 }
 
-// The default profile predicts rigid motion with one affine cell too, but the rotation turns
-// the reference's own per-axis quantisation noise, so a few vertices need ±1 corrections and
-// the rate search may split a cell to isolate them: at most two cells a frame, and motion
-// much cheaper than a deforming mesh's.
-TEST(AffineOctree, DefaultProfileCodesRigidMotionWithFewCells) {
+// The default profile predicts rigid motion with one affine too, but its splits are chosen by
+// rate + distortion, and the reference frame's own quantisation noise is distortion that
+// smaller cells can fit and keep fitted. So rigid motion is not exactly one cell a frame
+// there; it must still cost far less than deformation does.
+TEST(AffineOctree, DefaultProfileCodesRigidMotionFarCheaperThanDeformation) {
   EncodeSettings settings;
   const std::string path = tempPath("rigid_default.ams");
   MemorySequence rigid = gridSequence(30, 30, 12, 0.0, 1.0);
@@ -110,9 +110,9 @@ TEST(AffineOctree, DefaultProfileCodesRigidMotionWithFewCells) {
   MemorySequence deforming = gridSequence(30, 30, 12, 1.0, 1.0);
   auto d = encodeSequence(deforming, settings, path);
   ASSERT_TRUE(d.ok()) << d.status().message();
-  EXPECT_LE(r.value().cells, 2 * 11u);
   const auto motion = [](const EncodeReport& e) { return e.file_bytes - e.static_bytes; };
-  EXPECT_LT(motion(r.value()) * 2, motion(d.value()));
+  EXPECT_LT(motion(r.value()) * 3, motion(d.value()));
+  EXPECT_LT(r.value().cells * 2, d.value().cells);
   std::remove(path.c_str());
 }
 

@@ -29,6 +29,7 @@ constexpr int kCtxResidual = 2;  // + ResidualContexts::context()
 constexpr uint32_t kMinLinearVertices = 4;  // fewer vertices: translation only, L from the prior
 constexpr double kTranslationStep = 0.125;  // in residual steps; tuned on all shared sequences
 constexpr double kLinearStep = 0.125;         // in residual steps per cell radius
+constexpr double kRateDistortion = 0.1;  // tuned on all shared sequences (docs/affine_octree.md)
 constexpr int64_t kMaxCodedMagnitude = int64_t(1) << 30;
 
 struct PredictiveModels {
@@ -48,12 +49,26 @@ struct PredictiveModels {
 // so the vertex error is at most √3·step/2 < ME. The margin covers floating-point rounding.
 double residualStep(double max_error);
 
+// Whether a cell may split (and so codes a split flag): not at the depth limit, and not when
+// it holds so few vertices that eight children could only cost more parameters.
+constexpr uint32_t kMinSplitVertices = 2;
+inline bool canSplit(const Cell& cell, int max_depth) {
+  return cell.depth < max_depth && cell.end - cell.begin >= kMinSplitVertices;
+}
+
 // Leaf arithmetic shared by encoder and decoder.
 struct LeafModel {
   CellFrame frame;
   CentredAffine prior;
 };
 LeafModel leafModel(const PFrameInput& in, const uint32_t* idx, size_t n);
+// Prediction of vertex v from the reference frame with the leaf's coded affine. (Adding a
+// share of the vertex's own last motion beyond its cell's was tried: it amplifies the
+// reconstruction noise and cost 60-200 % more bits on chickenCrossing.)
+inline void predictVertex(const PFrameInput& in, const LeafModel& m, const CentredAffine& a,
+                          uint32_t v, double out[3]) {
+  applyCentred(a, m.frame.centroid, &(*in.reference)[3 * size_t(v)], out);
+}
 // coded[0..2] translation, coded[3..11] linear part, in quantisation steps.
 CentredAffine codedAffine(const LeafModel& m, const int64_t coded[12], double step);
 

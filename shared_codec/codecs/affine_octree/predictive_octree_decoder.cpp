@@ -27,7 +27,7 @@ Status PredictiveOctreeDecoder::decodeCell(Walk& w, const Cell& cell) {
   const uint32_t n = cell.end - cell.begin;
   if (n == 0) return Status();
   if (w.rc.overran()) return corrupt("octree frame: coded data ends early or is damaged");
-  if (cell.depth < w.in.max_depth && n > 1 && w.rc.decode(models_->split[cell.depth])) {
+  if (canSplit(cell, w.in.max_depth) && w.rc.decode(models_->split[cell.depth])) {
     Cell children[8];
     splitCell(cell, *w.in.reference, order_, scratch_, children);
     for (const Cell& child : children) ANIMC_RETURN_IF_ERROR(decodeCell(w, child));
@@ -46,10 +46,9 @@ Status PredictiveOctreeDecoder::decodeLeaf(Walk& w, const Cell& cell) {
     for (int k = 0; k < 9; ++k) coded[3 + k] = decodeInt(w.rc, pm.ints, kCtxLinear);
   const LeafModel m = leafModel(w.in, idx, n);
   const CentredAffine a = codedAffine(m, coded, w.step);
-  const std::vector<double>& u = *w.in.reference;
   for (uint32_t i = 0; i < n; ++i) {
     const size_t v = 3 * size_t(idx[i]);
-    applyCentred(a, m.frame.centroid, &u[v], &w.recon[v]);
+    predictVertex(w.in, m, a, idx[i], &w.recon[v]);
   }
   const bool all_zero = w.rc.decode(pm.residuals_zero[n <= kMinLinearVertices]);
   for (uint32_t i = 0; i < n; ++i) {

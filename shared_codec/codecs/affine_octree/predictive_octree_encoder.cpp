@@ -7,6 +7,9 @@ namespace animc {
 struct PredictiveOctreeEncoder::Walk {
   const PFrameInput& in;
   double step;
+  // Lagrangian weight: squared error is converted to bits at the slope of a uniform
+  // quantiser of this step (dD/dR = -2·ln2·D with D = step²/12), scaled by kRateDistortion.
+  double bits_per_squared_error;
   bool overflow = false;
   size_t cursor = 0;  // next plan node while coding
   RangeEncoder* rc = nullptr;
@@ -18,7 +21,8 @@ bool PredictiveOctreeEncoder::encode(const PFrameInput& in, std::vector<uint8_t>
                                      std::vector<double>& recon, PredictiveFrameStats& stats) {
   const uint32_t n = uint32_t(in.reference->size() / 3);
   const Cell root{{0, 0, 0}, 1.0, 0, n, 0};
-  Walk w{in, residualStep(in.max_error)};
+  const double step = residualStep(in.max_error);
+  Walk w{in, step, 1.0 / (kRateDistortion * 2.0 * std::log(2.0) * step * step / 12.0)};
   contexts_.beginFrame();
   // Pass 1: choose the tree by estimated rate (the search reorders `order_` freely).
   order_.resize(n);
@@ -45,10 +49,9 @@ double PredictiveOctreeEncoder::search(Walk& w, const Cell& cell) {
   plan_.push_back(Node{false, {}});
   bool all_zero = false;
   const double leaf_bits = evaluateLeaf(w, cell, plan_[mark], all_zero);
-  const bool can_split = cell.depth < w.in.max_depth && n > 1;
+  const bool can_split = canSplit(cell, w.in.max_depth);
   if (!can_split) return leaf_bits;
   const double leaf_cost = leaf_bits + bitCost(models_->split[cell.depth], 0);
-  if (all_zero) return leaf_cost;  // nothing left for children to save but parameters
   const Node leaf = plan_[mark];
   plan_[mark].split = true;
   double split_cost = bitCost(models_->split[cell.depth], 1);
@@ -88,29 +91,32 @@ double PredictiveOctreeEncoder::evaluateLeaf(Walk& w, const Cell& cell, Node& no
   for (int64_t c : node.coded)
     if (c > kMaxCodedMagnitude || c < -kMaxCodedMagnitude) w.overflow = true;
   const CentredAffine a = codedAffine(m, node.coded, w.step);
-  double residual_bits = 0;
+  double residual_bits = 0, distortion = 0;
   all_zero = true;
   for (uint32_t i = 0; i < n; ++i) {
     double p[3];
     const size_t v = 3 * size_t(idx[i]);
-    applyCentred(a, m.frame.centroid, &u[v], p);
+    predictVertex(w.in, m, a, idx[i], p);
     for (int ax = 0; ax < 3; ++ax) {
       const double k = std::nearbyint((q[v + ax] - p[ax]) / w.step);
       if (std::fabs(k) > double(kMaxCodedMagnitude)) w.overflow = true;
       const int64_t r = w.overflow ? 0 : int64_t(k);
       all_zero = all_zero && r == 0;
       residual_bits += intCost(pm.ints, kCtxResidual + contexts_.context(idx[i], ax), r);
+      const double e = q[v + ax] - p[ax] - double(r) * w.step;
+      distortion += e * e;
     }
   }
   const BitModel& zero_flag = pm.residuals_zero[n <= kMinLinearVertices];
-  return bits + (all_zero ? bitCost(zero_flag, 1) : bitCost(zero_flag, 0) + residual_bits);
+  bits += all_zero ? bitCost(zero_flag, 1) : bitCost(zero_flag, 0) + residual_bits;
+  return bits + distortion * w.bits_per_squared_error;
 }
 
 void PredictiveOctreeEncoder::codeCell(Walk& w, const Cell& cell) {
   const uint32_t n = cell.end - cell.begin;
   if (n == 0) return;
   const Node& node = plan_[w.cursor++];
-  if (cell.depth < w.in.max_depth && n > 1) {
+  if (canSplit(cell, w.in.max_depth)) {
     w.rc->encode(models_->split[cell.depth], node.split);
     if (node.split) {
       Cell children[8];
@@ -125,7 +131,6 @@ void PredictiveOctreeEncoder::codeCell(Walk& w, const Cell& cell) {
 void PredictiveOctreeEncoder::codeLeaf(Walk& w, const Cell& cell, const Node& node) {
   const uint32_t n = cell.end - cell.begin;
   const uint32_t* idx = &order_[cell.begin];
-  const std::vector<double>& u = *w.in.reference;
   const std::vector<double>& q = *w.in.target;
   RangeEncoder& rc = *w.rc;
   PredictiveModels& pm = *models_;
@@ -140,7 +145,7 @@ void PredictiveOctreeEncoder::codeLeaf(Walk& w, const Cell& cell, const Node& no
   for (uint32_t i = 0; i < n; ++i) {
     const size_t v = 3 * size_t(idx[i]);
     double* out = &(*w.recon)[v];
-    applyCentred(a, m.frame.centroid, &u[v], out);
+    predictVertex(w.in, m, a, idx[i], out);
     for (int ax = 0; ax < 3; ++ax) {
       const int64_t r = int64_t(std::nearbyint((q[v + ax] - out[ax]) / w.step));
       residual_[3 * size_t(i) + ax] = r;

@@ -18,6 +18,7 @@ LeafModel leafModel(const PFrameInput& in, const uint32_t* idx, size_t n) {
   return m;
 }
 
+
 CentredAffine codedAffine(const LeafModel& m, const int64_t coded[12], double step) {
   CentredAffine a = m.prior;
   const double st = step * kTranslationStep;
