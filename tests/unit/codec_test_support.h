@@ -1,0 +1,52 @@
+// Helpers shared by the codec tests: temp paths, full decodes, the error bound check.
+#pragma once
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "api.h"
+#include "codecs/affine_octree/octree_shared.h"
+
+namespace animc::testing_support {
+
+inline std::string tempPath(const std::string& name) {
+  return ::testing::TempDir() + "/animc_" + std::to_string(getpid()) + "_" + name;
+}
+
+inline std::vector<std::vector<float>> decodeAll(const std::string& path) {
+  auto ams = AmsSource::open(path);
+  EXPECT_TRUE(ams.ok()) << ams.status().message();
+  std::vector<std::vector<float>> frames;
+  if (!ams.ok()) return frames;
+  std::vector<float> xyz;
+  for (;;) {
+    auto more = ams.value()->next(xyz);
+    EXPECT_TRUE(more.ok()) << more.status().message();
+    if (!more.ok() || !more.value()) break;
+    frames.push_back(xyz);
+  }
+  return frames;
+}
+
+// Largest vertex error of frame f divided by the side of the root cube the codec used
+// (the bounding cube of the reconstructed frame f-1, or of frame f itself for frame 0).
+inline double worstRelativeError(const std::vector<std::vector<float>>& original,
+                          const std::vector<std::vector<float>>& decoded) {
+  double worst = 0;
+  for (size_t f = 0; f < original.size(); ++f) {
+    const std::vector<float>& ref = f == 0 ? original[0] : decoded[f - 1];
+    const RootCube cube = boundingCube(std::vector<double>(ref.begin(), ref.end()));
+    for (size_t i = 0; i < original[f].size(); i += 3) {
+      const double e = std::hypot(original[f][i] - decoded[f][i], original[f][i + 1] - decoded[f][i + 1],
+                                  original[f][i + 2] - decoded[f][i + 2]);
+      worst = std::max(worst, e / cube.side);
+    }
+  }
+  return worst;
+}
+
+}  // namespace animc::testing_support
