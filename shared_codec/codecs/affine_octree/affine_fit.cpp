@@ -41,46 +41,60 @@ bool fitAffinePaper(const std::vector<double>& u, const std::vector<double>& q, 
 
 CellFrame cellFrame(const std::vector<double>& u, const uint32_t* idx, size_t n) {
   CellFrame f{{0, 0, 0}, 0};
+  double lo[3], hi[3];
+  for (int a = 0; a < 3; ++a) lo[a] = hi[a] = u[3 * size_t(idx[0]) + a];
   for (size_t i = 0; i < n; ++i)
-    for (int a = 0; a < 3; ++a) f.centroid[a] += u[3 * size_t(idx[i]) + a];
+    for (int a = 0; a < 3; ++a) {
+      const double x = u[3 * size_t(idx[i]) + a];
+      f.centroid[a] += x;
+      lo[a] = std::min(lo[a], x);
+      hi[a] = std::max(hi[a], x);
+    }
   for (int a = 0; a < 3; ++a) f.centroid[a] /= double(n);
-  double r2 = 0;
-  for (size_t i = 0; i < n; ++i) {
-    const double* p = &u[3 * size_t(idx[i])];
-    const double dx = p[0] - f.centroid[0], dy = p[1] - f.centroid[1], dz = p[2] - f.centroid[2];
-    r2 = std::max(r2, dx * dx + dy * dy + dz * dz);
-  }
-  f.radius = std::max(std::sqrt(r2), 1e-9);
+  const double dx = hi[0] - lo[0], dy = hi[1] - lo[1], dz = hi[2] - lo[2];
+  f.radius = std::max(0.5 * std::sqrt(dx * dx + dy * dy + dz * dz), 1e-9);
   return f;
 }
 
+// Plain loops rather than Eigen: the matrices are 3x3, and this runs for every cell the
+// encoder's search visits and every leaf the decoder reads.
 void fitCentred(const std::vector<double>& u, const std::vector<double>& q, const uint32_t* idx,
                 size_t n, const CellFrame& frame, const double prior_L[9], CentredAffine& out) {
-  Eigen::Vector3d mean_disp = Eigen::Vector3d::Zero();
+  const double* c = frame.centroid;
+  double sum_m[3] = {0, 0, 0}, sum_d[3] = {0, 0, 0};
+  double cov[9] = {0}, cross[9] = {0};  // Σ d·dᵀ and Σ m·dᵀ, row-major
   for (size_t i = 0; i < n; ++i) {
     const size_t v = 3 * size_t(idx[i]);
-    mean_disp += Eigen::Vector3d(q[v] - u[v], q[v + 1] - u[v + 1], q[v + 2] - u[v + 2]);
+    const double d[3] = {u[v] - c[0], u[v + 1] - c[1], u[v + 2] - c[2]};
+    const double m[3] = {q[v] - u[v], q[v + 1] - u[v + 1], q[v + 2] - u[v + 2]};
+    for (int r = 0; r < 3; ++r) {
+      sum_m[r] += m[r];
+      sum_d[r] += d[r];
+      for (int k = 0; k < 3; ++k) {
+        cov[3 * r + k] += d[r] * d[k];
+        cross[3 * r + k] += m[r] * d[k];
+      }
+    }
   }
-  mean_disp /= double(n);
-  const Eigen::Vector3d c(frame.centroid[0], frame.centroid[1], frame.centroid[2]);
-  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-  Eigen::Matrix3d cross = Eigen::Matrix3d::Zero();
-  for (size_t i = 0; i < n; ++i) {
-    const size_t v = 3 * size_t(idx[i]);
-    const Eigen::Vector3d d = Eigen::Vector3d(u[v], u[v + 1], u[v + 2]) - c;
-    const Eigen::Vector3d m = Eigen::Vector3d(q[v] - u[v], q[v + 1] - u[v + 1], q[v + 2] - u[v + 2]) - mean_disp;
-    cov.noalias() += d * d.transpose();
-    cross.noalias() += m * d.transpose();
-  }
+  const double inv_n = 1.0 / double(n);
   const double lambda = kRidge * double(n) * frame.radius * frame.radius;
-  const Eigen::Matrix3d prior = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(prior_L);
-  const Eigen::Matrix3d lhs = cov + lambda * Eigen::Matrix3d::Identity();
-  const Eigen::Matrix3d l = (cross + lambda * prior) * lhs.inverse();
-  // The centroid displacement absorbs what L predicts for the centroid, which is zero.
+  double a[9], b[9];
   for (int r = 0; r < 3; ++r) {
-    out.t[r] = mean_disp(r);
-    for (int k = 0; k < 3; ++k) out.L[3 * r + k] = l(r, k);
+    out.t[r] = sum_m[r] * inv_n;  // the centroid's displacement
+    for (int k = 0; k < 3; ++k) {
+      // Σ (m - m̄)·dᵀ = Σ m·dᵀ - m̄·(Σ d)ᵀ, and the ridge pulls L towards the prior.
+      b[3 * r + k] = cross[3 * r + k] - out.t[r] * sum_d[k] + lambda * prior_L[3 * r + k];
+      a[3 * r + k] = cov[3 * r + k] + (r == k ? lambda : 0.0);
+    }
   }
+  // L = b · a⁻¹, a symmetric positive definite (λ > 0): inverse by cofactors.
+  const double inv[9] = {a[4] * a[8] - a[5] * a[7], a[2] * a[7] - a[1] * a[8], a[1] * a[5] - a[2] * a[4],
+                         a[5] * a[6] - a[3] * a[8], a[0] * a[8] - a[2] * a[6], a[2] * a[3] - a[0] * a[5],
+                         a[3] * a[7] - a[4] * a[6], a[1] * a[6] - a[0] * a[7], a[0] * a[4] - a[1] * a[3]};
+  const double det = a[0] * inv[0] + a[1] * inv[3] + a[2] * inv[6];
+  for (int r = 0; r < 3; ++r)
+    for (int k = 0; k < 3; ++k)
+      out.L[3 * r + k] = (b[3 * r] * inv[k] + b[3 * r + 1] * inv[3 + k] + b[3 * r + 2] * inv[6 + k]) / det;
 }
 
 }  // namespace animc

@@ -33,7 +33,7 @@ constexpr double kRidge = 1e-3;
 
 struct CellFrame {
   double centroid[3];
-  double radius;  // largest distance of a vertex from the centroid (>= tiny)
+  double radius;  // half the diagonal of the vertices' bounding box (>= tiny): their scale
 };
 CellFrame cellFrame(const std::vector<double>& u, const uint32_t* idx, size_t n);
 

@@ -61,7 +61,7 @@ struct LeafModel {
   CellFrame frame;
   CentredAffine prior;
 };
-LeafModel leafModel(const PFrameInput& in, const uint32_t* idx, size_t n);
+LeafModel leafModel(const PFrameInput& in, const Cell& cell, const uint32_t* idx);
 // Prediction of vertex v from the reference frame with the leaf's coded affine. (Adding a
 // share of the vertex's own last motion beyond its cell's was tried: it amplifies the
 // reconstruction noise and cost 60-200 % more bits on chickenCrossing.)

@@ -44,7 +44,7 @@ Status PredictiveOctreeDecoder::decodeLeaf(Walk& w, const Cell& cell) {
   for (int r = 0; r < 3; ++r) coded[r] = decodeInt(w.rc, pm.ints, kCtxTranslation);
   if (n >= kMinLinearVertices)
     for (int k = 0; k < 9; ++k) coded[3 + k] = decodeInt(w.rc, pm.ints, kCtxLinear);
-  const LeafModel m = leafModel(w.in, idx, n);
+  const LeafModel m = leafModel(w.in, cell, idx);
   const CentredAffine a = codedAffine(m, coded, w.step);
   for (uint32_t i = 0; i < n; ++i) {
     const size_t v = 3 * size_t(idx[i]);

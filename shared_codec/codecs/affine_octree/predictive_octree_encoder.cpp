@@ -72,7 +72,7 @@ double PredictiveOctreeEncoder::evaluateLeaf(Walk& w, const Cell& cell, Node& no
   const uint32_t* idx = &order_[cell.begin];
   const std::vector<double>& u = *w.in.reference;
   const std::vector<double>& q = *w.in.target;
-  const LeafModel m = leafModel(w.in, idx, n);
+  const LeafModel m = leafModel(w.in, cell, idx);
   CentredAffine fit;
   fitCentred(u, q, idx, n, m.frame, m.prior.L, fit);
   const double st = w.step * kTranslationStep;
@@ -138,7 +138,7 @@ void PredictiveOctreeEncoder::codeLeaf(Walk& w, const Cell& cell, const Node& no
   for (int r = 0; r < 3; ++r) encodeInt(rc, pm.ints, kCtxTranslation, node.coded[r]);
   if (n >= kMinLinearVertices)
     for (int k = 0; k < 9; ++k) encodeInt(rc, pm.ints, kCtxLinear, node.coded[3 + k]);
-  const LeafModel m = leafModel(w.in, idx, n);
+  const LeafModel m = leafModel(w.in, cell, idx);
   const CentredAffine a = codedAffine(m, node.coded, w.step);
   residual_.resize(3 * size_t(n));
   bool all_zero = true;

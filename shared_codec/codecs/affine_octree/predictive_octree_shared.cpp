@@ -6,7 +6,8 @@ namespace animc {
 
 double residualStep(double max_error) { return 2.0 * max_error / std::sqrt(3.0) * 0.999; }
 
-LeafModel leafModel(const PFrameInput& in, const uint32_t* idx, size_t n) {
+LeafModel leafModel(const PFrameInput& in, const Cell& cell, const uint32_t* idx) {
+  const size_t n = cell.end - cell.begin;
   LeafModel m;
   m.frame = cellFrame(*in.reference, idx, n);
   if (in.before) {
