@@ -33,17 +33,22 @@ void splitCell(const Cell& cell, const std::vector<double>& unit_xyz, std::vecto
                std::vector<uint32_t>& scratch, Cell children[8]) {
   const double half = cell.side * 0.5;
   const double mid[3] = {cell.corner[0] + half, cell.corner[1] + half, cell.corner[2] + half};
+  const uint32_t n = cell.end - cell.begin;
+  // scratch holds each vertex's octant first, then the reordered indices (counting sort).
+  scratch.resize(2 * size_t(order.size()));
+  uint32_t* octant = scratch.data();
+  uint32_t* sorted = scratch.data() + order.size();
   uint32_t count[8] = {0};
-  scratch.resize(order.size());
-  auto octant = [&](uint32_t v) {
-    const double* p = &unit_xyz[3 * size_t(v)];
-    return int(p[0] >= mid[0]) | int(p[1] >= mid[1]) << 1 | int(p[2] >= mid[2]) << 2;
-  };
-  for (uint32_t i = cell.begin; i < cell.end; ++i) ++count[octant(order[i])];
+  for (uint32_t i = 0; i < n; ++i) {
+    const double* p = &unit_xyz[3 * size_t(order[cell.begin + i])];
+    const uint32_t o = uint32_t(p[0] >= mid[0]) | uint32_t(p[1] >= mid[1]) << 1 | uint32_t(p[2] >= mid[2]) << 2;
+    octant[i] = o;
+    ++count[o];
+  }
   uint32_t start[8];
   uint32_t at = cell.begin;
   for (int c = 0; c < 8; ++c) {
-    start[c] = at;
+    start[c] = at - cell.begin;
     children[c].begin = at;
     at += count[c];
     children[c].end = at;
@@ -51,8 +56,8 @@ void splitCell(const Cell& cell, const std::vector<double>& unit_xyz, std::vecto
     children[c].depth = cell.depth + 1;
     for (int a = 0; a < 3; ++a) children[c].corner[a] = cell.corner[a] + (((c >> a) & 1) ? half : 0.0);
   }
-  for (uint32_t i = cell.begin; i < cell.end; ++i) scratch[start[octant(order[i])]++] = order[i];
-  std::memcpy(&order[cell.begin], &scratch[cell.begin], (cell.end - cell.begin) * sizeof(uint32_t));
+  for (uint32_t i = 0; i < n; ++i) sorted[start[octant[i]]++] = order[cell.begin + i];
+  std::memcpy(&order[cell.begin], sorted, n * sizeof(uint32_t));
 }
 
 }  // namespace animc

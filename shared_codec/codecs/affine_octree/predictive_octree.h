@@ -30,6 +30,7 @@ constexpr uint32_t kMinLinearVertices = 4;  // fewer vertices: translation only,
 constexpr double kTranslationStep = 0.125;  // in residual steps; tuned on all shared sequences
 constexpr double kLinearStep = 0.125;         // in residual steps per cell radius
 constexpr double kRateDistortion = 0.1;  // tuned on all shared sequences (docs/affine_octree.md)
+constexpr double kPruneDistortionBits = 8.0;  // search no deeper below such a quiet leaf
 constexpr int64_t kMaxCodedMagnitude = int64_t(1) << 30;
 
 struct PredictiveModels {
@@ -95,7 +96,11 @@ class PredictiveOctreeEncoder {
   };
   struct Walk;
   double search(Walk& w, const Cell& cell);
-  double evaluateLeaf(Walk& w, const Cell& cell, Node& node, bool& all_zero);
+  struct LeafCost {
+    bool all_zero = false;       // no residual to code
+    double distortion_bits = 0;  // the distortion's share of the cost
+  };
+  double evaluateLeaf(Walk& w, const Cell& cell, Node& node, LeafCost& out);
   void codeCell(Walk& w, const Cell& cell);
   void codeLeaf(Walk& w, const Cell& cell, const Node& node);
 

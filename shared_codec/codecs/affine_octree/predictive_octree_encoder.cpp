@@ -47,11 +47,13 @@ double PredictiveOctreeEncoder::search(Walk& w, const Cell& cell) {
   if (n == 0) return 0;
   const size_t mark = plan_.size();
   plan_.push_back(Node{false, {}});
-  bool all_zero = false;
-  const double leaf_bits = evaluateLeaf(w, cell, plan_[mark], all_zero);
+  LeafCost leaf_eval;
+  const double leaf_bits = evaluateLeaf(w, cell, plan_[mark], leaf_eval);
   const bool can_split = canSplit(cell, w.in.max_depth);
   if (!can_split) return leaf_bits;
   const double leaf_cost = leaf_bits + bitCost(models_->split[cell.depth], 0);
+  // A leaf with nothing to correct and little error left is not worth searching below.
+  if (leaf_eval.all_zero && leaf_eval.distortion_bits < kPruneDistortionBits) return leaf_cost;
   const Node leaf = plan_[mark];
   plan_[mark].split = true;
   double split_cost = bitCost(models_->split[cell.depth], 1);
@@ -67,7 +69,7 @@ double PredictiveOctreeEncoder::search(Walk& w, const Cell& cell) {
   return leaf_cost;
 }
 
-double PredictiveOctreeEncoder::evaluateLeaf(Walk& w, const Cell& cell, Node& node, bool& all_zero) {
+double PredictiveOctreeEncoder::evaluateLeaf(Walk& w, const Cell& cell, Node& node, LeafCost& out) {
   const uint32_t n = cell.end - cell.begin;
   const uint32_t* idx = &order_[cell.begin];
   const std::vector<double>& u = *w.in.reference;
@@ -92,7 +94,7 @@ double PredictiveOctreeEncoder::evaluateLeaf(Walk& w, const Cell& cell, Node& no
     if (c > kMaxCodedMagnitude || c < -kMaxCodedMagnitude) w.overflow = true;
   const CentredAffine a = codedAffine(m, node.coded, w.step);
   double residual_bits = 0, distortion = 0;
-  all_zero = true;
+  bool all_zero = true;
   for (uint32_t i = 0; i < n; ++i) {
     double p[3];
     const size_t v = 3 * size_t(idx[i]);
@@ -109,7 +111,9 @@ double PredictiveOctreeEncoder::evaluateLeaf(Walk& w, const Cell& cell, Node& no
   }
   const BitModel& zero_flag = pm.residuals_zero[n <= kMinLinearVertices];
   bits += all_zero ? bitCost(zero_flag, 1) : bitCost(zero_flag, 0) + residual_bits;
-  return bits + distortion * w.bits_per_squared_error;
+  out.all_zero = all_zero;
+  out.distortion_bits = distortion * w.bits_per_squared_error;
+  return bits + out.distortion_bits;
 }
 
 void PredictiveOctreeEncoder::codeCell(Walk& w, const Cell& cell) {
