@@ -1,6 +1,7 @@
 #include "codecs/affine_octree/octree_shared.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 
 namespace animc {
@@ -29,35 +30,52 @@ void normalize(const RootCube& cube, const std::vector<double>& xyz, std::vector
     for (int a = 0; a < 3; ++a) out[i + a] = (xyz[i + a] - cube.min[a]) * inv;
 }
 
-void splitCell(const Cell& cell, const std::vector<double>& unit_xyz, std::vector<uint32_t>& order,
-               std::vector<uint32_t>& scratch, Cell children[8]) {
-  const double half = cell.side * 0.5;
-  const double mid[3] = {cell.corner[0] + half, cell.corner[1] + half, cell.corner[2] + half};
+Cell OctreePartition::reset(const std::vector<double>& unit_xyz) {
+  const double scale = double(1u << kGridBits);
+  const double top = double((1u << kGridBits) - 1);
+  grid_.resize(unit_xyz.size());
+  // floor(p·2^16) has, as its k-th bit from the top, whether p >= mid of its depth-k cell
+  // (cell bounds are dyadic, so both are exact); p = 1 clamps into the last cell.
+  for (size_t i = 0; i < unit_xyz.size(); ++i) {
+    const double g = unit_xyz[i] * scale;
+    grid_[i] = uint16_t(g > 0 ? (g < top ? g : top) : 0.0);  // truncation = floor here
+  }
+  return restart();
+}
+
+Cell OctreePartition::restart() {
+  const uint32_t n = uint32_t(grid_.size() / 3);
+  order_.resize(n);
+  for (uint32_t i = 0; i < n; ++i) order_[i] = i;
+  return Cell{{0, 0, 0}, 1.0, 0, n, 0};
+}
+
+void OctreePartition::split(const Cell& cell, Cell children[8]) {
+  const int shift = kGridBits - 1 - cell.depth;
   const uint32_t n = cell.end - cell.begin;
-  // scratch holds each vertex's octant first, then the reordered indices (counting sort).
-  scratch.resize(2 * size_t(order.size()));
-  uint32_t* octant = scratch.data();
-  uint32_t* sorted = scratch.data() + order.size();
+  octant_.resize(order_.size());
+  scratch_.resize(order_.size());
   uint32_t count[8] = {0};
   for (uint32_t i = 0; i < n; ++i) {
-    const double* p = &unit_xyz[3 * size_t(order[cell.begin + i])];
-    const uint32_t o = uint32_t(p[0] >= mid[0]) | uint32_t(p[1] >= mid[1]) << 1 | uint32_t(p[2] >= mid[2]) << 2;
-    octant[i] = o;
+    const uint16_t* g = &grid_[3 * size_t(order_[cell.begin + i])];
+    const uint8_t o = uint8_t(((g[0] >> shift) & 1) | ((g[1] >> shift) & 1) << 1 | ((g[2] >> shift) & 1) << 2);
+    octant_[i] = o;
     ++count[o];
   }
+  const double half = cell.side * 0.5;
   uint32_t start[8];
-  uint32_t at = cell.begin;
+  uint32_t at = 0;
   for (int c = 0; c < 8; ++c) {
-    start[c] = at - cell.begin;
-    children[c].begin = at;
+    start[c] = at;
+    children[c].begin = cell.begin + at;
     at += count[c];
-    children[c].end = at;
+    children[c].end = cell.begin + at;
     children[c].side = half;
     children[c].depth = cell.depth + 1;
     for (int a = 0; a < 3; ++a) children[c].corner[a] = cell.corner[a] + (((c >> a) & 1) ? half : 0.0);
   }
-  for (uint32_t i = 0; i < n; ++i) sorted[start[octant[i]]++] = order[cell.begin + i];
-  std::memcpy(&order[cell.begin], sorted, n * sizeof(uint32_t));
+  for (uint32_t i = 0; i < n; ++i) scratch_[start[octant_[i]]++] = order_[cell.begin + i];
+  std::memcpy(&order_[cell.begin], scratch_.data(), n * sizeof(uint32_t));
 }
 
 }  // namespace animc

@@ -16,8 +16,8 @@ struct RootCube {
 RootCube boundingCube(const std::vector<double>& xyz);
 void normalize(const RootCube& cube, const std::vector<double>& xyz, std::vector<double>& out);
 
-// A cell: its corner and side in normalised units and the range [begin, end) of `order`
-// holding its vertices.
+// A cell: its corner and side in normalised units, its depth, and the range [begin, end) of
+// the partition's vertex order holding its vertices.
 struct Cell {
   double corner[3];
   double side;
@@ -25,9 +25,28 @@ struct Cell {
   int depth;
 };
 
-// Reorders order[cell.begin, cell.end) by child octant (bit 0 = x upper half, bit 1 = y,
-// bit 2 = z) and fills the 8 children; children may be empty.
-void splitCell(const Cell& cell, const std::vector<double>& unit_xyz, std::vector<uint32_t>& order,
-               std::vector<uint32_t>& scratch, Cell children[8]);
+// The octree over a reference frame's normalised positions, as both sides walk it. Each
+// vertex's cell at every depth comes from its 16-bit grid coordinates (computed once per
+// frame), so a split tests bits instead of comparing doubles. A vertex on a split plane goes
+// to the upper child, exactly as the comparison p >= mid would put it.
+class OctreePartition {
+ public:
+  static constexpr int kGridBits = 16;  // >= the deepest allowed octree level
+
+  // Takes a new reference frame and returns the root cell holding all its vertices.
+  Cell reset(const std::vector<double>& unit_xyz);
+  // Back to the root with the same reference (the encoder's second pass).
+  Cell restart();
+  // Reorders the cell's vertices by child octant (bit 0 = x upper half, bit 1 = y, bit 2 = z)
+  // and fills the 8 children; children may be empty.
+  void split(const Cell& cell, Cell children[8]);
+  const uint32_t* vertices(const Cell& cell) const { return order_.data() + cell.begin; }
+  uint32_t vertex(uint32_t position) const { return order_[position]; }
+
+ private:
+  std::vector<uint16_t> grid_;  // x y z per vertex
+  std::vector<uint32_t> order_, scratch_;
+  std::vector<uint8_t> octant_;
+};
 
 }  // namespace animc

@@ -52,7 +52,7 @@ class PaperOctreeEncoder {
 
   int bits_;
   std::unique_ptr<PaperModels> models_ = std::make_unique<PaperModels>();
-  std::vector<uint32_t> order_, scratch_;
+  OctreePartition partition_;
 };
 
 class PaperOctreeDecoder {
@@ -68,7 +68,7 @@ class PaperOctreeDecoder {
 
   int bits_;
   std::unique_ptr<PaperModels> models_ = std::make_unique<PaperModels>();
-  std::vector<uint32_t> order_, scratch_;
+  OctreePartition partition_;
 };
 
 // Shared arithmetic of the two sides.

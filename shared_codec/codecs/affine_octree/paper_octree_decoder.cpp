@@ -14,13 +14,10 @@ struct PaperOctreeDecoder::Walk {
 
 Status PaperOctreeDecoder::decode(const PFrameInput& in, ByteReader payload,
                                   std::vector<double>& recon) {
-  const std::vector<double>& u = *in.reference;
-  const uint32_t n = uint32_t(u.size() / 3);
-  order_.resize(n);
-  for (uint32_t i = 0; i < n; ++i) order_[i] = i;
-  recon.resize(u.size());
+  const Cell root = partition_.reset(*in.reference);
+  recon.resize(in.reference->size());
   Walk w{in, RangeDecoder(payload.cursor(), payload.remaining()), recon};
-  ANIMC_RETURN_IF_ERROR(decodeCell(w, Cell{{0, 0, 0}, 1.0, 0, n, 0}));
+  ANIMC_RETURN_IF_ERROR(decodeCell(w, root));
   if (w.rc.overran()) return corrupt("octree frame: coded data ends early or is damaged");
   return Status();
 }
@@ -33,7 +30,7 @@ Status PaperOctreeDecoder::decodeCell(Walk& w, const Cell& cell) {
   const std::vector<double>& u = *w.in.reference;
   if (cell.depth < w.in.max_depth && w.rc.decode(models_->split[cell.depth])) {
     Cell children[8];
-    splitCell(cell, u, order_, scratch_, children);
+    partition_.split(cell, children);
     for (const Cell& child : children) ANIMC_RETURN_IF_ERROR(decodeCell(w, child));
     return Status();
   }
@@ -43,13 +40,13 @@ Status PaperOctreeDecoder::decodeCell(Walk& w, const Cell& cell) {
     a[i] = dequantizeUnit(decodeWide(w.rc, models_->affine[i], bits_), kPaperAffineMin,
                           kPaperAffineMax, bits_);
   for (uint32_t i = cell.begin; i < cell.end; ++i)
-    applyAffine34(a, &u[3 * size_t(order_[i])], &w.recon[3 * size_t(order_[i])]);
+    applyAffine34(a, &u[3 * size_t(partition_.vertex(i))], &w.recon[3 * size_t(partition_.vertex(i))]);
   return Status();
 }
 
 Status PaperOctreeDecoder::decodePositions(Walk& w, const Cell& cell) {
   for (uint32_t i = cell.begin; i < cell.end; ++i) {
-    double* r = &w.recon[3 * size_t(order_[i])];
+    double* r = &w.recon[3 * size_t(partition_.vertex(i))];
     const bool escape = w.rc.decode(models_->escape);
     for (int a = 0; a < 3; ++a) {
       if (escape) {
@@ -58,7 +55,7 @@ Status PaperOctreeDecoder::decodePositions(Walk& w, const Cell& cell) {
         std::memcpy(&r[a], &bits, 8);
         if (!std::isfinite(r[a]) || std::fabs(r[a]) > 1e12)
           return corrupt("octree frame: stored position of vertex " +
-                         std::to_string(order_[i]) + " out of range");
+                         std::to_string(partition_.vertex(i)) + " out of range");
       } else {
         r[a] = dequantizeUnit(decodeWide(w.rc, models_->position[a], bits_), kPaperPositionMin,
                               kPaperPositionMax, bits_);

@@ -14,13 +14,10 @@ struct PaperOctreeEncoder::Walk {
 
 void PaperOctreeEncoder::encode(const PFrameInput& in, std::vector<uint8_t>& out,
                                 std::vector<double>& recon, PaperFrameStats& stats) {
-  const std::vector<double>& u = *in.reference;
-  const uint32_t n = uint32_t(u.size() / 3);
-  order_.resize(n);
-  for (uint32_t i = 0; i < n; ++i) order_[i] = i;
-  recon.resize(u.size());
+  const Cell root = partition_.reset(*in.reference);
+  recon.resize(in.reference->size());
   Walk w{in, RangeEncoder(out), recon, stats};
-  encodeCell(w, Cell{{0, 0, 0}, 1.0, 0, n, 0});
+  encodeCell(w, root);
   w.rc.finish();
 }
 
@@ -30,7 +27,7 @@ void PaperOctreeEncoder::encodeCell(Walk& w, const Cell& cell) {
   if (n <= kPaperMaxLeafPositions) return encodePositions(w, cell);
   const std::vector<double>& u = *w.in.reference;
   const std::vector<double>& q = *w.in.target;
-  const uint32_t* idx = &order_[cell.begin];
+  const uint32_t* idx = partition_.vertices(cell);
   Affine34 fit;
   fitAffinePaper(u, q, idx, n, fit);
   double a[12];
@@ -51,7 +48,7 @@ void PaperOctreeEncoder::encodeCell(Walk& w, const Cell& cell) {
     w.rc.encode(models_->split[cell.depth], !fits);
     if (!fits) {
       Cell children[8];
-      splitCell(cell, u, order_, scratch_, children);
+      partition_.split(cell, children);
       for (const Cell& child : children) encodeCell(w, child);
       return;
     }
@@ -67,8 +64,8 @@ void PaperOctreeEncoder::encodePositions(Walk& w, const Cell& cell) {
   ++w.stats.position_cells;
   const std::vector<double>& q = *w.in.target;
   for (uint32_t i = cell.begin; i < cell.end; ++i) {
-    const double* t = &q[3 * size_t(order_[i])];
-    double* r = &w.recon[3 * size_t(order_[i])];
+    const double* t = &q[3 * size_t(partition_.vertex(i))];
+    double* r = &w.recon[3 * size_t(partition_.vertex(i))];
     uint32_t coded[3];
     double p[3];
     for (int a = 0; a < 3; ++a) {

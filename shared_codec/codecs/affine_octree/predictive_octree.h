@@ -106,7 +106,7 @@ class PredictiveOctreeEncoder {
 
   std::unique_ptr<PredictiveModels> models_ = std::make_unique<PredictiveModels>();
   ResidualContexts contexts_;
-  std::vector<uint32_t> order_, scratch_;
+  OctreePartition partition_;
   std::vector<Node> plan_;
   std::vector<int64_t> residual_;
 };
@@ -127,7 +127,7 @@ class PredictiveOctreeDecoder {
 
   std::unique_ptr<PredictiveModels> models_ = std::make_unique<PredictiveModels>();
   ResidualContexts contexts_;
-  std::vector<uint32_t> order_, scratch_;
+  OctreePartition partition_;
 };
 
 }  // namespace animc

@@ -12,13 +12,10 @@ struct PredictiveOctreeDecoder::Walk {
 
 Status PredictiveOctreeDecoder::decode(const PFrameInput& in, ByteReader payload,
                                        std::vector<double>& recon) {
-  const uint32_t n = uint32_t(in.reference->size() / 3);
-  order_.resize(n);
-  for (uint32_t i = 0; i < n; ++i) order_[i] = i;
   recon.resize(in.reference->size());
   contexts_.beginFrame();
   Walk w{in, residualStep(in.max_error), RangeDecoder(payload.cursor(), payload.remaining()), recon};
-  ANIMC_RETURN_IF_ERROR(decodeCell(w, Cell{{0, 0, 0}, 1.0, 0, n, 0}));
+  ANIMC_RETURN_IF_ERROR(decodeCell(w, partition_.reset(*in.reference)));
   if (w.rc.overran()) return corrupt("octree frame: coded data ends early or is damaged");
   return Status();
 }
@@ -29,7 +26,7 @@ Status PredictiveOctreeDecoder::decodeCell(Walk& w, const Cell& cell) {
   if (w.rc.overran()) return corrupt("octree frame: coded data ends early or is damaged");
   if (canSplit(cell, w.in.max_depth) && w.rc.decode(models_->split[cell.depth])) {
     Cell children[8];
-    splitCell(cell, *w.in.reference, order_, scratch_, children);
+    partition_.split(cell, children);
     for (const Cell& child : children) ANIMC_RETURN_IF_ERROR(decodeCell(w, child));
     return Status();
   }
@@ -38,7 +35,7 @@ Status PredictiveOctreeDecoder::decodeCell(Walk& w, const Cell& cell) {
 
 Status PredictiveOctreeDecoder::decodeLeaf(Walk& w, const Cell& cell) {
   const uint32_t n = cell.end - cell.begin;
-  const uint32_t* idx = &order_[cell.begin];
+  const uint32_t* idx = partition_.vertices(cell);
   PredictiveModels& pm = *models_;
   int64_t coded[12] = {0};
   for (int r = 0; r < 3; ++r) coded[r] = decodeInt(w.rc, pm.ints, kCtxTranslation);

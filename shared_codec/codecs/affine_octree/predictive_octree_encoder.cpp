@@ -19,19 +19,15 @@ struct PredictiveOctreeEncoder::Walk {
 
 bool PredictiveOctreeEncoder::encode(const PFrameInput& in, std::vector<uint8_t>& out,
                                      std::vector<double>& recon, PredictiveFrameStats& stats) {
-  const uint32_t n = uint32_t(in.reference->size() / 3);
-  const Cell root{{0, 0, 0}, 1.0, 0, n, 0};
   const double step = residualStep(in.max_error);
   Walk w{in, step, 1.0 / (kRateDistortion * 2.0 * std::log(2.0) * step * step / 12.0)};
   contexts_.beginFrame();
-  // Pass 1: choose the tree by estimated rate (the search reorders `order_` freely).
-  order_.resize(n);
-  for (uint32_t i = 0; i < n; ++i) order_[i] = i;
+  // Pass 1: choose the tree by estimated cost (the search reorders the partition freely).
   plan_.clear();
-  search(w, root);
+  search(w, partition_.reset(*in.reference));
   if (w.overflow) return false;
   // Pass 2: code the chosen tree exactly as the decoder will walk it.
-  for (uint32_t i = 0; i < n; ++i) order_[i] = i;
+  const Cell root = partition_.restart();
   RangeEncoder rc(out);
   recon.resize(in.reference->size());
   w.rc = &rc;
@@ -58,7 +54,7 @@ double PredictiveOctreeEncoder::search(Walk& w, const Cell& cell) {
   plan_[mark].split = true;
   double split_cost = bitCost(models_->split[cell.depth], 1);
   Cell children[8];
-  splitCell(cell, *w.in.reference, order_, scratch_, children);
+  partition_.split(cell, children);
   for (const Cell& child : children) {
     split_cost += search(w, child);
     if (split_cost >= leaf_cost) break;
@@ -71,7 +67,7 @@ double PredictiveOctreeEncoder::search(Walk& w, const Cell& cell) {
 
 double PredictiveOctreeEncoder::evaluateLeaf(Walk& w, const Cell& cell, Node& node, LeafCost& out) {
   const uint32_t n = cell.end - cell.begin;
-  const uint32_t* idx = &order_[cell.begin];
+  const uint32_t* idx = partition_.vertices(cell);
   const std::vector<double>& u = *w.in.reference;
   const std::vector<double>& q = *w.in.target;
   const LeafModel m = leafModel(w.in, cell, idx);
@@ -124,7 +120,7 @@ void PredictiveOctreeEncoder::codeCell(Walk& w, const Cell& cell) {
     w.rc->encode(models_->split[cell.depth], node.split);
     if (node.split) {
       Cell children[8];
-      splitCell(cell, *w.in.reference, order_, scratch_, children);
+      partition_.split(cell, children);
       for (const Cell& child : children) codeCell(w, child);
       return;
     }
@@ -134,7 +130,7 @@ void PredictiveOctreeEncoder::codeCell(Walk& w, const Cell& cell) {
 
 void PredictiveOctreeEncoder::codeLeaf(Walk& w, const Cell& cell, const Node& node) {
   const uint32_t n = cell.end - cell.begin;
-  const uint32_t* idx = &order_[cell.begin];
+  const uint32_t* idx = partition_.vertices(cell);
   const std::vector<double>& q = *w.in.target;
   RangeEncoder& rc = *w.rc;
   PredictiveModels& pm = *models_;
