@@ -25,10 +25,11 @@ Status checkSource(const FrameSource& source) {
   return Status();
 }
 
-Status checkFrame(const std::vector<float>& xyz, const FrameSource& source, int64_t frame) {
+// where: the source's description of this frame, taken before next() moved past it.
+Status checkFrame(const std::vector<float>& xyz, const std::string& where, int64_t frame) {
   for (size_t i = 0; i < xyz.size(); ++i)
     if (!std::isfinite(xyz[i]) || std::fabs(xyz[i]) > 1e30f)
-      return badInput(source.where() + ": frame " + std::to_string(frame) + " vertex " +
+      return badInput(where + " (frame " + std::to_string(frame) + "): vertex " +
                       std::to_string(i / 3) + " has a NaN, infinite or huge coordinate");
   return Status();
 }
@@ -67,9 +68,10 @@ Result<EncodeReport> encodeSequence(FrameSource& source, const EncodeSettings& s
   std::vector<uint8_t> payload;
   double seconds = 0;
   for (;;) {
+    const std::string where = source.where();
     ANIMC_ASSIGN_OR_RETURN(bool more, source.next(xyz));
     if (!more) break;
-    ANIMC_RETURN_IF_ERROR(checkFrame(xyz, source, report.frames));
+    ANIMC_RETURN_IF_ERROR(checkFrame(xyz, where, report.frames));
     const bool intra = report.frames == 0 ||
                        (settings.iframe_interval > 0 && report.frames % settings.iframe_interval == 0);
     FrameCodingStats stats;

@@ -34,13 +34,18 @@ Result<std::vector<uint8_t>> ContainerReader::readSection(uint64_t offset, const
                                                           uint64_t max_bytes) {
   uint8_t head[12];
   ANIMC_RETURN_IF_ERROR(readAt(offset, head, 12, tag));
-  if (std::memcmp(head, tag, 4) != 0)
-    return corrupt(std::string("expected section ") + tag + at(offset));
+  if (std::memcmp(head, tag, 4) != 0) {
+    const std::string name = std::string(tag, tag[3] == ' ' ? 3 : 4);
+    // END is looked for in the last 24 bytes: not finding it usually means a cut file.
+    if (std::strcmp(tag, kTagEnd) == 0)
+      return truncated("no END section in the last 24 bytes: the file is truncated or unfinished");
+    return corrupt("expected section " + name + at(offset));
+  }
   ByteReader r(head + 4, 8, offset + 4);
   ANIMC_ASSIGN_OR_RETURN(uint64_t length, r.u64("Section_Length"));
   if (length > max_bytes) return limitExceeded(std::string(tag) + " section too large" + at(offset));
   if (length + kSectionOverhead > info_.file_bytes - offset)
-    return truncated(std::string(tag) + " section" + at(offset) + " runs past the end of the file");
+    return truncated(std::string(tag) + " section" + at(offset) + " runs past the end of the file (truncated)");
   std::vector<uint8_t> payload(length + 4);
   ANIMC_RETURN_IF_ERROR(readAt(offset + 12, payload.data(), payload.size(), tag));
   ByteReader crc_reader(payload.data() + length, 4, offset + 12 + length);
@@ -69,7 +74,8 @@ Result<std::unique_ptr<ContainerReader>> ContainerReader::open(const std::string
 Status ContainerReader::openHeader() {
   uint8_t start[kFileHeaderBytes];
   if (info_.file_bytes < kFileHeaderBytes + kEndSectionBytes)
-    return truncated("file too short to be an .ams file (" + std::to_string(info_.file_bytes) + " bytes)");
+    return truncated("file truncated or not an .ams file: " + std::to_string(info_.file_bytes) +
+                     " bytes, the smallest .ams file has " + std::to_string(kFileHeaderBytes + kEndSectionBytes));
   ANIMC_RETURN_IF_ERROR(readAt(0, start, sizeof start, "File_Header"));
   if (std::memcmp(start, kMagic, 4) != 0) return corrupt("not an .ams file (bad magic)");
   ByteReader h(start + 4, 4, 4);
@@ -124,8 +130,10 @@ Status ContainerReader::openIndex(uint64_t conn_end) {
   ByteReader r(index.data(), index.size(), index_offset + 12);
   ANIMC_ASSIGN_OR_RETURN(info_.frame_count, r.u64("Frame_Count"));
   ANIMC_ASSIGN_OR_RETURN(uint32_t group_count, r.u32("Group_Count"));
-  if (info_.frame_count == 0 || info_.frame_count > limits_.max_frames ||
-      info_.frame_count > info_.file_bytes)
+  if (info_.frame_count > limits_.max_frames)
+    return limitExceeded("Frame_Count " + std::to_string(info_.frame_count) + " above the limit of " +
+                         std::to_string(limits_.max_frames));
+  if (info_.frame_count == 0 || info_.frame_count > info_.file_bytes)
     return corrupt("Frame_Count " + std::to_string(info_.frame_count) + " impossible for this file");
   if (group_count == 0 || group_count > info_.frame_count || r.remaining() != 16 * uint64_t(group_count))
     return corrupt("Group_Count " + std::to_string(group_count) + " does not match the index size");
@@ -155,6 +163,9 @@ Status ContainerReader::measureFirstFrame() {
   ANIMC_ASSIGN_OR_RETURN(bool got, nextFrame(payload));
   if (!got) return corrupt("first group has no frames");
   info_.static_bytes = first_frame_start + (cursor_ - first_frame_start);
+  if (info_.header.vertex_count > kMaxVerticesPerIntraByte * (payload.size() + 16))
+    return corrupt("Vertex_Count " + std::to_string(info_.header.vertex_count) + " cannot fit in a " +
+                   std::to_string(payload.size()) + "-byte first frame");
   std::sort(info_.sections.begin(), info_.sections.end(),
             [](const SectionInfo& a, const SectionInfo& b) { return a.offset < b.offset; });
   return Status();
@@ -218,7 +229,10 @@ Result<bool> ContainerReader::nextFrame(std::vector<uint8_t>& payload) {
   ByteReader r(len_bytes, avail, cursor_);
   ANIMC_ASSIGN_OR_RETURN(uint64_t length, r.varint("Frame_Length"));
   const uint64_t start = cursor_ + r.position();
-  if (length > limits_.max_frame_bytes || length > frames_end_ - start)
+  if (length > limits_.max_frame_bytes)
+    return limitExceeded("Frame_Length " + std::to_string(length) + at(cursor_) + " above the limit of " +
+                         std::to_string(limits_.max_frame_bytes));
+  if (length > frames_end_ - start)
     return corrupt("Frame_Length " + std::to_string(length) + at(cursor_) + " runs past its group");
   payload.resize(size_t(length));
   ANIMC_RETURN_IF_ERROR(readAt(start, payload.data(), payload.size(), "frame"));

@@ -27,10 +27,16 @@ constexpr char kTagGroup[5] = "GRUP";
 constexpr char kTagIndex[5] = "INDX";
 constexpr char kTagEnd[5] = "END ";
 
-// Decoder ceilings (a file asking for more is refused before anything is allocated).
+// An intra frame spends at least 3 adaptive binary decisions per vertex, and no decision
+// costs less than ~0.0014 bits (the coder's most skewed probability), so a frame of B bytes
+// cannot describe more than this many vertices: a bound that needs no trust in the header.
+constexpr uint64_t kMaxVerticesPerIntraByte = 2048;
+
+// Decoder ceilings (a file asking for more is refused before anything is allocated). The
+// decoder keeps ~200 bytes per vertex, so the default vertex ceiling caps it near 1 GB.
 struct DecoderLimits {
-  uint64_t max_vertices = uint64_t(1) << 26;
-  uint64_t max_triangles = uint64_t(1) << 27;
+  uint64_t max_vertices = uint64_t(1) << 22;
+  uint64_t max_triangles = uint64_t(1) << 24;
   uint64_t max_frames = uint64_t(1) << 32;
   uint64_t max_frame_bytes = uint64_t(1) << 31;
 };

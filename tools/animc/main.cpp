@@ -33,6 +33,6 @@ int main(int argc, char** argv) {
   if (command == "info") return runInfo(rest);
   if (command == "compare") return runCompare(rest);
   if (command == "bench") return runBench(rest);
-  std::fprintf(stderr, "animc: unknown command '%s'\n%s", command.c_str(), kUsage);
+  std::fprintf(stderr, "animc: unknown command '%s' (animc --help lists them)\n", command.c_str());
   return 2;
 }

@@ -1,0 +1,181 @@
+#!/usr/bin/env bash
+# End-to-end tests of the animc command line on the Sydney sample:
+#   encode / info / compare / bench with --json, decode to every format and a frame range,
+#   and the error contract: non-zero exit, nothing on stdout, one "animc: " line on stderr,
+#   no output file.
+# usage: cli_test.sh ANIMC_BINARY SAMPLES_DIR
+set -euo pipefail
+
+ANIMC=${1:?usage: cli_test.sh ANIMC_BINARY SAMPLES_DIR}
+SAMPLES=${2:?usage: cli_test.sh ANIMC_BINARY SAMPLES_DIR}
+PY=/usr/bin/python3  # stdlib only; a pyenv python3 on PATH may lack modules
+PC2=$SAMPLES/sydney/sydney_50.pc2.xz
+MESH=$SAMPLES/sydney/sydney_md2.ply
+[[ -x $ANIMC ]] || { echo "FAIL: $ANIMC is not executable" >&2; exit 1; }
+[[ -f $PC2 && -f $MESH ]] || { echo "FAIL: samples missing in $SAMPLES" >&2; exit 1; }
+
+TMP=$(mktemp -d "${TMPDIR:-/tmp}/animc_cli_test.XXXXXX")
+trap 'rm -rf "$TMP"' EXIT
+
+FAILURES=0
+# check_failed MESSAGE: records a failed assertion and goes on (so one run shows them all).
+check_failed() { echo "FAIL: $*" >&2; FAILURES=$((FAILURES + 1)); }
+# die MESSAGE: a step the rest depends on failed.
+die() { echo "FAIL: $*" >&2; echo "($FAILURES earlier failures)" >&2; exit 1; }
+
+# run NAME CMD...: runs CMD with stdout in $TMP/NAME.out, stderr in $TMP/NAME.err, and dies
+# unless it exits 0.
+run() {
+  local name=$1 rc=0
+  shift
+  "$@" >"$TMP/$name.out" 2>"$TMP/$name.err" || rc=$?
+  ((rc == 0)) || die "$name: exit $rc from: $*"$'\n'"$(cat "$TMP/$name.err")"
+}
+
+# json_check EXPR FILE...: each FILE holds exactly one JSON object (d = the first, e = the
+# second) and the Python expression EXPR is true.
+json_check() {
+  local expr=$1
+  shift
+  "$PY" - "$expr" "$@" <<'EOF' || check_failed "json_check '$expr' on $*"
+import json, math, sys
+expr, docs = sys.argv[1], []
+for path in sys.argv[2:]:
+    with open(path) as f:
+        try:
+            docs.append(json.load(f))
+        except ValueError as err:
+            sys.exit(f"{path}: not exactly one JSON document: {err}")
+    if not isinstance(docs[-1], dict):
+        sys.exit(f"{path}: not a JSON object")
+env = {"d": docs[0], "e": docs[1] if len(docs) > 1 else None, "math": math}
+try:
+    ok = eval(expr, env)
+except Exception as err:
+    sys.exit(f"{expr}: {type(err).__name__}: {err}\n{docs}")
+if not ok:
+    sys.exit(f"false: {expr}\n" + "\n".join(json.dumps(d, sort_keys=True) for d in docs))
+EOF
+}
+
+# same_kg FILE_A FILE_B: equal kg_error to 1e-9 relative.
+same_kg() { json_check 'abs(d["kg_error"] - e["kg_error"]) <= 1e-9 * abs(e["kg_error"])' "$1" "$2"; }
+
+AMS=$TMP/sydney.ams
+
+# --- encode, info, compare, bench ---------------------------------------------------------
+run encode "$ANIMC" encode "$PC2" --mesh "$MESH" -o "$AMS" --json
+[[ -s $AMS ]] || die "encode wrote no $AMS"
+json_check 'all(isinstance(d.get(k), (int, float)) for k in ("ratio", "bpvf", "kg_error", "psnr", "max_error"))' \
+  "$TMP/encode.out"
+json_check 'd["ratio"] > 1 and 0 < d["bpvf"] < 96 and d["kg_error"] > 0 and d["psnr"] > 0 and d["max_error"] > 0' \
+  "$TMP/encode.out"
+[[ ! -s $TMP/encode.err ]] || check_failed "encode printed on stderr: $(cat "$TMP/encode.err")"
+
+run info "$ANIMC" info "$AMS" --json
+json_check 'd["frames"] == 50 and d["vertices"] == 342' "$TMP/info.out"
+json_check 'd["file_bytes"] == e["file_bytes"]' "$TMP/info.out" "$TMP/encode.out"
+
+run compare_ams "$ANIMC" compare "$PC2" "$AMS" --mesh "$MESH" --json
+same_kg "$TMP/compare_ams.out" "$TMP/encode.out"
+json_check 'd["max_error_rel_cube"] <= 0.01 * 1.02 and d["frames"] == 50' "$TMP/compare_ams.out"
+
+run bench "$ANIMC" bench "$PC2" --mesh "$MESH" --runs 1 --json
+json_check 'd["encode_mvps"] > 0 and d["decode_mvps"] > 0' "$TMP/bench.out"
+same_kg "$TMP/bench.out" "$TMP/encode.out"
+
+# --- decode to every format; each holds the same frames as the .ams ------------------------
+run decode_pc2 "$ANIMC" decode "$AMS" -o "$TMP/full.pc2"
+run decode_mdd "$ANIMC" decode "$AMS" -o "$TMP/full.mdd"
+run decode_ply "$ANIMC" decode "$AMS" -o "$TMP/ply_frames"
+run decode_off "$ANIMC" decode "$AMS" -o "$TMP/off_frames" --format off
+for dir in ply off; do
+  count=$(find "$TMP/${dir}_frames" -name "*.$dir" | wc -l)
+  ((count == 50)) || check_failed "decode to $dir wrote $count frame files, not 50"
+done
+for decoded in full.pc2 full.mdd ply_frames off_frames; do
+  run "compare_$decoded" "$ANIMC" compare "$PC2" "$TMP/$decoded" --mesh "$MESH" --json
+  same_kg "$TMP/compare_$decoded.out" "$TMP/compare_ams.out"
+done
+
+# --frames 10:20: the same bytes as frames 10..19 of the full decode.
+run decode_range "$ANIMC" decode "$AMS" -o "$TMP/range.pc2" --frames 10:20
+"$PY" - "$TMP/full.pc2" "$TMP/range.pc2" <<'EOF' || check_failed "--frames 10:20 differs from frames 10..19"
+import struct, sys
+def pc2(path):
+    data = open(path, "rb").read()
+    magic, version, points, start, rate, samples = struct.unpack("<12siiffi", data[:32])
+    assert magic == b"POINTCACHE2\0" and version == 1, path
+    assert len(data) == 32 + 12 * points * samples, f"{path}: {len(data)} bytes"
+    return points, samples, data[32:]
+points, samples, full = pc2(sys.argv[1])
+rpoints, rsamples, part = pc2(sys.argv[2])
+assert (points, samples) == (342, 50), (points, samples)
+assert (rpoints, rsamples) == (342, 10), (rpoints, rsamples)
+frame = 12 * points
+assert part == full[10 * frame:20 * frame], "frame data differ"
+EOF
+
+# --- errors: exit != 0, nothing on stdout, one "animc: " line on stderr, no output ---------
+ERRDIR=$TMP/errors
+mkdir "$ERRDIR"
+BAD_AMS=$TMP/corrupt.ams
+cp "$AMS" "$BAD_AMS"
+"$PY" - "$BAD_AMS" <<'EOF'
+import sys
+path = sys.argv[1]
+data = bytearray(open(path, "rb").read())
+data[len(data) // 2] ^= 0x5A
+open(path, "wb").write(data)
+EOF
+
+# A damaged last frame group: decoding fails after most frames were written, and the
+# partial output must be removed.
+run encode_groups "$ANIMC" encode "$PC2" --mesh "$MESH" -o "$TMP/groups.ams" --iframe-interval 10
+LATE_AMS=$TMP/late_corrupt.ams
+"$PY" - "$TMP/groups.ams" "$LATE_AMS" <<'EOF'
+import struct, sys
+data = bytearray(open(sys.argv[1], "rb").read())
+index_offset, = struct.unpack("<Q", data[-12:-4])  # END: tag, length, Index_Offset, CRC
+data[index_offset - 40] ^= 0x5A  # in the last GRUP's frames, before its CRC
+open(sys.argv[2], "wb").write(data)
+EOF
+
+# expect_error NAME OUTPUT CMD...: runs CMD in $ERRDIR (which must stay empty).
+expect_error() {
+  local name=$1 output=$2 rc=0
+  shift 2
+  (cd "$ERRDIR" && "$@") >"$TMP/$name.out" 2>"$TMP/$name.err" || rc=$?
+  local lines
+  lines=$(wc -l <"$TMP/$name.err")
+  if ((rc == 0)); then check_failed "$name: exit 0 from: $*"; fi
+  if [[ -s $TMP/$name.out ]]; then check_failed "$name: printed on stdout: $(cat "$TMP/$name.out")"; fi
+  if ((lines != 1)) || ! head -n 1 "$TMP/$name.err" | grep -q '^animc: '; then
+    check_failed "$name: stderr should be one line starting with 'animc: ', got $lines lines:"$'\n'"$(cat "$TMP/$name.err")"
+  fi
+  if [[ -n $output && -e $output ]]; then check_failed "$name: created $output"; fi
+  if [[ -n $(ls -A "$ERRDIR") ]]; then check_failed "$name: left files: $(ls -A "$ERRDIR")"; fi
+  rm -rf "${ERRDIR:?}"/* "${ERRDIR:?}"/.[!.]* 2>/dev/null || true
+  [[ -z $output ]] || rm -rf "$output"
+}
+
+expect_error unknown_command "" "$ANIMC" frobnicate "$AMS"
+expect_error unknown_option "$ERRDIR/x.ams" "$ANIMC" encode "$PC2" --mesh "$MESH" -o "$ERRDIR/x.ams" --frobnicate
+expect_error missing_output "" "$ANIMC" encode "$PC2" --mesh "$MESH"
+expect_error missing_input "$ERRDIR/x.ams" "$ANIMC" encode "$TMP/no_such.pc2" --mesh "$MESH" -o "$ERRDIR/x.ams"
+expect_error missing_ams "$ERRDIR/x.pc2" "$ANIMC" decode "$TMP/no_such.ams" -o "$ERRDIR/x.pc2"
+expect_error corrupt_ams "$ERRDIR/x.pc2" "$ANIMC" decode "$BAD_AMS" -o "$ERRDIR/x.pc2"
+expect_error corrupt_ams_ply "$ERRDIR/frames" "$ANIMC" decode "$BAD_AMS" -o "$ERRDIR/frames"
+expect_error late_corrupt_pc2 "$ERRDIR/x.pc2" "$ANIMC" decode "$LATE_AMS" -o "$ERRDIR/x.pc2"
+expect_error late_corrupt_off "$ERRDIR/frames" "$ANIMC" decode "$LATE_AMS" -o "$ERRDIR/frames" --format off
+expect_error late_corrupt_compare "" "$ANIMC" compare "$PC2" "$LATE_AMS" --mesh "$MESH"
+expect_error corrupt_compare "" "$ANIMC" compare "$PC2" "$BAD_AMS" --mesh "$MESH" --json
+expect_error max_error_zero "$ERRDIR/x.ams" "$ANIMC" encode "$PC2" --mesh "$MESH" -o "$ERRDIR/x.ams" --max-error 0
+expect_error bad_range "$ERRDIR/x.pc2" "$ANIMC" decode "$AMS" -o "$ERRDIR/x.pc2" --frames 20:10
+expect_error range_past_end "$ERRDIR/x.pc2" "$ANIMC" decode "$AMS" -o "$ERRDIR/x.pc2" --frames 40:51
+
+if ((FAILURES > 0)); then
+  echo "$FAILURES check(s) failed" >&2
+  exit 1
+fi
+echo "cli_test: all checks passed"
