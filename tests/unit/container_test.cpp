@@ -36,7 +36,9 @@ void writeBytes(const std::string& path, const Bytes& bytes) {
   std::remove(path.c_str());
   std::FILE* f = std::fopen(path.c_str(), "wb");
   ASSERT_NE(f, nullptr) << path;
-  if (!bytes.empty()) ASSERT_EQ(std::fwrite(bytes.data(), 1, bytes.size(), f), bytes.size());
+  if (!bytes.empty()) {
+    ASSERT_EQ(std::fwrite(bytes.data(), 1, bytes.size(), f), bytes.size());
+  }
   ASSERT_EQ(std::fclose(f), 0);
 }
 
