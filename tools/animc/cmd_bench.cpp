@@ -58,7 +58,9 @@ int runBench(const std::vector<std::string>& argv) {
                                              : "/tmp/animc-bench-" + std::to_string(getpid()) + ".ams";
   std::vector<double> encode_s, decode_s;
   EncodeReport report;
+  ProgressFn progress = progressLine("bench", args.has("progress"));
   for (long long r = 0; r < runs.value(); ++r) {
+    if (progress) progress(int(100 * r / runs.value()), "encoding and decoding");
     seq.rewind();
     const auto t0 = Clock::now();
     auto rep = encodeSequence(seq, settings.value(), out);
@@ -69,6 +71,8 @@ int runBench(const std::vector<std::string>& argv) {
     if (!d.ok()) return fail(d.status());
     decode_s.push_back(d.value());
   }
+  if (progress) progress(100, "done");
+  endProgressLine();
   seq.rewind();
   auto ams = AmsSource::open(out);
   if (!ams.ok()) return fail(ams.status());
