@@ -34,6 +34,16 @@ Status checkFrame(const std::vector<float>& xyz, const std::string& where, int64
   return Status();
 }
 
+// A file the default decoder would refuse is not worth writing.
+Status checkDecodable(const Topology& t) {
+  const DecoderLimits limits;
+  if (t.vertex_count > limits.max_vertices || t.triangles.size() > limits.max_triangles)
+    return invalidArgument("the mesh has " + std::to_string(t.vertex_count) + " vertices and " +
+                           std::to_string(t.triangles.size()) + " triangles; decoders accept at most " +
+                           std::to_string(limits.max_vertices) + " and " + std::to_string(limits.max_triangles));
+  return Status();
+}
+
 }  // namespace
 
 Status EncodeSettings::validate() const {
@@ -46,6 +56,7 @@ Result<EncodeReport> encodeSequence(FrameSource& source, const EncodeSettings& s
                                     const FrameObserver& observer) {
   ANIMC_RETURN_IF_ERROR(settings.validate());
   ANIMC_RETURN_IF_ERROR(checkSource(source));
+  ANIMC_RETURN_IF_ERROR(checkDecodable(source.topology()));
   const Topology& topology = source.topology();
   ContainerHeader header;
   header.codec = settings.codec;
@@ -132,7 +143,13 @@ Status AmsSource::seek(int64_t frame) {
 }
 
 Result<bool> AmsSource::next(std::vector<float>& xyz) {
-  if (next_frame_ >= frameCount()) return false;
+  if (next_frame_ >= frameCount()) {
+    // The last group must end exactly after its last frame.
+    auto after = reader_->nextFrame(payload_);
+    if (!after.ok()) return after.status().withContext(path_);
+    if (after.value()) return corrupt(path_ + ": frames after the last one the index counts");
+    return false;
+  }
   auto got = reader_->nextFrame(payload_);
   if (!got.ok()) return got.status().withContext(where());
   if (!got.value()) {  // end of this group: the next one starts with an intra frame

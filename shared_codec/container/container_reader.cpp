@@ -101,9 +101,10 @@ Status ContainerReader::openHeader() {
   ANIMC_ASSIGN_OR_RETURN(hd.frame_rate, r.f64("Frame_Rate"));
   ANIMC_ASSIGN_OR_RETURN(hd.iframe_interval, r.u32("IFrame_Interval"));
   if (r.remaining() != 0) return corrupt("HEAD section has " + std::to_string(r.remaining()) + " unread bytes");
-  if (hd.vertex_count == 0 || hd.vertex_count > limits_.max_vertices)
-    return limitExceeded("Vertex_Count " + std::to_string(hd.vertex_count) + " outside [1, " +
-                         std::to_string(limits_.max_vertices) + "]");
+  if (hd.vertex_count == 0) return corrupt("Vertex_Count is 0");
+  if (hd.vertex_count > limits_.max_vertices)
+    return limitExceeded("Vertex_Count " + std::to_string(hd.vertex_count) + " above the limit of " +
+                         std::to_string(limits_.max_vertices));
   if (hd.triangle_count > limits_.max_triangles)
     return limitExceeded("Triangle_Count " + std::to_string(hd.triangle_count) + " above the limit");
   if (!(hd.frame_rate > 0 && hd.frame_rate < 1e6)) return corrupt("Frame_Rate out of range");

@@ -45,6 +45,8 @@ Status ContainerWriter::open(const std::string& path, const ContainerHeader& hea
 
 Status ContainerWriter::addFrame(const std::vector<uint8_t>& payload, bool intra) {
   if (!group_open_ && !intra) return invalidArgument("the first frame must be intra");
+  if (!intra && group_frames_ == UINT32_MAX)
+    return invalidArgument("more than 2^32 - 1 frames in one group: use an I-frame interval");
   if (intra) {
     ANIMC_RETURN_IF_ERROR(closeGroup());
     groups_.push_back({file_.tell(), frames_});

@@ -17,7 +17,7 @@ enum class StatusCode : int {
   kTruncated = 5,        // a container ends before a field it announces
   kCorrupt = 6,          // a container field or checksum is wrong
   kUnsupportedVersion = 7,
-  kLimitExceeded = 8,    // a count or size above the decoder's ceilings (core/limits.h)
+  kLimitExceeded = 8,    // a count or size above the decoder's ceilings (DecoderLimits, container/format.h)
   kCancelled = 9,        // the progress callback asked to stop
 };
 

@@ -50,6 +50,7 @@ Result<AffineOctreeOptions> AffineOctreeOptions::read(ByteReader& r) {
   o.profile = Profile(profile);
   o.bits = bits;
   o.max_depth = depth;
+  if (r.remaining() != 0) return corrupt("codec parameters: " + std::to_string(r.remaining()) + " unread bytes");
   Status s = o.validate();
   if (!s.ok()) return corrupt("codec parameters: " + s.message());
   return o;
