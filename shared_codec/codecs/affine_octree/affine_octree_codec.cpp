@@ -16,11 +16,15 @@ constexpr uint8_t kInterFrame = 1;
 // coded as an intra frame: the inter coders' ranges are not meant for teleporting meshes.
 constexpr double kMaxUnitCoordinate = 1e6;
 
-// The root cube of an inter frame is that of the *reconstructed* previous frame, which can
-// stick out of the original's box by up to the error itself on each side. Testing against
-// ME/(1+2·ME) keeps every error within ME of the original frames' cube as well, which is what
-// an independent check (shared/tools/seqmetrics.py) measures.
-double innerMaxError(double max_error) { return max_error / (1.0 + 2.0 * max_error); }
+// The root cube of an inter frame is that of the *reconstructed* previous frame (the paper's
+// definition, which the paper profile keeps). That box can stick out of the original's by up
+// to the error itself on each side, so the default profile tests against ME/(1+2·ME): its
+// errors then stay within ME of the original frames' cube too, which is what an independent
+// check (shared/tools/seqmetrics.py) measures.
+double innerMaxError(const AffineOctreeOptions& options) {
+  const double me = options.max_error;
+  return options.profile == Profile::kPaper ? me : me / (1.0 + 2.0 * me);
+}
 
 void denormalize(const RootCube& cube, const std::vector<double>& unit, std::vector<double>& out) {
   out.resize(unit.size());
@@ -75,7 +79,7 @@ class AffineOctreeEncoder final : public FrameEncoder {
     normalize(cube, x_, q_);
     for (double c : q_)
       if (std::fabs(c) > kMaxUnitCoordinate) return false;
-    PFrameInput in{&state_.u, state_.has_before ? &state_.u0 : nullptr, &q_, innerMaxError(options_.max_error),
+    PFrameInput in{&state_.u, state_.has_before ? &state_.u0 : nullptr, &q_, innerMaxError(options_),
                    options_.max_depth};
     out.push_back(kInterFrame);
     if (options_.profile == Profile::kPaper) {
@@ -143,7 +147,7 @@ class AffineOctreeDecoder final : public FrameDecoder {
   Status decodeInter(ByteReader payload) {
     const RootCube cube = state_.prepare();
     PFrameInput in{&state_.u, state_.has_before ? &state_.u0 : nullptr, nullptr,
-                   innerMaxError(options_.max_error), options_.max_depth};
+                   innerMaxError(options_), options_.max_depth};
     if (options_.profile == Profile::kPaper)
       ANIMC_RETURN_IF_ERROR(paper_.decode(in, payload, state_.recon_unit));
     else
