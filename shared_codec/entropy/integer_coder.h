@@ -40,9 +40,9 @@ void encodeInt(RangeEncoder& rc, Model& m, int ctx, int64_t v) {
   if (left > 0) rc.encodeRaw(uint32_t(mag & ((uint64_t(1) << left) - 1)), left);
 }
 
+// The rest of a non-zero value; kept out of line so the common zero case inlines.
 template <class Model>
-int64_t decodeInt(RangeDecoder& rc, Model& m, int ctx) {
-  if (!rc.decode(m.zero[ctx])) return 0;
+__attribute__((noinline)) int64_t decodeNonZero(RangeDecoder& rc, Model& m, int ctx) {
   const bool negative = rc.decode(m.sign[ctx]);
   int e = 0;
   while (e < kMaxExponent - 1 && rc.decode(m.exponent[ctx][e])) ++e;
@@ -57,6 +57,12 @@ int64_t decodeInt(RangeDecoder& rc, Model& m, int ctx) {
   }
   if (left > 0) mag = (mag << left) | rc.decodeRaw(left);
   return negative ? -int64_t(mag) : int64_t(mag);
+}
+
+template <class Model>
+inline int64_t decodeInt(RangeDecoder& rc, Model& m, int ctx) {
+  if (!rc.decode(m.zero[ctx])) return 0;
+  return decodeNonZero(rc, m, ctx);
 }
 
 // Estimated cost in bits of coding bit with model m, without coding it (rate decisions):

@@ -43,13 +43,10 @@ Status PredictiveOctreeDecoder::decodeLeaf(Walk& w, const Cell& cell) {
     for (int k = 0; k < 9; ++k) coded[3 + k] = decodeInt(w.rc, pm.ints, kCtxLinear);
   const LeafModel m = leafModel(w.in, cell, idx);
   const CentredAffine a = codedAffine(m, coded, w.step);
-  for (uint32_t i = 0; i < n; ++i) {
-    const size_t v = 3 * size_t(idx[i]);
-    predictVertex(w.in, m, a, idx[i], &w.recon[v]);
-  }
   const bool all_zero = w.rc.decode(pm.residuals_zero[n <= kMinLinearVertices]);
   for (uint32_t i = 0; i < n; ++i) {
     const size_t v = 3 * size_t(idx[i]);
+    predictVertex(w.in, m, a, idx[i], &w.recon[v]);
     int64_t r[3] = {0, 0, 0};
     for (int ax = 0; ax < 3 && !all_zero; ++ax) {
       r[ax] = decodeInt(w.rc, pm.ints, kCtxResidual + contexts_.context(idx[i], ax));
