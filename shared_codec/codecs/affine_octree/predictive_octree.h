@@ -5,7 +5,7 @@
 //    frames (the decoder refits it, nothing is sent), and only the correction is coded;
 //  - quantisation steps follow from ME instead of a fixed 16 bits;
 //  - every vertex gets a residual on a grid of step 2·ME/√3, which bounds its error by ME
-//    whatever the split, so splits are chosen by estimated rate, not by error;
+//    whatever the split, so splits are chosen by estimated rate + weighted distortion;
 //  - all symbols go through context-modelled adaptive binary coding.
 #pragma once
 #include <cstdint>
@@ -27,9 +27,10 @@ constexpr int kCtxTranslation = 0;
 constexpr int kCtxLinear = 1;
 constexpr int kCtxResidual = 2;  // + ResidualContexts::context()
 constexpr uint32_t kMinLinearVertices = 4;  // fewer vertices: translation only, L from the prior
-constexpr double kTranslationStep = 0.125;  // in residual steps; tuned on all shared sequences
+// Tuned on all four shared sequences; docs/affine_octree.md gives the measurements.
+constexpr double kTranslationStep = 0.125;    // in residual steps
 constexpr double kLinearStep = 0.125;         // in residual steps per cell radius
-constexpr double kRateDistortion = 0.1;  // tuned on all shared sequences (docs/affine_octree.md)
+constexpr double kRateDistortion = 0.1;       // scales the weight of distortion in splits
 constexpr double kPruneDistortionBits = 8.0;  // search no deeper below such a quiet leaf
 constexpr int64_t kMaxCodedMagnitude = int64_t(1) << 30;
 
