@@ -80,15 +80,19 @@ inline double bitCost(const BitModel& m, int bit) {
 }
 
 template <class Model>
-double intCost(const Model& m, int ctx, int64_t v) {
-  double bits = bitCost(m.zero[ctx], v != 0);
-  if (v == 0) return bits;
+__attribute__((noinline)) double nonZeroCost(const Model& m, int ctx, int64_t v) {
   const uint64_t mag = uint64_t(v < 0 ? -v : v);
   const int e = 63 - __builtin_clzll(mag);
-  bits += 1.0;  // sign
+  double bits = bitCost(m.zero[ctx], 1) + 1.0;  // zero flag, sign
   for (int i = 0; i < e; ++i) bits += bitCost(m.exponent[ctx][i], 1);
   if (e < kMaxExponent - 1) bits += bitCost(m.exponent[ctx][e], 0);
   return bits + e;  // mantissa bits counted as raw
+}
+
+// Zero, by far the most common value after prediction, is costed inline.
+template <class Model>
+inline double intCost(const Model& m, int ctx, int64_t v) {
+  return v == 0 ? bitCost(m.zero[ctx], 0) : nonZeroCost(m, ctx, v);
 }
 
 }  // namespace animc
