@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The README's second command (and CI's): install, build, run every test; then the unit tests
+# The README's second command (and CI's): install, build, run every test; then every test
 # again under AddressSanitizer and UBSan, where the corrupt-file tests earn their keep.
 set -euo pipefail
 cd "$(dirname "$0")/.."

@@ -17,7 +17,6 @@ namespace animc {
 struct FrameCodingStats {
   bool intra = false;
   uint64_t cells = 0;           // leaves of the octree (affine or residual cells)
-  uint64_t position_cells = 0;  // paper profile: cells that stored positions
 };
 
 class FrameEncoder {

@@ -159,11 +159,10 @@ Status ContainerReader::openIndex(uint64_t conn_end) {
 Status ContainerReader::measureFirstFrame() {
   // The first frame's length tells what motion does not pay for (motion-only bpvf).
   ANIMC_RETURN_IF_ERROR(beginGroup(0));
-  const uint64_t first_frame_start = cursor_;
   std::vector<uint8_t> payload;
   ANIMC_ASSIGN_OR_RETURN(bool got, nextFrame(payload));
   if (!got) return corrupt("first group has no frames");
-  info_.static_bytes = first_frame_start + (cursor_ - first_frame_start);
+  info_.static_bytes = cursor_;  // everything up to the end of the first frame
   if (info_.header.vertex_count > kMaxVerticesPerIntraByte * (payload.size() + 16))
     return corrupt("Vertex_Count " + std::to_string(info_.header.vertex_count) + " cannot fit in a " +
                    std::to_string(payload.size()) + "-byte first frame");

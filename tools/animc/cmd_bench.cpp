@@ -14,8 +14,6 @@
 
 namespace animc::cli {
 
-Result<SequenceMetrics> compareSequences(FrameSource& original, FrameSource& reconstructed);
-
 namespace {
 
 using Clock = std::chrono::steady_clock;

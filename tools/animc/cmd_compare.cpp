@@ -6,7 +6,6 @@
 
 namespace animc::cli {
 
-// Walks two sequences side by side; they must agree on vertex and frame counts.
 Result<SequenceMetrics> compareSequences(FrameSource& original, FrameSource& reconstructed) {
   const uint32_t n = original.topology().vertex_count;
   if (reconstructed.topology().vertex_count != n)

@@ -86,7 +86,6 @@ class AffineOctreeEncoder final : public FrameEncoder {
       PaperFrameStats s;
       paper_.encode(in, out, state_.recon_unit, s);
       stats.cells = s.affine_cells + s.position_cells;
-      stats.position_cells = s.position_cells;
     } else {
       PredictiveFrameStats s;
       if (!predictive_.encode(in, out, state_.recon_unit, s)) return false;

@@ -76,7 +76,6 @@ CentredAffine codedAffine(const LeafModel& m, const int64_t coded[12], double st
 
 struct PredictiveFrameStats {
   uint64_t leaves = 0;
-  uint64_t nonzero_residuals = 0;
 };
 
 class PredictiveOctreeEncoder {

@@ -157,7 +157,6 @@ void PredictiveOctreeEncoder::codeLeaf(Walk& w, const Cell& cell, const Node& no
   for (uint32_t i = 0; i < n; ++i) {
     const int64_t* r = &residual_[3 * size_t(i)];
     for (int ax = 0; ax < 3 && !all_zero; ++ax) {
-      if (r[ax] != 0) ++w.stats->nonzero_residuals;
       encodeInt(rc, pm.ints, kCtxResidual + contexts_.context(idx[i], ax), r[ax]);
     }
     contexts_.set(idx[i], r);

@@ -19,7 +19,6 @@ LeafModel leafModel(const PFrameInput& in, const Cell& cell, const uint32_t* idx
   return m;
 }
 
-
 CentredAffine codedAffine(const LeafModel& m, const int64_t coded[12], double step) {
   CentredAffine a = m.prior;
   const double st = step * kTranslationStep;

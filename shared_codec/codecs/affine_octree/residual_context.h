@@ -4,8 +4,8 @@
 // Measured on chickenCrossing: 2-7 % fewer bits than no context. Adding the already decoded
 // mesh neighbours' residuals gained 1-2 % more but halved decoding speed, so it is not used.
 #pragma once
-#include <cstdint>
 #include <algorithm>
+#include <cstdint>
 #include <vector>
 
 namespace animc {
