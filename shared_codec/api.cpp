@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 
 #include "codecs/affine_octree/affine_octree_codec.h"
 #include "container/container_writer.h"
@@ -49,6 +50,14 @@ Status checkDecodable(const Topology& t) {
 Status EncodeSettings::validate() const {
   if (codec != CodecId::kAffineOctree) return invalidArgument("unknown codec");
   return octree.validate();
+}
+
+std::string describeSettings(const EncodeSettings& s) {
+  char line[256];
+  std::snprintf(line, sizeof line, "codec: %s, profile %s, max error %g of the root cube, bits %d, "
+                "iframe interval %u\n", codecName(s.codec), profileName(s.octree.profile),
+                s.octree.max_error, s.octree.bits, s.iframe_interval);
+  return line;
 }
 
 Result<EncodeReport> encodeSequence(FrameSource& source, const EncodeSettings& settings,

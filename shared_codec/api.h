@@ -24,6 +24,9 @@ struct EncodeSettings {
   Status validate() const;
 };
 
+// One line such as "codec: affine-octree, profile default, max error 0.01 of the root cube, ...".
+std::string describeSettings(const EncodeSettings& s);
+
 struct EncodeReport {
   uint32_t vertices = 0;
   uint64_t triangles = 0;

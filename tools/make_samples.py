@@ -1,9 +1,11 @@
 #!/usr/bin/python3
 """Rebuilds samples/ from ../shared/data: the first FRAMES frames of sydney_md2 as a PC2 point
-cache (xz-compressed) beside its PLY mesh. Run from the repository root."""
+cache (xz-compressed) beside its PLY mesh, and the first PLY_FRAMES frames as PLY files (what
+MeshLab loads as layers). Run from the repository root."""
 import lzma, os, shutil, struct, sys
 
 FRAMES = 50
+PLY_FRAMES = 24
 SRC = os.path.join('..', 'shared', 'data', 'sydney_md2')
 DST = os.path.join('samples', 'sydney')
 
@@ -19,6 +21,24 @@ def main():
     with lzma.open(os.path.join(DST, 'sydney_50.pc2.xz'), 'wb', preset=9) as f:
         f.write(out)
     shutil.copyfile(os.path.join(SRC, 'sydney_md2.ply'), os.path.join(DST, 'sydney_md2.ply'))
+    write_ply_frames(os.path.join(SRC, 'sydney_md2.ply'), points, body)
+
+def write_ply_frames(mesh_path, points, body):
+    """Each frame: the mesh's own binary PLY with its vertex block replaced (x y z floats)."""
+    with open(mesh_path, 'rb') as f:
+        mesh = f.read()
+    end = mesh.index(b'end_header\n') + len(b'end_header\n')
+    header = mesh[:end]
+    if b'binary_little_endian' not in header or b'element vertex %d\n' % points not in header:
+        sys.exit('unexpected PLY header in ' + mesh_path)
+    faces = mesh[end + points * 12:]
+    folder = os.path.join(DST, 'frames')
+    shutil.rmtree(folder, ignore_errors=True)
+    os.makedirs(folder)
+    for i in range(PLY_FRAMES):
+        vertices = body[i * points * 12:(i + 1) * points * 12]
+        with open(os.path.join(folder, 'frame_%05d.ply' % i), 'wb') as f:
+            f.write(header + vertices + faces)
 
 if __name__ == '__main__':
     main()

@@ -8,6 +8,9 @@ PACKAGES=(
   libeigen3-dev liblzma-dev        # shared_codec
   libgtest-dev                     # unit tests
   xz-utils python3 python3-numpy   # sample data, benchmark baseline, metrics cross-check
+  meshlab qtbase5-dev libqt5opengl5-dev libglew-dev  # MeshLab 2020.09 and what its headers need
+  mesa-common-dev libglu1-mesa-dev
+  xvfb xauth                       # meshlabserver and meshlab need an X server, even headless
 )
 
 missing=()
@@ -22,3 +25,6 @@ if [ ${#missing[@]} -gt 0 ]; then
   apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 fi
 echo "setup: all packages present"
+
+# MeshLab's headers come from Debian's source package, into a cache outside the tree.
+bash "$(dirname "$0")/fetch_meshlab_sdk.sh"

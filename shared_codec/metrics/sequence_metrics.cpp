@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 #include "metrics/json_writer.h"
@@ -201,6 +202,15 @@ std::string formatMetricsText(const SequenceMetrics& m) {
   line("rms_error_rel_diag", number(m.rms_error_rel_diag), "");
   line("bbox_diagonal", number(m.bbox_diagonal), "");
   return out;
+}
+
+std::string formatSizeText(uint64_t file_bytes, uint64_t static_bytes, uint32_t vertices,
+                           int64_t frames) {
+  const SizeFigures f = sizeFigures(file_bytes, static_bytes, vertices, frames);
+  char line[256];
+  std::snprintf(line, sizeof line, "size: %llu bytes, ratio %.2f:1, %.4f bits/vertex/frame (motion only %.4f)\n",
+                (unsigned long long)file_bytes, f.ratio, f.bpvf, f.motion_bpvf);
+  return line;
 }
 
 }  // namespace animc

@@ -71,6 +71,10 @@ struct SizeFigures {
   double motion_bpvf = 0;  // 8 * (file_bytes - static_bytes) / (N * F)
 };
 
+// One line: "size: B bytes, ratio R:1, X bits/vertex/frame (motion only Y)", ending in '\n'.
+std::string formatSizeText(uint64_t file_bytes, uint64_t static_bytes, uint32_t vertices,
+                           int64_t frames);
+
 // static_bytes: what the file spends on the connectivity and the first frame. Plain IEEE
 // division: a zero denominator yields inf (or NaN for 0/0), which JSON writes as null.
 SizeFigures sizeFigures(uint64_t file_bytes, uint64_t static_bytes, uint32_t vertices,

@@ -98,8 +98,8 @@ int runBench(const std::vector<std::string>& argv) {
   }
   std::printf("%s: %u vertices x %lld frames, %lld runs\n", args.positional()[0].c_str(), report.vertices,
               (long long)report.frames, runs.value());
-  std::fputs(settingsText(settings.value()).c_str(), stdout);
-  std::fputs(sizesText(report.file_bytes, report.static_bytes, report.vertices, report.frames).c_str(), stdout);
+  std::fputs(describeSettings(settings.value()).c_str(), stdout);
+  std::fputs(formatSizeText(report.file_bytes, report.static_bytes, report.vertices, report.frames).c_str(), stdout);
   std::fputs(formatMetricsText(metrics.value()).c_str(), stdout);
   std::printf("encode: %.2f M vertices/s (median %.4f s)\ndecode: %.2f M vertices/s (median %.4f s)\n",
               encode_mvps, median(encode_s), decode_mvps, median(decode_s));

@@ -57,7 +57,7 @@ int runCompare(const std::vector<std::string>& argv) {
     std::printf("%s\n", o.str().c_str());
     return 0;
   }
-  if (ams) std::fputs(sizesText(ams->info().file_bytes, ams->info().static_bytes, m.vertices, m.frames).c_str(), stdout);
+  if (ams) std::fputs(formatSizeText(ams->info().file_bytes, ams->info().static_bytes, m.vertices, m.frames).c_str(), stdout);
   std::fputs(formatMetricsText(m).c_str(), stdout);
   return 0;
 }

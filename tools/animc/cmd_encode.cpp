@@ -47,8 +47,8 @@ int runEncode(const std::vector<std::string>& argv) {
   std::printf("%s: %u vertices, %llu triangles, %lld frames (%llu intra)\n", args.get("output").c_str(),
               r.vertices, (unsigned long long)r.triangles, (long long)r.frames,
               (unsigned long long)r.intra_frames);
-  std::fputs(settingsText(settings.value()).c_str(), stdout);
-  std::fputs(sizesText(r.file_bytes, r.static_bytes, r.vertices, r.frames).c_str(), stdout);
+  std::fputs(describeSettings(settings.value()).c_str(), stdout);
+  std::fputs(formatSizeText(r.file_bytes, r.static_bytes, r.vertices, r.frames).c_str(), stdout);
   std::fputs(formatMetricsText(m).c_str(), stdout);
   std::printf("encode time: %.3f s (%.2f M vertices/s)\n", r.encode_seconds, mvps);
   return 0;

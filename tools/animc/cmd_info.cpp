@@ -34,11 +34,11 @@ int runInfo(const std::vector<std::string>& argv) {
     return 0;
   }
   std::printf("%s: .ams format version %u\n", args.positional()[0].c_str(), info.format_version);
-  std::fputs(settingsText(source.value()->settings()).c_str(), stdout);
+  std::fputs(describeSettings(source.value()->settings()).c_str(), stdout);
   std::printf("vertices: %u, triangles: %llu, frames: %llu at %g fps, groups: %llu\n", h.vertex_count,
               (unsigned long long)h.triangle_count, (unsigned long long)info.frame_count, h.frame_rate,
               (unsigned long long)groups);
-  std::fputs(sizesText(info.file_bytes, info.static_bytes, h.vertex_count, int64_t(info.frame_count)).c_str(), stdout);
+  std::fputs(formatSizeText(info.file_bytes, info.static_bytes, h.vertex_count, int64_t(info.frame_count)).c_str(), stdout);
   std::printf("sections:\n");
   for (const SectionInfo& sec : info.sections)
     if (sec.tag != kTagGroup)

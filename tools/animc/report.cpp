@@ -1,6 +1,5 @@
 #include "report.h"
 
-#include <cstdio>
 
 namespace animc::cli {
 
@@ -41,22 +40,6 @@ void addMetrics(JsonObject& o, const SequenceMetrics& m, bool per_frame) {
   }
   o.add("per_frame_rms", rms);
   o.add("per_frame_max", max);
-}
-
-std::string settingsText(const EncodeSettings& s) {
-  char line[256];
-  std::snprintf(line, sizeof line, "codec: %s, profile %s, max error %g of the root cube, bits %d, "
-                "iframe interval %u\n", codecName(s.codec), profileName(s.octree.profile),
-                s.octree.max_error, s.octree.bits, s.iframe_interval);
-  return line;
-}
-
-std::string sizesText(uint64_t file_bytes, uint64_t static_bytes, uint32_t vertices, int64_t frames) {
-  const SizeFigures f = sizeFigures(file_bytes, static_bytes, vertices, frames);
-  char line[256];
-  std::snprintf(line, sizeof line, "size: %llu bytes, ratio %.2f:1, %.4f bits/vertex/frame (motion only %.4f)\n",
-                (unsigned long long)file_bytes, f.ratio, f.bpvf, f.motion_bpvf);
-  return line;
 }
 
 }  // namespace animc::cli

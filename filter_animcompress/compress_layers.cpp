@@ -1,0 +1,96 @@
+#include "compress_layers.h"
+
+#include <QFileInfo>
+#include <algorithm>
+#include <chrono>
+
+#include "api.h"
+#include "encode_parameters.h"
+#include "error_colouring.h"
+#include "layer_frames.h"
+#include "metrics/sequence_metrics.h"
+
+namespace animc::meshlab {
+namespace {
+
+// What the encoder observer builds while it runs: the metrics, and the layers it added.
+struct CompressOutput {
+  explicit CompressOutput(uint32_t vertices) : metrics(vertices) {}
+  MetricsAccumulator metrics;
+  QList<MeshModel*> decoded_layers;
+  std::vector<float> reconstruction;
+};
+
+}  // namespace
+
+void addCompressParameters(const MeshDocument& md, RichParameterList& par) {
+  addEncodeParameters(par);
+  QString dir = md.meshList.isEmpty() ? QString() : QFileInfo(md.meshList[0]->fullName()).absolutePath();
+  const QString default_path = dir.isEmpty() ? QString("animation.ams") : dir + "/animation.ams";
+  par.addParam(RichBool("VisibleOnly", false, "Visible layers only",
+                        "Use only the visible layers as frames (in document order); otherwise all layers."));
+  par.addParam(RichSaveFile("OutputFile", default_path, "*.ams", "Output .ams file",
+                            "Where the compressed animation is written (atomically: nothing appears on failure)."));
+  par.addParam(RichBool("AddReconstructed", true, "Add reconstructed layers",
+                        "Add one layer per frame holding what a decoder of the file will produce."));
+  par.addParam(RichBool("ColourByError", true, "Colour by error",
+                        "Store each vertex's reconstruction error as vertex quality and colour it, blue = 0 "
+                        "to red = the largest error of the whole animation; on the reconstructed layers, "
+                        "or on the originals when no reconstructed layers are added."));
+}
+
+std::string compressLayers(MeshDocument& md, const RichParameterList& par, vcg::CallBackPos* cb,
+                           const LogFn& log) {
+  const auto started = std::chrono::steady_clock::now();
+  const QList<MeshModel*> layers = frameLayers(md, par.getBool("VisibleOnly"));
+  if (layers.size() < 2)
+    return "an animation needs at least 2 layers (frames); found " + std::to_string(layers.size());
+  Result<EncodeSettings> settings = encodeSettingsFrom(par);
+  if (!settings.ok()) return settings.status().message();
+  const std::string path = par.getSaveFileName("OutputFile").toStdString();
+  if (path.empty()) return "no output file given";
+  Result<std::unique_ptr<LayerFrameSource>> source = LayerFrameSource::create(layers);
+  if (!source.ok()) return source.status().message();
+  const Topology& topology = source.value()->topology();
+
+  const bool add_decoded = par.getBool("AddReconstructed");
+  const bool colour = par.getBool("ColourByError");
+  CompressOutput out(topology.vertex_count);
+  auto observe = [&](int64_t frame, const float* original, const std::vector<double>& decoded) {
+    out.reconstruction.assign(decoded.begin(), decoded.end());
+    out.metrics.addFrame(original, out.reconstruction.data());
+    MeshModel* shown = layers[int(frame)];
+    if (add_decoded) {
+      shown = md.addNewMesh("", "decoded " + layers[int(frame)]->label(), false);
+      fillMesh(*shown, topology, out.reconstruction.data());
+      out.decoded_layers << shown;
+    }
+    if (colour) storeVertexError(*shown, original, out.reconstruction.data());
+  };
+  Result<EncodeReport> report =
+      encodeSequence(*source.value(), settings.value(), path, progressFrom(cb), observe);
+  if (!report.ok()) {
+    for (MeshModel* m : out.decoded_layers) md.delMesh(m);
+    return report.status().message();
+  }
+
+  const SequenceMetrics m = out.metrics.finish();
+  if (colour)
+    for (MeshModel* shown : add_decoded ? out.decoded_layers : layers) colourByQuality(*shown, float(m.max_error));
+  const EncodeReport& r = report.value();
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  log("Compressed " + std::to_string(r.frames) + " frames of " + std::to_string(r.vertices) +
+      " vertices (" + std::to_string(r.triangles) + " triangles) into " + path);
+  logLines(log, describeSettings(settings.value()));
+  logLines(log, formatSizeText(r.file_bytes, r.static_bytes, r.vertices, r.frames));
+  logLines(log, formatMetricsText(m));
+  char line[160];
+  std::snprintf(line, sizeof line, "encode time: %.3f s (%.2f M vertices/s); whole filter %.3f s",
+                r.encode_seconds, double(r.vertices) * double(r.frames) / std::max(r.encode_seconds, 1e-9) / 1e6,
+                seconds);
+  log(line);
+  if (add_decoded) log("added " + std::to_string(out.decoded_layers.size()) + " reconstructed layers ('decoded ...')");
+  return {};
+}
+
+}  // namespace animc::meshlab

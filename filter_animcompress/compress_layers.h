@@ -1,0 +1,19 @@
+// "Compress Animation Layers": the document's layers are the frames of one animation; encode
+// them to an .ams file, optionally add the decoder's frames as layers and colour by error.
+#pragma once
+#include <string>
+
+#include <common/filter_parameter/rich_parameter_list.h>
+#include <common/meshmodel.h>
+
+#include "plugin_support.h"
+
+namespace animc::meshlab {
+
+void addCompressParameters(const MeshDocument& md, RichParameterList& par);
+
+// Returns an empty string on success, else why nothing was written and nothing was added.
+std::string compressLayers(MeshDocument& md, const RichParameterList& par, vcg::CallBackPos* cb,
+                           const LogFn& log);
+
+}  // namespace animc::meshlab

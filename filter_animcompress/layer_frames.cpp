@@ -1,0 +1,146 @@
+#include "layer_frames.h"
+
+#include <vcg/complex/allocate.h>
+
+#include "seqio/mesh_checks.h"
+
+namespace animc::meshlab {
+namespace {
+
+// Index of every live vertex among the live vertices (-1 for deleted ones).
+std::vector<int64_t> liveVertexIndex(const CMeshO& cm) {
+  std::vector<int64_t> index(cm.vert.size(), -1);
+  int64_t next = 0;
+  for (size_t i = 0; i < cm.vert.size(); ++i)
+    if (!cm.vert[i].IsD()) index[i] = next++;
+  return index;
+}
+
+Topology layerTopology(const CMeshO& cm) {
+  const std::vector<int64_t> index = liveVertexIndex(cm);
+  Topology t;
+  t.vertex_count = uint32_t(cm.vn);
+  t.triangles.reserve(size_t(cm.fn));
+  for (const CFaceO& f : cm.face) {
+    if (f.IsD()) continue;
+    Triangle tri;
+    for (int k = 0; k < 3; ++k) tri[k] = uint32_t(index[size_t(f.cV(k) - &cm.vert[0])]);
+    t.triangles.push_back(tri);
+  }
+  return t;
+}
+
+void copyPositions(const CMeshO& cm, std::vector<float>& xyz) {
+  xyz.resize(3 * size_t(cm.vn));
+  float* out = xyz.data();
+  for (const CVertexO& v : cm.vert) {
+    if (v.IsD()) continue;
+    *out++ = float(v.cP()[0]);
+    *out++ = float(v.cP()[1]);
+    *out++ = float(v.cP()[2]);
+  }
+}
+
+}  // namespace
+
+QList<MeshModel*> frameLayers(const MeshDocument& md, bool visible_only) {
+  QList<MeshModel*> layers;
+  for (MeshModel* m : md.meshList)
+    if (!visible_only || m->isVisible()) layers << m;
+  return layers;
+}
+
+std::string layerName(const MeshModel& layer, int index) {
+  return "layer " + std::to_string(index) + " ('" + layer.label().toStdString() + "')";
+}
+
+Result<std::unique_ptr<LayerFrameSource>> LayerFrameSource::create(const QList<MeshModel*>& layers) {
+  if (layers.isEmpty()) return badInput("there are no layers to use as frames");
+  std::unique_ptr<LayerFrameSource> source(new LayerFrameSource());
+  source->layers_ = layers;
+  source->topology_ = layerTopology(layers[0]->cm);
+  const Status s = checkTopology(source->topology_);
+  if (!s.ok()) return s.withContext(layerName(*layers[0], 0));
+  return source;
+}
+
+Result<bool> LayerFrameSource::next(std::vector<float>& xyz) {
+  if (next_ >= layers_.size()) return false;
+  const MeshModel& layer = *layers_[next_];
+  if (next_ > 0) {
+    const Status same = checkSameTopology(layerTopology(layer.cm), topology_, layerName(*layers_[0], 0));
+    if (!same.ok()) return same.withContext(where());
+  }
+  copyPositions(layer.cm, xyz);
+  ++next_;
+  return true;
+}
+
+std::string LayerFrameSource::where() const {
+  if (next_ >= layers_.size()) return "after the last layer";
+  return layerName(*layers_[next_], next_);
+}
+
+void fillMesh(MeshModel& layer, const Topology& topology, const float* xyz) {
+  CMeshO& cm = layer.cm;
+  auto v = vcg::tri::Allocator<CMeshO>::AddVertices(cm, topology.vertex_count);
+  for (uint32_t i = 0; i < topology.vertex_count; ++i, ++v)
+    v->P() = Point3m(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
+  auto f = vcg::tri::Allocator<CMeshO>::AddFaces(cm, topology.triangles.size());
+  for (const Triangle& t : topology.triangles) {
+    for (int k = 0; k < 3; ++k) f->V(k) = &cm.vert[t[k]];
+    ++f;
+  }
+  layer.UpdateBoxAndNormals();
+}
+
+void setPositions(MeshModel& layer, const float* xyz) {
+  for (CVertexO& v : layer.cm.vert) {
+    v.P() = Point3m(xyz[0], xyz[1], xyz[2]);
+    xyz += 3;
+  }
+  layer.UpdateBoxAndNormals();
+}
+
+QString frameLabel(int64_t frame) { return QString("frame_%1").arg(frame, 5, 10, QChar('0')); }
+
+Result<QList<MeshModel*>> importAms(const std::string& path, const AmsImport& range,
+                                    MeshDocument* md, MeshModel* first_layer,
+                                    const ProgressFn& progress) {
+  ANIMC_ASSIGN_OR_RETURN(std::unique_ptr<AmsSource> source, AmsSource::open(path));
+  const int64_t frames = source->frameCount();
+  const int64_t last = range.last_frame < 0 ? frames - 1 : range.last_frame;
+  if (range.first_frame < 0 || range.first_frame > last || last >= frames)
+    return invalidArgument("frames " + std::to_string(range.first_frame) + " to " +
+                           std::to_string(last) + " asked for, but " + path + " has frames 0 to " +
+                           std::to_string(frames - 1));
+  if (md == nullptr && (first_layer == nullptr || last > range.first_frame))
+    return invalidArgument("no document to add the frames to as layers");
+  ANIMC_RETURN_IF_ERROR(source->seek(range.first_frame));
+  QList<MeshModel*> added;
+  auto undo = [&](const Status& s) {
+    for (MeshModel* m : added) md->delMesh(m);
+    if (first_layer != nullptr) first_layer->Clear();
+    return s;
+  };
+  std::vector<float> xyz;
+  QList<MeshModel*> layers;
+  for (int64_t frame = range.first_frame; frame <= last; ++frame) {
+    Result<bool> more = source->next(xyz);
+    if (!more.ok()) return undo(more.status());
+    if (!more.value()) return undo(truncated(path + ": frame " + std::to_string(frame) + " is missing"));
+    MeshModel* layer = layers.isEmpty() && first_layer != nullptr ? first_layer : nullptr;
+    if (layer == nullptr) {
+      layer = md->addNewMesh("", frameLabel(frame), false);
+      added << layer;
+    }
+    layer->setLabel(frameLabel(frame));
+    fillMesh(*layer, source->topology(), xyz.data());
+    layers << layer;
+    const int percent = int(100 * (frame - range.first_frame + 1) / (last - range.first_frame + 1));
+    if (progress && !progress(percent, "decoding frames")) return undo(cancelled());
+  }
+  return layers;
+}
+
+}  // namespace animc::meshlab

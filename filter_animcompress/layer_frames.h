@@ -1,0 +1,66 @@
+// MeshLab layers as animc frames and back: the one place where CMeshO meets shared_codec.
+// A frame is a layer's live vertices in vector order; its triangles are its live faces with
+// indices renumbered over those vertices, so deleted-but-not-compacted elements are skipped.
+#pragma once
+#include <QList>
+#include <QString>
+#include <memory>
+#include <vector>
+
+#include <common/meshmodel.h>
+
+#include "api.h"
+#include "core/sequence.h"
+
+namespace animc::meshlab {
+
+// The layers that are frames, in document order; with visible_only, hidden layers are skipped.
+QList<MeshModel*> frameLayers(const MeshDocument& md, bool visible_only);
+
+// "layer 3 ('frame_0003.ply')", for messages.
+std::string layerName(const MeshModel& layer, int index);
+
+// The layers as a sequence of frames. Every layer must have the first one's vertex count and
+// triangle list; next() fails with a message naming the first layer that does not.
+class LayerFrameSource final : public FrameSource {
+ public:
+  // Fails when there are no layers or the first one has no vertices or no faces.
+  static Result<std::unique_ptr<LayerFrameSource>> create(const QList<MeshModel*>& layers);
+
+  const Topology& topology() const override { return topology_; }
+  int64_t frameCount() const override { return layers_.size(); }
+  Result<bool> next(std::vector<float>& xyz) override;
+  std::string where() const override;
+
+ private:
+  LayerFrameSource() = default;
+  QList<MeshModel*> layers_;
+  Topology topology_;
+  int next_ = 0;
+};
+
+// Fills an empty CMeshO with one frame: topology.vertex_count vertices in order, then the
+// triangles. Updates the bounding box and normals.
+void fillMesh(MeshModel& layer, const Topology& topology, const float* xyz);
+
+// Replaces the positions of a layer made by fillMesh (same vertex count) and refreshes its box
+// and normals.
+void setPositions(MeshModel& layer, const float* xyz);
+
+// Reads frames [first, last] of an .ams file as layers: the first one into `first_layer`
+// (which must be empty; null: a new layer), the others into new layers added to md (which may
+// be null only when first_layer is the one layer needed). Layers
+// are labelled frame_00000, frame_00001, ... by frame number. last < 0 means the last frame.
+// On failure, every layer this call added is removed again and first_layer is left empty.
+struct AmsImport {
+  int64_t first_frame = 0;
+  int64_t last_frame = -1;
+};
+Result<QList<MeshModel*>> importAms(const std::string& path, const AmsImport& range,
+                                    MeshDocument* md, MeshModel* first_layer,
+                                    const ProgressFn& progress);
+
+// "frame_00012"
+QString frameLabel(int64_t frame);
+
+}  // namespace animc::meshlab

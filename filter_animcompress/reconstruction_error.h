@@ -1,0 +1,18 @@
+// "Animation Reconstruction Error": compares two equally long runs of layers (originals and
+// reconstructions), stores per-vertex error as quality on the reconstructions, colours them on
+// one scale for all frames, and logs per-frame and whole-animation figures.
+#pragma once
+#include <common/filter_parameter/rich_parameter_list.h>
+#include <common/meshmodel.h>
+
+#include "compress_layers.h"
+
+namespace animc::meshlab {
+
+void addErrorParameters(MeshDocument& md, RichParameterList& par);
+
+// Returns an empty string on success, else why nothing was changed.
+std::string measureReconstructionError(MeshDocument& md, const RichParameterList& par,
+                                       vcg::CallBackPos* cb, const LogFn& log);
+
+}  // namespace animc::meshlab
