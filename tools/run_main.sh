@@ -1,11 +1,15 @@
 #!/usr/bin/env bash
-# The README's first command: install, build, then compress the sample animation and print
-# its figures.
+# The README's first command: install, build, stage MeshLab with our plugins, then compress the
+# sample animation (24 PLY frames loaded as layers) in meshlabserver with the Compress
+# Animation Layers filter and print the figures it logged.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash tools/setup.sh
 bash tools/build.sh
+cmake --install build --prefix build/stage >/dev/null
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
-build/tools/animc/animc encode samples/sydney/sydney_50.pc2.xz --mesh samples/sydney/sydney_md2.ply \
-  -o "$out/sydney_50.ams" --max-error 0.01
+(cd "$out" && "$OLDPWD/tools/meshlabserver.sh" -i "$OLDPWD"/samples/sydney/frames/frame_*.ply \
+   -s "$OLDPWD/samples/compress.mlx" >log.txt 2>&1) || { cat "$out/log.txt" >&2; exit 1; }
+# meshlabserver prints the filter's log as "LOG: <level> <line>".
+sed -n 's/^LOG: [0-9] //p' "$out/log.txt"

@@ -1,0 +1,112 @@
+#include "codecs/wavelet/level_mesh.h"
+
+#include <algorithm>
+
+namespace animc {
+
+LevelMesh::LevelMesh(const Topology& topology)
+    : vertex_count_(topology.vertex_count), triangles_(topology.triangles),
+      alive_(topology.triangles.size(), 1) {
+  rebuildIncidence();
+}
+
+void LevelMesh::rebuildIncidence() {
+  first_.assign(vertex_count_ + 1, 0);
+  for (size_t t = 0; t < triangles_.size(); ++t)
+    if (alive_[t])
+      for (uint32_t v : triangles_[t]) ++first_[v + 1];
+  for (uint32_t v = 0; v < vertex_count_; ++v) first_[v + 1] += first_[v];
+  incident_.assign(first_.back() + 1, 0);  // +1 keeps &incident_[first_[v]] valid when empty
+  std::vector<uint32_t> fill(first_.begin(), first_.end() - 1);
+  for (size_t t = 0; t < triangles_.size(); ++t)
+    if (alive_[t])
+      for (uint32_t v : triangles_[t]) incident_[fill[v]++] = uint32_t(t);
+}
+
+bool LevelMesh::orderedRing(uint32_t v, std::vector<uint32_t>& ring) const {
+  // Each triangle (v, a, b) gives the step a -> b; a closed fan is one cycle through them all.
+  std::vector<std::pair<uint32_t, uint32_t>> steps;
+  for (const uint32_t* t = trianglesBegin(v); t != trianglesEnd(v); ++t) {
+    const Triangle& tri = triangles_[*t];
+    const int at = tri[0] == v ? 0 : (tri[1] == v ? 1 : 2);
+    const uint32_t a = tri[(at + 1) % 3], b = tri[(at + 2) % 3];
+    if (a == v || b == v || a == b) return false;
+    steps.emplace_back(a, b);
+  }
+  const size_t k = steps.size();
+  if (k < 3) return false;
+  ring.clear();
+  uint32_t current = steps[0].first;
+  for (size_t i = 0; i < k; ++i) {
+    uint32_t next = kNoVertex;
+    for (const auto& s : steps) {
+      if (s.first != current) continue;
+      if (next != kNoVertex) return false;  // two triangles leave the same spoke
+      next = s.second;
+    }
+    if (next == kNoVertex) return false;  // a boundary or a flipped neighbour
+    ring.push_back(current);
+    current = next;
+  }
+  if (current != steps[0].first) return false;
+  std::vector<uint32_t> sorted(ring);
+  std::sort(sorted.begin(), sorted.end());
+  return std::adjacent_find(sorted.begin(), sorted.end()) == sorted.end();
+}
+
+uint32_t LevelMesh::flapAcross(uint32_t a, uint32_t b, uint32_t v) const {
+  uint32_t found = kNoVertex;
+  for (const uint32_t* t = trianglesBegin(a); t != trianglesEnd(a); ++t) {
+    const Triangle& tri = triangles_[*t];
+    bool has_b = false, has_v = false;
+    uint32_t other = kNoVertex;
+    for (uint32_t w : tri) {
+      if (w == b) has_b = true;
+      else if (w == v) has_v = true;
+      else if (w != a) other = w;
+    }
+    if (!has_b || has_v) continue;
+    if (found != kNoVertex || other == kNoVertex) return kNoVertex;
+    found = other;
+  }
+  return found;
+}
+
+bool LevelMesh::hasTriangle(uint32_t a, uint32_t b, uint32_t c) const {
+  for (const uint32_t* t = trianglesBegin(a); t != trianglesEnd(a); ++t) {
+    const Triangle& tri = triangles_[*t];
+    const bool has_b = tri[0] == b || tri[1] == b || tri[2] == b;
+    const bool has_c = tri[0] == c || tri[1] == c || tri[2] == c;
+    if (has_b && has_c) return true;
+  }
+  return false;
+}
+
+bool LevelMesh::adjacent(uint32_t u, uint32_t w) const {
+  for (const uint32_t* t = trianglesBegin(u); t != trianglesEnd(u); ++t) {
+    const Triangle& tri = triangles_[*t];
+    if (tri[0] == w || tri[1] == w || tri[2] == w) return true;
+  }
+  return false;
+}
+
+void LevelMesh::collapse(uint32_t v, uint32_t u) {
+  for (const uint32_t* t = trianglesBegin(v); t != trianglesEnd(v); ++t) {
+    Triangle& tri = triangles_[*t];
+    if (tri[0] == u || tri[1] == u || tri[2] == u) {
+      alive_[*t] = 0;
+      continue;
+    }
+    for (uint32_t& w : tri)
+      if (w == v) w = u;
+  }
+}
+
+std::vector<Triangle> LevelMesh::liveTriangles() const {
+  std::vector<Triangle> out;
+  for (size_t t = 0; t < triangles_.size(); ++t)
+    if (alive_[t]) out.push_back(triangles_[t]);
+  return out;
+}
+
+}  // namespace animc

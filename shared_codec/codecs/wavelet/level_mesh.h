@@ -1,0 +1,49 @@
+// The triangle mesh of one simplification level: the live triangles and, per vertex, the
+// triangles that use it. The incidence is rebuilt once per level; within a level the batch's
+// collapses touch disjoint sets of triangles, so queries made against the level's start stay
+// valid while the batch is applied.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "core/sequence.h"
+
+namespace animc {
+
+constexpr uint32_t kNoVertex = UINT32_MAX;
+
+class LevelMesh {
+ public:
+  explicit LevelMesh(const Topology& topology);
+
+  void rebuildIncidence();
+  const uint32_t* trianglesBegin(uint32_t v) const { return &incident_[first_[v]]; }
+  const uint32_t* trianglesEnd(uint32_t v) const { return &incident_[0] + first_[v + 1]; }
+  const Triangle& triangle(uint32_t t) const { return triangles_[t]; }
+
+  // The neighbours of v in cyclic order, following the orientation of its triangles, so that
+  // (v, ring[k], ring[k+1]) are its triangles. False when v is on a boundary, non-manifold,
+  // in a degenerate triangle or where its triangles disagree on orientation: such vertices
+  // are never removed.
+  bool orderedRing(uint32_t v, std::vector<uint32_t>& ring) const;
+  // The third vertex of the one triangle on edge (a, b) that does not contain v; kNoVertex
+  // when the edge has no such triangle or several (boundary, non-manifold).
+  uint32_t flapAcross(uint32_t a, uint32_t b, uint32_t v) const;
+  // Whether a live triangle has exactly the vertices {a, b, c}, in any order.
+  bool hasTriangle(uint32_t a, uint32_t b, uint32_t c) const;
+  // Whether u shares an edge with w.
+  bool adjacent(uint32_t u, uint32_t w) const;
+
+  // Half-edge collapse v -> u: triangles holding both die, v becomes u in the others.
+  void collapse(uint32_t v, uint32_t u);
+  std::vector<Triangle> liveTriangles() const;
+
+ private:
+  uint32_t vertex_count_;
+  std::vector<Triangle> triangles_;
+  std::vector<uint8_t> alive_;
+  std::vector<uint32_t> first_;
+  std::vector<uint32_t> incident_;
+};
+
+}  // namespace animc

@@ -1,0 +1,47 @@
+// The progressive-mesh hierarchy of the wavelet codec (paper section 3.2): half-edge
+// collapses in batches, one independent set per level, chosen by a memoryless quadric cost
+// under an edge-length bound that is relaxed level by level. Built from the connectivity and
+// the parametric mesh only, deterministically, so encoder and decoder build the same one.
+// Vertices are never renumbered: the hierarchy only lists which vertex goes when.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "codecs/wavelet/level_mesh.h"
+#include "core/sequence.h"
+
+namespace animc {
+
+// One half-edge collapse: `vertex` is removed onto its neighbour `target`. Its one ring at
+// that moment is ring[ring_begin .. ring_begin + ring_size) of the ProgressiveMesh, cyclic,
+// with flap[k] the vertex across the link edge (ring[k], ring[k+1]) or kNoVertex.
+struct Collapse {
+  uint32_t vertex = 0;
+  uint32_t target = 0;
+  uint32_t ring_begin = 0;
+  uint16_t ring_size = 0;
+  uint16_t level = 0;  // batch number; 0 = the first (finest) batch
+};
+
+struct ProgressiveMesh {
+  uint32_t vertex_count = 0;
+  int level_count = 0;
+  std::vector<Collapse> collapses;  // in removal order, finest batch first
+  std::vector<uint32_t> ring;
+  std::vector<uint32_t> flap;
+  std::vector<uint32_t> base;       // vertices never removed, ascending
+  std::vector<Triangle> base_triangles;
+};
+
+struct HierarchySettings {
+  int max_levels = 64;
+  double first_length_factor = 1.0;  // bound of level 0, times the mean edge length
+  double length_growth = 1.25;       // the bound grows by this factor every level
+  double min_normal_cosine = 0.3;    // a collapse may not turn a triangle by more than ~72 deg
+};
+
+// parametric_xyz: 3 * vertex_count coordinates (the parametric mesh).
+ProgressiveMesh buildProgressiveMesh(const Topology& topology, const std::vector<double>& parametric_xyz,
+                                     const HierarchySettings& settings = {});
+
+}  // namespace animc

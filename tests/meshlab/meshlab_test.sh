@@ -1,0 +1,182 @@
+#!/usr/bin/env bash
+# End-to-end tests of the MeshLab plugins in the real meshlabserver (staged by
+# `cmake --install BUILD --prefix STAGE`, run headless under xvfb-run by tools/meshlabserver.sh).
+# usage: meshlab_test.sh CASE ANIMC_BINARY SOURCE_DIR STAGE_DIR
+#   CASE: dump | scripts | filter_roundtrip | io_roundtrip | bad_layers | bad_ams
+set -euo pipefail
+
+CASE=${1:?usage: meshlab_test.sh CASE ANIMC SOURCE_DIR STAGE_DIR}
+ANIMC=${2:?}
+SRC=${3:?}
+export ANIMC_STAGE=${4:?}
+PY=/usr/bin/python3
+FRAMES=("$SRC"/samples/sydney/frames/frame_*.ply)
+N=${#FRAMES[@]}
+
+TMP=$(mktemp -d "${TMPDIR:-/tmp}/animc_meshlab_test.XXXXXX")
+trap '[[ -n ${KEEP_TMP:-} ]] || rm -rf "$TMP"' EXIT
+export ANIMC_MESHLAB_HOME=$TMP/home
+cd "$TMP"
+
+FAILURES=0
+check_failed() { echo "FAIL: $*" >&2; FAILURES=$((FAILURES + 1)); }
+die() { echo "FAIL: $*" >&2; exit 1; }
+
+# server NAME ARGS...: runs meshlabserver with ARGS in $TMP; output (stdout and stderr) in
+# NAME.log, exit status in $RC. A crash or abort (signal exit) fails the test at once.
+server() {
+  local name=$1
+  shift
+  RC=0
+  "$SRC/tools/meshlabserver.sh" "$@" >"$name.log" 2>&1 || RC=$?
+  if ((RC >= 128 && RC != 255)); then die "$name: meshlabserver died with status $RC"$'\n'"$(tail -20 "$name.log")"; fi
+}
+expect_ok() { ((RC == 0)) || die "$1: exit $RC"$'\n'"$(tail -30 "$1.log")"; }
+# expect_log NAME TEXT: the run's output contains TEXT (fixed string).
+expect_log() { grep -qF -- "$2" "$1.log" || check_failed "$1: no line with '$2' in its output"$'\n'"$(tail -15 "$1.log")"; }
+# expect_same_frames NAME EXPORTED_LIST DECODED_DIR: positions identical and face lists equal
+# (the decoded frame 0 is given as the mesh every exported frame must match).
+expect_same_frames() {
+  local out
+  out=$("$ANIMC" compare "$2" "$3" --mesh "$3/frame_00000.ply" --json) || { check_failed "$1: animc compare failed"; return; }
+  "$PY" -c 'import json,sys; d=json.loads(sys.argv[1]); n=int(sys.argv[2]); sys.exit(0 if d["frames"]==n and d["max_error"]==0 else 1)' "$out" "$4" ||
+    check_failed "$1: frames differ: $out"
+}
+# layer_exports FIRST COUNT PREFIX: meshlabserver arguments saving layers FIRST.. as PREFIX_k.ply,
+# and a list file PREFIX.txt naming them in order.
+layer_exports() {
+  local first=$1 count=$2 prefix=$3 k
+  : >"$prefix.txt"
+  EXPORTS=()
+  for ((k = 0; k < count; k++)); do
+    EXPORTS+=(-o "$TMP/${prefix}_$k.ply" -l $((first + k)))
+    echo "${prefix}_$k.ply" >>"$prefix.txt"
+  done
+}
+
+case_dump() {
+  server dump -d "$TMP/dump.txt"
+  expect_ok dump
+  for text in "section f0 Compress Animation Layers" "Animation Reconstruction Error" "Import Compressed Animation" \
+              "Max error (%)" "I-frame interval" "Output .ams file" "Add reconstructed layers" "Colour by error" \
+              "Visible layers only" "First original layer" "First reconstructed layer" "Colour scale max" \
+              "Compressed animation" "Last frame"; do
+    grep -qF -- "$text" dump.txt || check_failed "dump: '$text' missing"
+  done
+}
+
+case_scripts() {
+  server compress -i "${FRAMES[@]}" -s "$SRC/samples/compress.mlx"
+  expect_ok compress
+  expect_log compress "Compressed $N frames of 342 vertices (679 triangles) into sydney_24.ams"
+  expect_log compress "kg_error: "
+  expect_log compress "ratio "
+  [[ -s sydney_24.ams ]] || die "compress.mlx wrote no sydney_24.ams"
+  "$ANIMC" info sydney_24.ams --json | grep -q "\"frames\":$N" || check_failed "sydney_24.ams does not hold $N frames"
+
+  server compress_error -i "${FRAMES[@]}" -s "$SRC/samples/compress_error.mlx"
+  expect_ok compress_error
+  expect_log compress_error "added $N reconstructed layers"
+  expect_log compress_error "frame $((N - 1)): 'frame_000$((N - 1)).ply' vs 'decoded frame_000$((N - 1)).ply': rms"
+  expect_log compress_error "colour scale: blue = 0, red = "
+
+  server import -s "$SRC/samples/import.mlx" -o "$TMP/imported_last.ply" -l x
+  expect_ok import
+  expect_log import "Imported $N frames of 342 vertices from sydney_24.ams"
+  "$ANIMC" decode sydney_24.ams -o decoded --format ply >/dev/null
+  echo imported_last.ply >imported.txt
+  mkdir -p last && cp "decoded/frame_000$((N - 1)).ply" last/frame_00000.ply
+  expect_same_frames import imported.txt last 1
+}
+
+case_filter_roundtrip() {
+  # The reconstructed layers the filter adds are exactly what animc decodes from its file.
+  layer_exports "$N" "$N" recon
+  server roundtrip -i "${FRAMES[@]}" -s "$SRC/samples/compress_error.mlx" "${EXPORTS[@]}"
+  expect_ok roundtrip
+  "$ANIMC" decode sydney_24.ams -o decoded --format ply >/dev/null
+  expect_same_frames filter_roundtrip recon.txt decoded "$N"
+}
+
+case_io_roundtrip() {
+  # An .ams from animc opens through the IO plugin as one layer per frame, equal to animc decode.
+  "$ANIMC" encode "$SRC/samples/sydney/sydney_50.pc2.xz" --mesh "$SRC/samples/sydney/sydney_md2.ply" -o cli.ams >/dev/null
+  "$ANIMC" decode cli.ams -o decoded --format ply >/dev/null
+  layer_exports 0 50 opened
+  server io_open -i "$TMP/cli.ams" "${EXPORTS[@]}"
+  expect_ok io_open
+  expect_same_frames io_open opened.txt decoded 50
+
+  # Saving through the IO plugin: every layer becomes a frame, within the default error bound.
+  server io_save -i "${FRAMES[@]}" -o "$TMP/saved.ams"
+  expect_ok io_save
+  printf '%s\n' "${FRAMES[@]}" >frames.txt
+  out=$("$ANIMC" compare frames.txt saved.ams --json) || die "animc compare of saved.ams failed"
+  "$PY" -c 'import json,sys; d=json.loads(sys.argv[1]); sys.exit(0 if d["frames"]==int(sys.argv[2]) and 0 < d["max_error_rel_cube"] <= 0.01 else 1)' "$out" "$N" ||
+    check_failed "io_save: saved.ams is not the $N frames within 1 %: $out"
+}
+
+# bad_case NAME EXPECTED_TEXT FRAME_FILES...: compress.mlx on these layers fails cleanly.
+bad_case() {
+  local name=$1 text=$2
+  shift 2
+  rm -f sydney_24.ams
+  server "$name" -i "$@" -s "$SRC/samples/compress.mlx"
+  ((RC != 0)) || check_failed "$name: meshlabserver reported success"
+  expect_log "$name" "Compress Animation Layers failed: "
+  expect_log "$name" "$text"
+  [[ ! -e sydney_24.ams ]] || check_failed "$name: an .ams was written"
+  ! ls .sydney_24.ams* >/dev/null 2>&1 || check_failed "$name: a temporary file was left behind"
+}
+
+case_bad_layers() {
+  "$PY" - "${FRAMES[1]}" <<'PYEOF'
+import struct, sys
+data = open(sys.argv[1], 'rb').read()
+end = data.index(b'end_header\n') + len(b'end_header\n')
+head, n = data[:end], 342
+verts, faces = bytearray(data[end:end + 12 * n]), bytearray(data[end + 12 * n:])
+# The same frame with the first triangle's corners rotated: same vertices, other face list.
+a, b, c = struct.unpack_from('<3i', faces, 1)
+struct.pack_into('<3i', faces, 1, b, c, a)
+open('other_faces.ply', 'wb').write(head + verts + faces)
+# Frames with an infinite and a NaN coordinate.
+struct.pack_into('<f', verts, 0, float('inf'))
+open('infinite.ply', 'wb').write(head + verts + bytes(data[end + 12 * n:]))
+struct.pack_into('<f', verts, 0, float('nan'))
+open('nan.ply', 'wb').write(head + verts + bytes(data[end + 12 * n:]))
+open('tetra.ply', 'w').write('ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n'
+    'property float z\nelement face 4\nproperty list uchar int vertex_indices\nend_header\n'
+    '0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n')
+open('points.ply', 'w').write('ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n'
+    'property float z\nend_header\n0 0 0\n1 0 0\n0 1 0\n')
+PYEOF
+  bad_case one_layer "needs at least 2 layers (frames); found 1" "${FRAMES[0]}"
+  bad_case vertex_count "layer 2 ('tetra.ply'): vertex count 4 differs from" "${FRAMES[0]}" "${FRAMES[1]}" "$TMP/tetra.ply"
+  bad_case face_list "layer 1 ('other_faces.ply'): face list differs from layer 0" "${FRAMES[0]}" "$TMP/other_faces.ply"
+  bad_case infinite "layer 1 ('infinite.ply') (frame 1): vertex 0 has a NaN, infinite or huge coordinate" \
+    "${FRAMES[0]}" "$TMP/infinite.ply"
+  bad_case nan "layer 1 ('nan.ply')" "${FRAMES[0]}" "$TMP/nan.ply"
+  bad_case no_faces "empty mesh (0 triangles)" "$TMP/points.ply" "$TMP/points.ply"
+}
+
+case_bad_ams() {
+  "$ANIMC" encode "$SRC/samples/sydney/sydney_50.pc2.xz" --mesh "$SRC/samples/sydney/sydney_md2.ply" -o good.ams >/dev/null
+  head -c 3000 good.ams >truncated.ams
+  cp good.ams corrupt.ams
+  printf '\xff' | dd of=corrupt.ams bs=1 seek=2000 conv=notrunc status=none
+  for bad in truncated corrupt; do
+    server "open_$bad" -i "$TMP/$bad.ams" -o "$TMP/out_$bad.ply"
+    ((RC != 0)) || check_failed "open_$bad: meshlabserver reported success"
+    expect_log "open_$bad" "io_animstream: cannot open"
+    [[ ! -e out_$bad.ply ]] || check_failed "open_$bad: an output was written"
+  done
+  sed "s|sydney_24.ams|truncated.ams|" "$SRC/samples/import.mlx" >import_truncated.mlx
+  server import_truncated -s "$TMP/import_truncated.mlx"
+  ((RC != 0)) || check_failed "import_truncated: meshlabserver reported success"
+  expect_log import_truncated "Import Compressed Animation failed: "
+}
+
+"case_$CASE"
+((FAILURES == 0)) || { echo "$FAILURES check(s) failed" >&2; exit 1; }
+echo "meshlab $CASE: all checks passed"
