@@ -1,0 +1,117 @@
+#include "codecs/wavelet/anisotropic_predictor.h"
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <cmath>
+
+namespace animc {
+namespace {
+
+using Vec3 = Eigen::Vector3d;
+
+Vec3 at(const std::vector<double>& xyz, uint32_t v) { return Vec3(xyz[3 * size_t(v)], xyz[3 * size_t(v) + 1], xyz[3 * size_t(v) + 2]); }
+
+// Second difference across edge (j, k) with opposite vertices l1 and l2 (the triangles
+// (j, k, l1) and (k, j, l2) unfolded): the jump of the normal derivative of the piecewise
+// linear interpolant, times the edge length so that it is scale free.
+struct EdgeStencil {
+  uint32_t vertex[4];
+  double coefficient[4];
+  double weight;
+};
+
+bool secondDifference(const std::vector<double>& xyz, uint32_t j, uint32_t k, uint32_t l1, uint32_t l2,
+                      const AnisotropyParams& params, EdgeStencil& out) {
+  const Vec3 pj = at(xyz, j), pk = at(xyz, k), e = pk - pj;
+  const double length2 = e.squaredNorm();
+  if (!(length2 > 0)) return false;
+  const double length = std::sqrt(length2);
+  out.vertex[0] = j;
+  out.vertex[1] = k;
+  out.coefficient[0] = out.coefficient[1] = 0;
+  const uint32_t flaps[2] = {l1, l2};
+  for (int s = 0; s < 2; ++s) {
+    const Vec3 d = at(xyz, flaps[s]) - pj;
+    const double alpha = d.dot(e) / length2;
+    const double height = (d - alpha * e).norm();
+    if (!(height > 1e-9 * length)) return false;
+    out.vertex[2 + s] = flaps[s];
+    out.coefficient[2 + s] = length / height;
+    out.coefficient[0] -= (1 - alpha) * length / height;
+    out.coefficient[1] -= alpha * length / height;
+  }
+  const Vec3 n1 = e.cross(at(xyz, l1) - pj), n2 = (pj - pk).cross(at(xyz, l2) - pk);
+  const double norms = n1.norm() * n2.norm();
+  out.weight = edgeWeight(norms > 0 ? n1.dot(n2) / norms : 1.0, params);
+  return true;
+}
+
+// Accumulates -w_e c_{e,v} c_{e,m} into the stencil of v (a_{v,m} of the paper) and
+// w_e c_{e,v}^2 into the normaliser A_v.
+void accumulate(const EdgeStencil& e, uint32_t v, std::vector<std::pair<uint32_t, double>>& terms,
+                double& normaliser) {
+  double cv = 0;
+  for (int i = 0; i < 4; ++i)
+    if (e.vertex[i] == v) cv += e.coefficient[i];
+  normaliser += e.weight * cv * cv;
+  for (int i = 0; i < 4; ++i) {
+    if (e.vertex[i] == v) continue;
+    const double a = -e.weight * cv * e.coefficient[i];
+    bool merged = false;
+    for (auto& t : terms)
+      if (t.first == e.vertex[i]) {
+        t.second += a;
+        merged = true;
+      }
+    if (!merged) terms.emplace_back(e.vertex[i], a);
+  }
+}
+
+void appendStencil(const ProgressiveMesh& pm, const Collapse& c, const std::vector<double>& xyz,
+                   const AnisotropyParams& params, PredictionStencils& out) {
+  const uint32_t* ring = &pm.ring[c.ring_begin];
+  const uint32_t* flap = &pm.flap[c.ring_begin];
+  const size_t k = c.ring_size;
+  std::vector<std::pair<uint32_t, double>> terms;
+  double normaliser = 0;
+  EdgeStencil e;
+  for (size_t i = 0; i < k; ++i) {
+    const uint32_t next = ring[(i + 1) % k], previous = ring[(i + k - 1) % k];
+    // Spoke (v, ring[i]) between triangles (v, ring[i], next) and (v, previous, ring[i]).
+    if (secondDifference(xyz, c.vertex, ring[i], next, previous, params, e)) accumulate(e, c.vertex, terms, normaliser);
+    // Link edge (ring[i], next) between (v, ring[i], next) and the flap triangle beyond it.
+    if (flap[i] != kNoVertex && secondDifference(xyz, ring[i], next, c.vertex, flap[i], params, e))
+      accumulate(e, c.vertex, terms, normaliser);
+  }
+  double sum = 0;
+  for (const auto& t : terms) sum += t.second;
+  const bool usable = normaliser > 0 && std::isfinite(normaliser) && std::fabs(sum - normaliser) <= 1e-6 * normaliser;
+  if (usable) {
+    for (const auto& t : terms) {
+      out.vertex.push_back(t.first);
+      out.weight.push_back(t.second / normaliser);
+    }
+  } else {  // degenerate geometry: the plain average of the ring
+    for (size_t i = 0; i < k; ++i) {
+      out.vertex.push_back(ring[i]);
+      out.weight.push_back(1.0 / double(k));
+    }
+  }
+  out.first.push_back(uint32_t(out.vertex.size()));
+}
+
+}  // namespace
+
+double edgeWeight(double normal_dot, const AnisotropyParams& params) {
+  return params.epsilon + std::exp((normal_dot - 1.0) / (2.0 * params.sigma * params.sigma));
+}
+
+PredictionStencils buildPredictor(const ProgressiveMesh& pm, const std::vector<double>& parametric_xyz,
+                                  const AnisotropyParams& params) {
+  PredictionStencils out;
+  out.first.push_back(0);
+  for (const Collapse& c : pm.collapses) appendStencil(pm, c, parametric_xyz, params, out);
+  return out;
+}
+
+}  // namespace animc
