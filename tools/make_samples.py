@@ -21,10 +21,11 @@ def main():
     with lzma.open(os.path.join(DST, 'sydney_50.pc2.xz'), 'wb', preset=9) as f:
         f.write(out)
     shutil.copyfile(os.path.join(SRC, 'sydney_md2.ply'), os.path.join(DST, 'sydney_md2.ply'))
-    write_ply_frames(os.path.join(SRC, 'sydney_md2.ply'), points, body)
+    write_ply_frames(os.path.join(SRC, 'sydney_md2.ply'), points, body, os.path.join(DST, 'frames'), PLY_FRAMES)
 
-def write_ply_frames(mesh_path, points, body):
-    """Each frame: the mesh's own binary PLY with its vertex block replaced (x y z floats)."""
+def write_ply_frames(mesh_path, points, body, folder, count):
+    """Writes frames 0..count-1 of body (count * points * 12 bytes of little-endian x y z floats)
+    to folder/frame_NNNNN.ply: each the mesh's own binary PLY with its vertex block replaced."""
     with open(mesh_path, 'rb') as f:
         mesh = f.read()
     end = mesh.index(b'end_header\n') + len(b'end_header\n')
@@ -32,10 +33,9 @@ def write_ply_frames(mesh_path, points, body):
     if b'binary_little_endian' not in header or b'element vertex %d\n' % points not in header:
         sys.exit('unexpected PLY header in ' + mesh_path)
     faces = mesh[end + points * 12:]
-    folder = os.path.join(DST, 'frames')
     shutil.rmtree(folder, ignore_errors=True)
     os.makedirs(folder)
-    for i in range(PLY_FRAMES):
+    for i in range(count):
         vertices = body[i * points * 12:(i + 1) * points * 12]
         with open(os.path.join(folder, 'frame_%05d.ply' % i), 'wb') as f:
             f.write(header + vertices + faces)

@@ -1,0 +1,42 @@
+// The wavelet transform of the paper (section 3.2) over a progressive mesh: one detail per
+// removed vertex, the difference between its position and the anisotropic prediction from
+// the coarser level, in the local frame of its coarser one ring. No update step, so the
+// coarse vertices keep their positions and the inverse is exact up to rounding.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "codecs/wavelet/anisotropic_predictor.h"
+#include "codecs/wavelet/progressive_mesh.h"
+#include "core/sequence.h"
+
+namespace animc {
+
+class WaveletTransform {
+ public:
+  WaveletTransform(const Topology& topology, const std::vector<double>& parametric_xyz,
+                   const HierarchySettings& settings = {});
+
+  // coefficients (3 * N, vertex indexed): a base vertex keeps its position; a removed vertex
+  // holds its detail as (normal, tangent, bitangent) components.
+  void forward(const double* xyz, std::vector<double>& coefficients) const;
+  void inverse(const std::vector<double>& coefficients, std::vector<double>& xyz) const;
+
+  const ProgressiveMesh& hierarchy() const { return pm_; }
+  // sqrt(one-ring area / mean one-ring area) on the parametric mesh, at the level where the
+  // vertex is removed (base vertices: on the base mesh): the paper's L2 normalisation.
+  const std::vector<double>& weights() const { return weights_; }
+  // Level of each vertex: collapse batch number, or -1 for base vertices.
+  const std::vector<int>& levelOf() const { return level_of_; }
+
+ private:
+  void computeWeights(const Topology& topology, const std::vector<double>& xyz);
+
+  ProgressiveMesh pm_;
+  PredictionStencils stencils_;
+  std::vector<double> cosines_, sines_;  // tangent masks, aligned with pm_.ring
+  std::vector<double> weights_;
+  std::vector<int> level_of_;
+};
+
+}  // namespace animc
