@@ -87,6 +87,17 @@ case_scripts() {
   echo imported_last.ply >imported.txt
   mkdir -p last && cp "decoded/frame_000$((N - 1)).ply" last/frame_00000.ply
   expect_same_frames import imported.txt last 1
+
+  # A frame range: frames 5..9 become five layers, the last of them frame 9.
+  sed -e 's|name="FirstFrame" value="0"|name="FirstFrame" value="5"|' \
+      -e 's|name="LastFrame" value="-1"|name="LastFrame" value="9"|' "$SRC/samples/import.mlx" >range.mlx
+  grep -q 'value="5"' range.mlx || die "range.mlx: the sample's FirstFrame parameter changed"
+  server import_range -s "$TMP/range.mlx" -o "$TMP/range_last.ply" -l x
+  expect_ok import_range
+  expect_log import_range "Imported 5 frames of 342 vertices"
+  echo range_last.ply >range.txt
+  mkdir -p ninth && cp decoded/frame_00009.ply ninth/frame_00000.ply
+  expect_same_frames import_range range.txt ninth 1
 }
 
 case_filter_roundtrip() {
@@ -175,6 +186,11 @@ case_bad_ams() {
   server import_truncated -s "$TMP/import_truncated.mlx"
   ((RC != 0)) || check_failed "import_truncated: meshlabserver reported success"
   expect_log import_truncated "Import Compressed Animation failed: "
+  sed -e 's|sydney_24.ams|good.ams|' -e 's|name="LastFrame" value="-1"|name="LastFrame" value="50"|' \
+    "$SRC/samples/import.mlx" >import_past_end.mlx
+  server import_past_end -s "$TMP/import_past_end.mlx"
+  ((RC != 0)) || check_failed "import_past_end: meshlabserver reported success"
+  expect_log import_past_end "frames 0 to 50 asked for, but good.ams has frames 0 to 49"
 }
 
 "case_$CASE"
