@@ -94,14 +94,6 @@ void fillMesh(MeshModel& layer, const Topology& topology, const float* xyz) {
   layer.UpdateBoxAndNormals();
 }
 
-void setPositions(MeshModel& layer, const float* xyz) {
-  for (CVertexO& v : layer.cm.vert) {
-    v.P() = Point3m(xyz[0], xyz[1], xyz[2]);
-    xyz += 3;
-  }
-  layer.UpdateBoxAndNormals();
-}
-
 QString frameLabel(int64_t frame) { return QString("frame_%1").arg(frame, 5, 10, QChar('0')); }
 
 Result<QList<MeshModel*>> importAms(const std::string& path, const AmsImport& range,

@@ -43,10 +43,6 @@ class LayerFrameSource final : public FrameSource {
 // triangles. Updates the bounding box and normals.
 void fillMesh(MeshModel& layer, const Topology& topology, const float* xyz);
 
-// Replaces the positions of a layer made by fillMesh (same vertex count) and refreshes its box
-// and normals.
-void setPositions(MeshModel& layer, const float* xyz);
-
 // Reads frames [first, last] of an .ams file as layers: the first one into `first_layer`
 // (which must be empty; null: a new layer), the others into new layers added to md (which may
 // be null only when first_layer is the one layer needed). Layers

@@ -1,0 +1,26 @@
+// The wavelet codec (Guskov & Khodakovsky 2004) as seen by the container. Three frame types:
+// a parametric frame (the first frame of every group: positions through the static
+// IFrameCoder, then the hierarchy is rebuilt on its reconstruction), and detail I- and
+// P-frames (bitplane-coded wavelet coefficients, P-frames against the previous frame's
+// reconstructed coefficients). docs/wavelet.md describes the payloads.
+#pragma once
+#include <memory>
+
+#include "codecs/frame_codec.h"
+#include "codecs/wavelet/options.h"
+
+namespace animc {
+
+enum class WaveletFrameType : uint8_t { kParametric = 0, kDetailIntra = 1, kDetailInter = 2 };
+
+std::unique_ptr<FrameEncoder> makeWaveletEncoder(const WaveletOptions& options, const Topology& topology);
+// control: progressive decoding (fewer bitplanes, fewer bytes per frame); the default
+// decodes everything. A P-frame decoded with less than the encoder sent drifts from the
+// encoder's reconstruction until the next parametric frame.
+std::unique_ptr<FrameDecoder> makeWaveletDecoder(const WaveletOptions& options, const Topology& topology,
+                                                 const WaveletDecodeControl& control = {});
+
+// Grid step of a parametric frame with the given largest bounding-box side.
+double parametricStep(const WaveletOptions& options, double largest_side);
+
+}  // namespace animc
