@@ -7,6 +7,11 @@
 namespace animc::meshlab {
 namespace {
 
+// The default of MeshLab's "Default Face number per smooth rendering" setting, which the GUI
+// applies to the layer it opened itself: below it a mesh is shaded per face. (The setting's
+// value lives in the GUI's main window, out of a plugin's reach.)
+constexpr size_t kMinFacesForSmoothShading = 50000;
+
 // The document's shared GL context; the GUI creates it without a parent, so it is found among
 // the application's widgets rather than as a child of the main window.
 MLSceneGLSharedDataContext* sharedContextOf(MeshDocument& md) {
@@ -35,7 +40,7 @@ void setUpRenderingOfAddedLayers(MeshDocument& md, const QList<MeshModel*>& laye
   for (QGLContext* view : viewContexts()) {
     for (MeshModel* layer : layers) {
       MLRenderingData data;
-      MLPoliciesStandAloneFunctions::suggestedDefaultPerViewRenderingData(layer, data);
+      MLPoliciesStandAloneFunctions::suggestedDefaultPerViewRenderingData(layer, data, kMinFacesForSmoothShading);
       shared->setRenderingDataPerMeshView(layer->id(), view, data);
     }
   }

@@ -46,6 +46,7 @@ bool IoAnimStreamPlugin::open(const QString&, const QString& fileName, MeshModel
   auto layers = importAms(fileName.toStdString(), range, md, &m, progressFrom(cb));
   if (!layers.ok()) return fail("open", fileName, layers.status().message());
   if (md != nullptr) setUpRenderingOfAddedLayers(*md, layers.value().mid(1));
+  if (cb != nullptr) cb(100, "");  // the GUI would keep showing "decoding frames" otherwise
   Log("Opened %s: frames %lld to %lld as %d layers of %d vertices", qUtf8Printable(fileName),
       (long long)range.first_frame, (long long)(range.first_frame + layers.value().size() - 1),
       layers.value().size(), m.cm.vn);
