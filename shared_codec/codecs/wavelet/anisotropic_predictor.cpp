@@ -83,9 +83,13 @@ void appendStencil(const ProgressiveMesh& pm, const Collapse& c, const std::vect
     if (flap[i] != kNoVertex && secondDifference(xyz, ring[i], next, c.vertex, flap[i], params, e))
       accumulate(e, c.vertex, terms, normaliser);
   }
-  double sum = 0;
-  for (const auto& t : terms) sum += t.second;
-  const bool usable = normaliser > 0 && std::isfinite(normaliser) && std::fabs(sum - normaliser) <= 1e-6 * normaliser;
+  double sum = 0, l1 = 0;
+  for (const auto& t : terms) {
+    sum += t.second;
+    l1 += std::fabs(t.second);
+  }
+  const bool usable = normaliser > 0 && std::isfinite(normaliser) &&
+                      std::fabs(sum - normaliser) <= 1e-6 * normaliser && l1 <= params.max_stencil_l1 * normaliser;
   if (usable) {
     for (const auto& t : terms) {
       out.vertex.push_back(t.first);

@@ -13,6 +13,10 @@ namespace animc {
 struct AnisotropyParams {
   double epsilon = 0.1;  // the paper's epsilon_w
   double sigma = 0.3;    // the paper's sigma_w
+  // A stencil whose weights' absolute values sum above this extrapolates too far (thin
+  // triangles on coarse levels) and would amplify quantisation errors level after level;
+  // such vertices fall back to the average of their ring (docs/wavelet.md).
+  double max_stencil_l1 = 3.0;
 };
 
 // Stencil of collapse i: prediction = sum over s in [first[i], first[i+1]) of

@@ -15,10 +15,12 @@ constexpr uint32_t kMaxMagnitude = (1u << kMaxBitplanes) - 1;
 // Worst case of what finish() adds to the committed bytes (cache, a rare 0xFF run, 4 bytes).
 constexpr uint64_t kFlushSlack = 6;
 
-// Significance models, one per (plane, class): the odds of becoming significant change
-// sharply from plane to plane and between coarse and fine levels.
+// Significance models: the odds of becoming significant change sharply from plane to plane
+// and between coarse and fine levels, and rise when the vertex's other components or the
+// parent already are significant.
+constexpr int kNeighbourContexts = 6;
 struct SignificanceModels {
-  BitModel model[kMaxBitplanes][kBitplaneClasses];
+  BitModel model[kMaxBitplanes][kBitplaneClasses][kNeighbourContexts];
 };
 
 // The state both sides keep per coefficient: the magnitude bits known so far and the sign.
@@ -46,6 +48,15 @@ void reconstructAll(const CoefficientState& s, int top, int planes, size_t stop,
   }
 }
 
+int neighbourContext(const std::vector<uint32_t>& known, const BitplaneLayout& layout, size_t j) {
+  const size_t group = j - j % 3;
+  int siblings = 0;
+  for (size_t i = group; i < group + 3; ++i) siblings += i != j && known[i] != 0;
+  const uint32_t parent = layout.parents[j];
+  const bool parent_significant = parent != kNoParent && known[parent] != 0;
+  return 2 * siblings + (parent_significant ? 1 : 0);
+}
+
 int bitLength(uint32_t v) { return v == 0 ? 0 : 32 - __builtin_clz(v); }
 
 uint64_t headerEstimate(int planes, bool checkpoints) {
@@ -54,9 +65,10 @@ uint64_t headerEstimate(int planes, bool checkpoints) {
 
 }  // namespace
 
-void encodeBitplanes(const double* values, const uint8_t* classes, size_t count,
+void encodeBitplanes(const double* values, const BitplaneLayout& layout,
                      const BitplaneEncodeSettings& settings, std::vector<uint8_t>& out,
                      std::vector<double>& decoded) {
+  const size_t count = layout.count;
   std::vector<uint32_t> magnitude(count);
   uint32_t largest = 0;
   for (size_t j = 0; j < count; ++j) {
@@ -92,7 +104,7 @@ void encodeBitplanes(const double* values, const uint8_t* classes, size_t count,
       if (state.known[j] != 0) {
         rc.encodeRaw(uint32_t(bit), 1);
       } else {
-        rc.encode(models->model[p][classes[j]], bit);
+        rc.encode(models->model[p][layout.classes[j]][neighbourContext(state.known, layout, j)], bit);
         if (bit) {
           state.negative[j] = values[j] < 0;
           rc.encodeRaw(state.negative[j], 1);
@@ -121,9 +133,10 @@ void encodeBitplanes(const double* values, const uint8_t* classes, size_t count,
   reconstructAll(state, top, planes, stop, settings.step, decoded);
 }
 
-Status decodeBitplanes(ByteReader& in, const uint8_t* classes, size_t count,
+Status decodeBitplanes(ByteReader& in, const BitplaneLayout& layout,
                        const BitplaneDecodeSettings& settings, std::vector<double>& decoded,
                        int* planes_decoded) {
+  const size_t count = layout.count;
   if (planes_decoded) *planes_decoded = 0;
   ANIMC_ASSIGN_OR_RETURN(uint8_t head, in.u8("Plane_Count"));
   const int top = head & ~kHasCheckpoints;
@@ -170,7 +183,7 @@ Status decodeBitplanes(ByteReader& in, const uint8_t* classes, size_t count,
       if (state.known[j] != 0) {
         bit = rc.decodeRaw(1);
       } else {
-        bit = uint32_t(rc.decode(models->model[p][classes[j]]));
+        bit = uint32_t(rc.decode(models->model[p][layout.classes[j]][neighbourContext(state.known, layout, j)]));
         if (bit) state.negative[j] = uint8_t(rc.decodeRaw(1));
       }
       state.known[j] = (state.known[j] << 1) | bit;

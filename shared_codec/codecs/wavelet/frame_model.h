@@ -2,19 +2,25 @@
 // parametric mesh, the coding order and contexts of the coefficients, and the last
 // reconstructed coefficients (the reference of P-frames, closed loop).
 #pragma once
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <vector>
 
+#include "codecs/wavelet/bitplane_coder.h"
 #include "codecs/wavelet/options.h"
 #include "codecs/wavelet/wavelet_transform.h"
 #include "core/sequence.h"
 
 namespace animc {
 
+// Extent (max - min) of x y z triples along each axis; zeros when there are none.
+std::array<double, 3> boxExtent(const std::vector<double>& xyz);
+
 enum class DetailReference : uint8_t {
   kIntra,  // base vertices relative to the parametric mesh's, details relative to zero
-  kInter,  // relative to the previous frame's reconstructed coefficients
+  kInter,  // relative to the previous frame's reconstructed coefficients (the paper's P-frame)
+  kLinear, // relative to their linear extrapolation from the two previous frames
 };
 
 class WaveletFrameModel {
@@ -25,9 +31,12 @@ class WaveletFrameModel {
   // also the reconstruction of that frame.
   void setParametric(const std::vector<double>& parametric_xyz);
   bool ready() const { return transform_ != nullptr; }
+  // Whether a reference is available (kLinear needs two reconstructed frames since the last
+  // parametric frame).
+  bool hasReference(DetailReference ref) const;
 
   const WaveletTransform& transform() const { return *transform_; }
-  const std::vector<uint8_t>& classes() const { return classes_; }
+  BitplaneLayout layout() const { return BitplaneLayout{classes_.data(), parents_.data(), classes_.size()}; }
   size_t coefficientCount() const { return classes_.size(); }
   double step() const { return step_; }
 
@@ -42,16 +51,16 @@ class WaveletFrameModel {
   const std::vector<double>& reconstruction() const { return reconstruction_; }
 
  private:
-  const std::vector<double>& referenceOf(DetailReference ref) const {
-    return ref == DetailReference::kIntra ? intra_reference_ : previous_;
-  }
+  const std::vector<double>& referenceOf(DetailReference ref) const;
 
   WaveletOptions options_;
   const Topology& topology_;
   std::unique_ptr<WaveletTransform> transform_;
   std::vector<uint32_t> order_;     // vertices in coding order: base, then coarse to fine
-  std::vector<uint8_t> classes_;    // significance context of each coded coefficient
-  std::vector<double> intra_reference_, previous_, reconstruction_;
+  std::vector<uint8_t> classes_;    // significance class of each coded coefficient
+  std::vector<uint32_t> parents_;   // the same component of the collapse target, coded earlier
+  std::vector<double> intra_reference_, previous_, before_previous_, extrapolated_, reconstruction_;
+  int history_ = 0;  // reconstructed frames since the last parametric frame (capped at 2)
   double step_ = 1;
 };
 

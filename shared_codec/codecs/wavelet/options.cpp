@@ -20,7 +20,7 @@ void WaveletOptions::write(ByteWriter& w) const {
   w.f64(bits_per_vertex);
   w.f64(step);
   w.u8(uint8_t(parametric_bits));
-  w.u8(uint8_t((temporal_prediction ? 1 : 0) | (truncatable ? 2 : 0)));
+  w.u8(uint8_t((temporal_prediction ? 1 : 0) | (truncatable ? 2 : 0) | (local_frames ? 4 : 0)));
 }
 
 Result<WaveletOptions> WaveletOptions::read(ByteReader& r) {
@@ -29,10 +29,11 @@ Result<WaveletOptions> WaveletOptions::read(ByteReader& r) {
   ANIMC_ASSIGN_OR_RETURN(o.step, r.f64("Wavelet_Step"));
   ANIMC_ASSIGN_OR_RETURN(uint8_t bits, r.u8("Parametric_Bits"));
   ANIMC_ASSIGN_OR_RETURN(uint8_t flags, r.u8("Wavelet_Flags"));
-  if (flags & ~3u) return corrupt("codec parameters: reserved wavelet flag bits set");
+  if (flags & ~7u) return corrupt("codec parameters: reserved wavelet flag bits set");
   o.parametric_bits = bits;
   o.temporal_prediction = flags & 1;
   o.truncatable = flags & 2;
+  o.local_frames = flags & 4;
   if (r.remaining() != 0) return corrupt("codec parameters: " + std::to_string(r.remaining()) + " unread bytes");
   Status s = o.validate();
   if (!s.ok()) return corrupt("codec parameters: " + s.message());

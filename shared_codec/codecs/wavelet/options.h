@@ -21,6 +21,10 @@ struct WaveletOptions {
   int parametric_bits = 14;
   // false: every detail frame is an I-frame (the paper's "I-frames only" figures).
   bool temporal_prediction = true;
+  // Details in the local frame of their coarser ring (the paper) rather than world axes.
+  // Off by default: on chickenCrossing the frames' rotation by quantisation errors of the
+  // coarser levels multiplies the error 15-25x at the same step (docs/wavelet.md).
+  bool local_frames = false;
   // Write the per-bitplane byte checkpoints that let a payload cut at any byte decode to its
   // last complete bitplane (about 1.5 bytes per bitplane per frame).
   bool truncatable = true;

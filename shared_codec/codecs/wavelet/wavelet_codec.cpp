@@ -10,14 +10,18 @@
 namespace animc {
 namespace {
 
-double largestSide(const std::vector<double>& xyz) {
-  if (xyz.empty()) return 0;
-  double lo[3] = {xyz[0], xyz[1], xyz[2]}, hi[3] = {xyz[0], xyz[1], xyz[2]};
-  for (size_t i = 0; i < xyz.size(); ++i) {
-    lo[i % 3] = std::min(lo[i % 3], xyz[i]);
-    hi[i % 3] = std::max(hi[i % 3], xyz[i]);
+uint8_t frameTypeOf(DetailReference ref) {
+  switch (ref) {
+    case DetailReference::kIntra: return uint8_t(WaveletFrameType::kDetailIntra);
+    case DetailReference::kInter: return uint8_t(WaveletFrameType::kDetailInter);
+    case DetailReference::kLinear: return uint8_t(WaveletFrameType::kDetailLinear);
   }
-  return std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
+  return 0;
+}
+
+double largestSide(const std::vector<double>& xyz) {
+  const std::array<double, 3> e = boxExtent(xyz);
+  return std::max({e[0], e[1], e[2]});
 }
 
 class WaveletEncoder final : public FrameEncoder {
@@ -30,27 +34,37 @@ class WaveletEncoder final : public FrameEncoder {
     stats = FrameCodingStats();
     if (intra || !model_.ready()) return encodeParametric(out, stats);
     model_.transform().forward(x_.data(), coefficients_);
-    DetailReference ref = DetailReference::kIntra;
-    if (options_.temporal_prediction &&
-        model_.residualEnergy(coefficients_, DetailReference::kInter) <=
-            model_.residualEnergy(coefficients_, DetailReference::kIntra))
-      ref = DetailReference::kInter;
-    out.push_back(uint8_t(ref == DetailReference::kIntra ? WaveletFrameType::kDetailIntra
-                                                         : WaveletFrameType::kDetailInter));
+    const DetailReference ref = chooseReference();
+    out.push_back(frameTypeOf(ref));
     model_.residual(coefficients_, ref, residual_);
     BitplaneEncodeSettings settings;
     settings.step = model_.step();
     settings.checkpoints = options_.truncatable;
     if (options_.bits_per_vertex > 0)
-      settings.byte_budget = std::max<uint64_t>(2, uint64_t(options_.bits_per_vertex * topology_.vertex_count / 8) - 1);
-    encodeBitplanes(residual_.data(), model_.classes().data(), residual_.size(), settings, out, decoded_);
+      settings.byte_budget = uint64_t(std::max(2.0, options_.bits_per_vertex * topology_.vertex_count / 8 - 1));
+    encodeBitplanes(residual_.data(), model_.layout(), settings, out, decoded_);
     model_.accept(decoded_, ref);
-    stats.cells = residual_.size();
   }
 
   const std::vector<double>& reconstruction() const override { return model_.reconstruction(); }
 
  private:
+  // The reference leaving the smallest weighted residual (a proxy for its rate).
+  DetailReference chooseReference() const {
+    DetailReference best = DetailReference::kIntra;
+    if (!options_.temporal_prediction) return best;
+    double best_energy = model_.residualEnergy(coefficients_, best);
+    for (DetailReference ref : {DetailReference::kInter, DetailReference::kLinear}) {
+      if (!model_.hasReference(ref)) continue;
+      const double energy = model_.residualEnergy(coefficients_, ref);
+      if (energy < best_energy) {
+        best = ref;
+        best_energy = energy;
+      }
+    }
+    return best;
+  }
+
   void encodeParametric(std::vector<uint8_t>& out, FrameCodingStats& stats) {
     stats.intra = true;
     out.push_back(uint8_t(WaveletFrameType::kParametric));
@@ -72,19 +86,19 @@ class WaveletDecoder final : public FrameDecoder {
       : control_(control), topology_(topology), static_coder_(topology_), model_(options, topology_) {}
 
   Status decodeFrame(ByteReader payload, std::vector<float>& xyz, bool* intra) override {
-    if (control_.max_payload_bytes > 0 && payload.remaining() > control_.max_payload_bytes)
-      payload = ByteReader(payload.cursor(), size_t(control_.max_payload_bytes), payload.offset());
     ANIMC_ASSIGN_OR_RETURN(uint8_t type, payload.u8("Frame_Type"));
+    // Progressive decoding cuts detail frames only: a parametric frame is needed whole.
+    if (type != uint8_t(WaveletFrameType::kParametric) && control_.max_payload_bytes > 0 &&
+        payload.remaining() + 1 > control_.max_payload_bytes)
+      payload = ByteReader(payload.cursor(), size_t(std::max<uint64_t>(control_.max_payload_bytes, 1) - 1), payload.offset());
     if (type == uint8_t(WaveletFrameType::kParametric)) {
       std::vector<double> recon;
       ANIMC_RETURN_IF_ERROR(static_coder_.decode(payload, recon));
-      if (payload.remaining() != 0) return corrupt("parametric frame: bytes after the coded positions");
       model_.setParametric(recon);
-    } else if (type == uint8_t(WaveletFrameType::kDetailIntra) || type == uint8_t(WaveletFrameType::kDetailInter)) {
-      if (!model_.ready()) return corrupt("detail frame without a preceding parametric frame");
-      ANIMC_RETURN_IF_ERROR(decodeDetails(payload, type == uint8_t(WaveletFrameType::kDetailIntra)
-                                                       ? DetailReference::kIntra
-                                                       : DetailReference::kInter));
+    } else if (type <= uint8_t(WaveletFrameType::kDetailLinear)) {
+      const DetailReference ref = DetailReference(type - 1);
+      if (!model_.hasReference(ref)) return corrupt("detail frame without the frames it refers to");
+      ANIMC_RETURN_IF_ERROR(decodeDetails(payload, ref));
     } else {
       return corrupt("unknown wavelet frame type " + std::to_string(type));
     }
@@ -97,8 +111,7 @@ class WaveletDecoder final : public FrameDecoder {
     BitplaneDecodeSettings settings;
     settings.step = model_.step();
     settings.max_planes = control_.max_bitplanes;
-    ANIMC_RETURN_IF_ERROR(decodeBitplanes(payload, model_.classes().data(), model_.coefficientCount(),
-                                          settings, decoded_));
+    ANIMC_RETURN_IF_ERROR(decodeBitplanes(payload, model_.layout(), settings, decoded_));
     model_.accept(decoded_, ref);
     return Status();
   }

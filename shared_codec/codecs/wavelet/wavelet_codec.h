@@ -11,7 +11,7 @@
 
 namespace animc {
 
-enum class WaveletFrameType : uint8_t { kParametric = 0, kDetailIntra = 1, kDetailInter = 2 };
+enum class WaveletFrameType : uint8_t { kParametric = 0, kDetailIntra = 1, kDetailInter = 2, kDetailLinear = 3 };
 
 std::unique_ptr<FrameEncoder> makeWaveletEncoder(const WaveletOptions& options, const Topology& topology);
 // control: progressive decoding (fewer bitplanes, fewer bytes per frame); the default

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "codecs/wavelet/anisotropic_predictor.h"
+#include "codecs/wavelet/local_frame.h"
 #include "codecs/wavelet/progressive_mesh.h"
 #include "core/sequence.h"
 
@@ -14,8 +15,10 @@ namespace animc {
 
 class WaveletTransform {
  public:
+  // local_frames = false keeps details in world axes (docs/wavelet.md: local frames turn
+  // position errors of the coarse levels into detail errors, level after level).
   WaveletTransform(const Topology& topology, const std::vector<double>& parametric_xyz,
-                   const HierarchySettings& settings = {});
+                   bool local_frames = true, const HierarchySettings& settings = {});
 
   // coefficients (3 * N, vertex indexed): a base vertex keeps its position; a removed vertex
   // holds its detail as (normal, tangent, bitangent) components.
@@ -23,8 +26,9 @@ class WaveletTransform {
   void inverse(const std::vector<double>& coefficients, std::vector<double>& xyz) const;
 
   const ProgressiveMesh& hierarchy() const { return pm_; }
-  // sqrt(one-ring area / mean one-ring area) on the parametric mesh, at the level where the
-  // vertex is removed (base vertices: on the base mesh): the paper's L2 normalisation.
+  // sqrt(one-ring area where the vertex is removed (base vertices: on the base mesh) / its
+  // one-ring area on the full mesh), on the parametric mesh: the paper's L2 normalisation,
+  // measured in vertices rather than area because the codec is judged per vertex (KG).
   const std::vector<double>& weights() const { return weights_; }
   // Level of each vertex: collapse batch number, or -1 for base vertices.
   const std::vector<int>& levelOf() const { return level_of_; }
@@ -32,6 +36,9 @@ class WaveletTransform {
  private:
   void computeWeights(const Topology& topology, const std::vector<double>& xyz);
 
+  LocalFrame frameOf(const Collapse& c, const double* xyz) const;
+
+  bool local_frames_;
   ProgressiveMesh pm_;
   PredictionStencils stencils_;
   std::vector<double> cosines_, sines_;  // tangent masks, aligned with pm_.ring

@@ -1,0 +1,159 @@
+// The progressive bitplane coder: exact to the step, progressive by plane and by byte,
+// within its budget, and safe on garbage.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "codecs/wavelet/bitplane_coder.h"
+
+namespace animc {
+namespace {
+
+struct Coefficients {
+  std::vector<double> values;
+  std::vector<uint8_t> classes;
+  std::vector<uint32_t> parents;
+  BitplaneLayout layout() const { return BitplaneLayout{classes.data(), parents.data(), values.size()}; }
+};
+
+// Laplacian-like values, larger for the first (coarse) groups, parents pointing backwards.
+Coefficients makeCoefficients(size_t groups, uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::exponential_distribution<double> magnitude(1.0);
+  Coefficients c;
+  for (size_t g = 0; g < groups; ++g)
+    for (int a = 0; a < 3; ++a) {
+      const double scale = 50.0 / (1.0 + double(g) / 8.0);
+      c.values.push_back((rng() & 1 ? 1 : -1) * scale * magnitude(rng));
+      c.classes.push_back(uint8_t(1 + (g % 7) * 2 + (a != 0)));
+      c.parents.push_back(g == 0 ? kNoParent : uint32_t(3 * (g / 2) + a));
+    }
+  return c;
+}
+
+double squaredError(const std::vector<double>& a, const std::vector<double>& b) {
+  double s = 0;
+  for (size_t i = 0; i < a.size(); ++i) s += (a[i] - b[i]) * (a[i] - b[i]);
+  return s;
+}
+
+Status decode(const std::vector<uint8_t>& bytes, size_t size, const Coefficients& c, int max_planes,
+              std::vector<double>& out, int* planes = nullptr, double step = 0.01) {
+  std::vector<uint8_t> exact(bytes.begin(), bytes.begin() + size);  // exact-size copy for ASan
+  ByteReader in(exact.data(), exact.size());
+  BitplaneDecodeSettings settings;
+  settings.step = step;
+  settings.max_planes = max_planes;
+  return decodeBitplanes(in, c.layout(), settings, out, planes);
+}
+
+TEST(WaveletBitplane, FullStreamIsExactToTheStepAndMatchesTheEncoder) {
+  const Coefficients c = makeCoefficients(400, 1);
+  BitplaneEncodeSettings settings;
+  settings.step = 0.01;
+  std::vector<uint8_t> bytes;
+  std::vector<double> encoder_view, decoded;
+  encodeBitplanes(c.values.data(), c.layout(), settings, bytes, encoder_view);
+  ASSERT_TRUE(decode(bytes, bytes.size(), c, 0, decoded).ok());
+  EXPECT_EQ(decoded, encoder_view);
+  for (size_t i = 0; i < c.values.size(); ++i) EXPECT_LE(std::fabs(decoded[i] - c.values[i]), 0.01);
+}
+
+TEST(WaveletBitplane, ErrorFallsWithEveryBitplaneDecoded) {
+  const Coefficients c = makeCoefficients(400, 2);
+  BitplaneEncodeSettings settings;
+  settings.step = 0.01;
+  std::vector<uint8_t> bytes;
+  std::vector<double> full, decoded;
+  encodeBitplanes(c.values.data(), c.layout(), settings, bytes, full);
+  double previous = squaredError(c.values, std::vector<double>(c.values.size(), 0.0));
+  const int planes = bytes[0] & 0x7f;
+  ASSERT_GT(planes, 8);
+  for (int p = 1; p <= planes; ++p) {
+    int used = 0;
+    ASSERT_TRUE(decode(bytes, bytes.size(), c, p, decoded, &used).ok());
+    EXPECT_EQ(used, p);
+    const double error = squaredError(c.values, decoded);
+    EXPECT_LT(error, previous) << "plane " << p;
+    previous = error;
+  }
+}
+
+TEST(WaveletBitplane, EveryTruncationDecodesAndMoreBytesNeverHurt) {
+  const Coefficients c = makeCoefficients(150, 3);
+  BitplaneEncodeSettings settings;
+  settings.step = 0.01;
+  std::vector<uint8_t> bytes;
+  std::vector<double> full, decoded;
+  encodeBitplanes(c.values.data(), c.layout(), settings, bytes, full);
+  double previous = INFINITY;
+  int decodable = 0;
+  for (size_t size = 0; size <= bytes.size(); ++size) {
+    const Status s = decode(bytes, size, c, 0, decoded);
+    if (!s.ok()) {  // only a cut inside the block's header may fail, as truncated
+      EXPECT_EQ(s.code(), StatusCode::kTruncated) << size << ": " << s.message();
+      EXPECT_EQ(decodable, 0) << "a longer prefix failed after a shorter one decoded: " << size;
+      continue;
+    }
+    ++decodable;
+    const double error = squaredError(c.values, decoded);
+    EXPECT_LE(error, previous * (1 + 1e-12)) << size;
+    previous = error;
+  }
+  EXPECT_GT(decodable, int(bytes.size()) - 40);
+  EXPECT_EQ(decoded, full);
+}
+
+TEST(WaveletBitplane, BudgetIsRespectedAndMoreBudgetMeansLessError) {
+  const Coefficients c = makeCoefficients(500, 4);
+  double previous = INFINITY;
+  for (uint64_t budget : {40, 100, 250, 600, 1500}) {
+    BitplaneEncodeSettings settings;
+    settings.step = 0.001;
+    settings.byte_budget = budget;
+    std::vector<uint8_t> bytes;
+    std::vector<double> encoder_view, decoded;
+    encodeBitplanes(c.values.data(), c.layout(), settings, bytes, encoder_view);
+    EXPECT_LE(bytes.size(), budget + 8) << budget;
+    if (budget >= 250) {
+      EXPECT_GE(bytes.size(), budget * 8 / 10) << budget;
+    }
+    ASSERT_TRUE(decode(bytes, bytes.size(), c, 0, decoded, nullptr, 0.001).ok());
+    EXPECT_EQ(decoded, encoder_view);
+    const double error = squaredError(c.values, decoded);
+    EXPECT_LT(error, previous);
+    previous = error;
+  }
+}
+
+TEST(WaveletBitplane, AllZeroCostsOneByte) {
+  Coefficients c = makeCoefficients(10, 5);
+  std::fill(c.values.begin(), c.values.end(), 0.0);
+  BitplaneEncodeSettings settings;
+  std::vector<uint8_t> bytes;
+  std::vector<double> decoded;
+  encodeBitplanes(c.values.data(), c.layout(), settings, bytes, decoded);
+  EXPECT_EQ(bytes.size(), 1u);
+}
+
+TEST(WaveletBitplane, GarbageNeverCrashes) {
+  const Coefficients c = makeCoefficients(60, 6);
+  std::mt19937 rng(7);
+  std::vector<double> decoded;
+  int failures = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    std::vector<uint8_t> bytes(1 + rng() % 200);
+    for (uint8_t& b : bytes) b = uint8_t(rng());
+    const Status s = decode(bytes, bytes.size(), c, 0, decoded);
+    failures += !s.ok();
+    if (s.ok()) {
+      ASSERT_EQ(decoded.size(), c.values.size());
+      for (double v : decoded) ASSERT_TRUE(std::isfinite(v));
+    }
+  }
+  EXPECT_GT(failures, 1000);
+}
+
+}  // namespace
+}  // namespace animc

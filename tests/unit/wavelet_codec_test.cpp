@@ -1,0 +1,223 @@
+// The wavelet codec through its FrameEncoder / FrameDecoder pair: round trips of real
+// sequences, rate control, progressive decoding, drift, and garbage.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "codecs/wavelet/wavelet_codec.h"
+#include "metrics/sequence_metrics.h"
+#include "test_sequences.h"
+#include "wavelet_test_support.h"
+
+namespace animc {
+namespace {
+
+using testing_support::gridSequence;
+using testing_support::rmsError;
+using testing_support::sharedSequence;
+
+struct Coded {
+  std::vector<std::vector<uint8_t>> payloads;
+  std::vector<std::vector<float>> encoder_view;  // what the encoder says the decoder will show
+};
+
+Coded encodeAll(const MemorySequence& seq, const WaveletOptions& options, size_t intra_every = 0) {
+  auto encoder = makeWaveletEncoder(options, seq.topology());
+  Coded coded;
+  for (size_t f = 0; f < seq.frames().size(); ++f) {
+    std::vector<uint8_t> out;
+    FrameCodingStats stats;
+    const bool intra = f == 0 || (intra_every > 0 && f % intra_every == 0);
+    encoder->encodeFrame(seq.frames()[f].data(), intra, out, stats);
+    EXPECT_EQ(stats.intra, intra);
+    const auto& r = encoder->reconstruction();
+    coded.encoder_view.emplace_back(r.begin(), r.end());
+    coded.payloads.push_back(std::move(out));
+  }
+  return coded;
+}
+
+std::vector<std::vector<float>> decodeAll(const MemorySequence& seq, const WaveletOptions& options,
+                                          const Coded& coded, const WaveletDecodeControl& control = {}) {
+  auto decoder = makeWaveletDecoder(options, seq.topology(), control);
+  std::vector<std::vector<float>> frames;
+  for (const auto& p : coded.payloads) {
+    std::vector<float> xyz;
+    const Status s = decoder->decodeFrame(ByteReader(p.data(), p.size()), xyz, nullptr);
+    EXPECT_TRUE(s.ok()) << s.message();
+    if (!s.ok()) break;
+    frames.push_back(std::move(xyz));
+  }
+  return frames;
+}
+
+double kgError(const MemorySequence& seq, const std::vector<std::vector<float>>& decoded) {
+  MetricsAccumulator m(seq.topology().vertex_count);
+  for (size_t f = 0; f < decoded.size(); ++f) m.addFrame(seq.frames()[f].data(), decoded[f].data());
+  return m.finish().kg_error;
+}
+
+size_t totalBytes(const Coded& c) {
+  size_t n = 0;
+  for (const auto& p : c.payloads) n += p.size();
+  return n;
+}
+
+struct RealCase {
+  const char* sequence;
+  int frames;
+  double step;
+  double max_kg;
+};
+
+class WaveletRealRoundTrip : public ::testing::TestWithParam<RealCase> {};
+
+TEST_P(WaveletRealRoundTrip, DecoderMatchesEncoderAndErrorIsSmall) {
+  const RealCase& c = GetParam();
+  MemorySequence seq = sharedSequence(c.sequence, c.frames);
+  ASSERT_EQ(int(seq.frames().size()), c.frames);
+  WaveletOptions options;
+  options.step = c.step;
+  const Coded coded = encodeAll(seq, options, 12);
+  const auto decoded = decodeAll(seq, options, coded);
+  ASSERT_EQ(decoded.size(), seq.frames().size());
+  EXPECT_EQ(decoded, coded.encoder_view);  // closed loop: both sides hold the same frames
+  EXPECT_LT(kgError(seq, decoded), c.max_kg);
+  EXPECT_LT(totalBytes(coded) * 4, 12ull * seq.topology().vertex_count * seq.frames().size());
+}
+
+INSTANTIATE_TEST_SUITE_P(WaveletShared, WaveletRealRoundTrip,
+                         ::testing::Values(RealCase{"chickenCrossing", 30, 1e-4, 0.1},
+                                           RealCase{"oa_angelyss_lower", 30, 1e-4, 0.5},
+                                           RealCase{"oa_gargoyle_upper", 30, 1e-3, 2.0},
+                                           RealCase{"sydney_md2", 30, 1e-4, 0.5}),
+                         [](const ::testing::TestParamInfo<RealCase>& info) { return std::string(info.param.sequence); });
+
+TEST(WaveletCodec, LocalFramesRoundTripToo) {
+  MemorySequence seq = gridSequence(20, 20, 10, 1.0, 1.0);
+  WaveletOptions options;
+  options.local_frames = true;
+  const Coded coded = encodeAll(seq, options);
+  const auto decoded = decodeAll(seq, options, coded);
+  EXPECT_EQ(decoded, coded.encoder_view);
+  EXPECT_LT(kgError(seq, decoded), 1.0);
+}
+
+TEST(WaveletCodec, KgErrorFallsAsTheRateRises) {
+  MemorySequence seq = sharedSequence("chickenCrossing", 20);
+  double previous_kg = INFINITY;
+  size_t previous_bytes = 0;
+  for (double bpv : {1.0, 2.0, 4.0, 8.0}) {
+    WaveletOptions options;
+    options.bits_per_vertex = bpv;
+    options.step = 1e-7;
+    const Coded coded = encodeAll(seq, options);
+    const auto decoded = decodeAll(seq, options, coded);
+    const double kg = kgError(seq, decoded);
+    EXPECT_LT(kg, previous_kg) << bpv;
+    // Each detail frame stays within its budget (a few bytes of slack for the coder's flush).
+    for (size_t f = 1; f < coded.payloads.size(); ++f)
+      EXPECT_LE(coded.payloads[f].size(), size_t(bpv * seq.topology().vertex_count / 8) + 8);
+    EXPECT_GT(totalBytes(coded), previous_bytes);
+    previous_kg = kg;
+    previous_bytes = totalBytes(coded);
+  }
+  EXPECT_LT(previous_kg, 0.05);
+}
+
+TEST(WaveletCodec, ErrorFallsAsMoreBitplanesAreDecoded) {
+  MemorySequence seq = sharedSequence("chickenCrossing", 6);
+  WaveletOptions options;
+  options.temporal_prediction = false;  // I-frames: each frame stands on its own
+  options.step = 1e-5;
+  const Coded coded = encodeAll(seq, options);
+  double previous = INFINITY;
+  for (int planes : {1, 2, 4, 6, 8, 10, 12, 0}) {
+    WaveletDecodeControl control;
+    control.max_bitplanes = planes;
+    const auto decoded = decodeAll(seq, options, coded, control);
+    ASSERT_EQ(decoded.size(), seq.frames().size());
+    double error = 0;
+    for (size_t f = 1; f < decoded.size(); ++f) error += rmsError(seq.frames()[f], decoded[f]);
+    EXPECT_LT(error, previous) << planes << " planes";
+    previous = error;
+  }
+}
+
+TEST(WaveletCodec, TruncatedPayloadDecodesToACoarserValidFrame) {
+  MemorySequence seq = sharedSequence("oa_angelyss_lower", 3);
+  WaveletOptions options;
+  options.temporal_prediction = false;
+  options.step = 1e-5;
+  const Coded coded = encodeAll(seq, options);
+  const std::vector<uint8_t>& full = coded.payloads[2];
+  double previous = INFINITY;
+  for (size_t keep : {full.size() / 8, full.size() / 4, full.size() / 2, full.size()}) {
+    WaveletDecodeControl control;
+    control.max_payload_bytes = keep;
+    auto decoder = makeWaveletDecoder(options, seq.topology(), control);
+    std::vector<float> xyz;
+    for (size_t f = 0; f < 3; ++f) {
+      // The decoder reads at most `keep` bytes of a detail frame; parametric frames are whole.
+      const std::vector<uint8_t>& p = coded.payloads[f];
+      const Status s = decoder->decodeFrame(ByteReader(p.data(), p.size()), xyz, nullptr);
+      ASSERT_TRUE(s.ok()) << keep << ": " << s.message();
+    }
+    for (float v : xyz) ASSERT_TRUE(std::isfinite(v));
+    const double error = rmsError(seq.frames()[2], xyz);
+    EXPECT_LT(error, previous) << keep << " bytes";
+    previous = error;
+  }
+}
+
+// Closed loop: P-frames refer to the reconstructed coefficients, so the error of frame 150
+// is no larger than that of the first frames.
+TEST(WaveletCodec, DriftOverManyPFramesStaysBounded) {
+  MemorySequence seq = sharedSequence("chickenCrossing", 150);
+  WaveletOptions options;
+  options.step = 3e-4;
+  const Coded coded = encodeAll(seq, options);
+  const auto decoded = decodeAll(seq, options, coded);
+  ASSERT_EQ(decoded.size(), 150u);
+  EXPECT_EQ(decoded, coded.encoder_view);
+  double early = 0, late = 0;
+  for (size_t f = 1; f <= 20; ++f) early = std::max(early, rmsError(seq.frames()[f], decoded[f]));
+  for (size_t f = 130; f < 150; ++f) late = std::max(late, rmsError(seq.frames()[f], decoded[f]));
+  EXPECT_LT(late, 2.0 * early + 1e-6);
+  EXPECT_LT(kgError(seq, decoded), 0.5);
+}
+
+TEST(WaveletCodec, DetailFrameWithoutParametricFrameIsRejected) {
+  MemorySequence seq = gridSequence(12, 12, 3, 1.0, 0.0);
+  WaveletOptions options;
+  const Coded coded = encodeAll(seq, options);
+  auto decoder = makeWaveletDecoder(options, seq.topology());
+  std::vector<float> xyz;
+  const Status s = decoder->decodeFrame(ByteReader(coded.payloads[1].data(), coded.payloads[1].size()), xyz, nullptr);
+  EXPECT_EQ(s.code(), StatusCode::kCorrupt);
+}
+
+TEST(WaveletCodec, GarbagePayloadsNeverCrash) {
+  MemorySequence seq = gridSequence(12, 12, 3, 1.0, 0.0);
+  WaveletOptions options;
+  const Coded coded = encodeAll(seq, options);
+  std::mt19937 rng(11);
+  for (int trial = 0; trial < 300; ++trial) {
+    auto decoder = makeWaveletDecoder(options, seq.topology());
+    std::vector<float> xyz;
+    const auto& first = coded.payloads[0];
+    ASSERT_TRUE(decoder->decodeFrame(ByteReader(first.data(), first.size()), xyz, nullptr).ok());
+    std::vector<uint8_t> bytes = coded.payloads[1 + trial % 2];
+    for (int flips = 0; flips < 4; ++flips) bytes[rng() % bytes.size()] ^= uint8_t(1 + rng() % 255);
+    if (trial % 3 == 0) bytes.resize(rng() % bytes.size());
+    if (trial % 5 == 0) bytes[0] = uint8_t(rng() % 6);
+    const Status s = decoder->decodeFrame(ByteReader(bytes.data(), bytes.size()), xyz, nullptr);
+    if (s.ok()) {
+      for (float v : xyz) ASSERT_TRUE(std::isfinite(v));
+    }
+  }
+}
+
+}  // namespace
+}  // namespace animc

@@ -1,0 +1,50 @@
+// Helpers of the wavelet codec tests: the first frames of a shared sequence, frame errors.
+#pragma once
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "core/memory_sequence.h"
+#include "seqio/sequence_io.h"
+
+namespace animc::testing_support {
+
+// The first `frames` frames of ../shared/data/<name> (all of them when frames <= 0).
+inline MemorySequence sharedSequence(const std::string& name, int frames) {
+  const std::string dir = std::string(ANIMC_SHARED_DATA) + "/" + name + "/";
+  auto source = openSequence(dir + name + ".pc2.xz", dir + name + ".ply");
+  EXPECT_TRUE(source.ok()) << source.status().message();
+  if (!source.ok()) return MemorySequence(Topology(), {});
+  std::vector<std::vector<float>> all;
+  std::vector<float> xyz;
+  while (frames <= 0 || int(all.size()) < frames) {
+    auto more = source.value()->next(xyz);
+    EXPECT_TRUE(more.ok()) << more.status().message();
+    if (!more.ok() || !more.value()) break;
+    all.push_back(xyz);
+  }
+  return MemorySequence(source.value()->topology(), std::move(all), 25.0, name);
+}
+
+inline std::vector<double> toDouble(const std::vector<float>& v) { return std::vector<double>(v.begin(), v.end()); }
+
+// Root mean square of the vertex errors.
+template <class A, class B>
+double rmsError(const A& original, const B& decoded) {
+  double sum = 0;
+  for (size_t i = 0; i < original.size(); ++i) sum += (double(original[i]) - double(decoded[i])) * (double(original[i]) - double(decoded[i]));
+  return std::sqrt(sum / double(original.size() / 3));
+}
+
+inline double bboxDiagonal(const std::vector<float>& xyz) {
+  double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
+  for (size_t i = 0; i < xyz.size(); ++i) {
+    lo[i % 3] = std::min(lo[i % 3], double(xyz[i]));
+    hi[i % 3] = std::max(hi[i % 3], double(xyz[i]));
+  }
+  return std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) + (hi[2] - lo[2]) * (hi[2] - lo[2]));
+}
+
+}  // namespace animc::testing_support
