@@ -50,7 +50,8 @@ QList<MeshModel*> frameLayers(const MeshDocument& md, bool visible_only) {
   return layers;
 }
 
-std::string layerName(const MeshModel& layer, int index) {
+std::string layerName(const MeshModel& layer) {
+  const int index = layer.parent != nullptr ? layer.parent->meshList.indexOf(const_cast<MeshModel*>(&layer)) : -1;
   return "layer " + std::to_string(index) + " ('" + layer.label().toStdString() + "')";
 }
 
@@ -60,7 +61,7 @@ Result<std::unique_ptr<LayerFrameSource>> LayerFrameSource::create(const QList<M
   source->layers_ = layers;
   source->topology_ = layerTopology(layers[0]->cm);
   const Status s = checkTopology(source->topology_);
-  if (!s.ok()) return s.withContext(layerName(*layers[0], 0));
+  if (!s.ok()) return s.withContext(layerName(*layers[0]));
   return source;
 }
 
@@ -68,7 +69,7 @@ Result<bool> LayerFrameSource::next(std::vector<float>& xyz) {
   if (next_ >= layers_.size()) return false;
   const MeshModel& layer = *layers_[next_];
   if (next_ > 0) {
-    const Status same = checkSameTopology(layerTopology(layer.cm), topology_, layerName(*layers_[0], 0));
+    const Status same = checkSameTopology(layerTopology(layer.cm), topology_, layerName(*layers_[0]));
     if (!same.ok()) return same.withContext(where());
   }
   copyPositions(layer.cm, xyz);
@@ -78,7 +79,7 @@ Result<bool> LayerFrameSource::next(std::vector<float>& xyz) {
 
 std::string LayerFrameSource::where() const {
   if (next_ >= layers_.size()) return "after the last layer";
-  return layerName(*layers_[next_], next_);
+  return layerName(*layers_[next_]);
 }
 
 void fillMesh(MeshModel& layer, const Topology& topology, const float* xyz) {

@@ -17,8 +17,9 @@ namespace animc::meshlab {
 // The layers that are frames, in document order; with visible_only, hidden layers are skipped.
 QList<MeshModel*> frameLayers(const MeshDocument& md, bool visible_only);
 
-// "layer 3 ('frame_0003.ply')", for messages.
-std::string layerName(const MeshModel& layer, int index);
+// "layer 3 ('frame_0003.ply')", for messages: the layer's position in its document, which
+// differs from its position in a run of frames that starts later or skips hidden layers.
+std::string layerName(const MeshModel& layer);
 
 // The layers as a sequence of frames. Every layer must have the first one's vertex count and
 // triangle list; next() fails with a message naming the first layer that does not.

@@ -76,8 +76,8 @@ std::string measureReconstructionError(MeshDocument& md, const RichParameterList
   auto reconstructions = LayerFrameSource::create(runs.value().reconstructions);
   if (!reconstructions.ok()) return reconstructions.status().message();
   const Status same = checkSameTopology(reconstructions.value()->topology(), originals.value()->topology(),
-                                        layerName(*runs.value().originals[0], md.meshList.indexOf(runs.value().originals[0])));
-  if (!same.ok()) return same.withContext(layerName(*runs.value().reconstructions[0], md.meshList.indexOf(runs.value().reconstructions[0]))).message();
+                                        layerName(*runs.value().originals[0]));
+  if (!same.ok()) return same.withContext(layerName(*runs.value().reconstructions[0])).message();
 
   // Measure everything first, so a bad layer late in the run leaves every layer untouched.
   const int frames = runs.value().originals.size();
