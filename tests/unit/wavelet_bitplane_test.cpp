@@ -38,6 +38,16 @@ double squaredError(const std::vector<double>& a, const std::vector<double>& b) 
   return s;
 }
 
+// Encodes c down to `step` (within `budget` bytes when not 0): the stream and what the encoder
+// expects a full decode to give.
+void encode(const Coefficients& c, double step, std::vector<uint8_t>& bytes, std::vector<double>& encoder_view,
+            uint64_t budget = 0) {
+  BitplaneEncodeSettings settings;
+  settings.step = step;
+  settings.byte_budget = budget;
+  encodeBitplanes(c.values.data(), c.layout(), settings, bytes, encoder_view);
+}
+
 Status decode(const std::vector<uint8_t>& bytes, size_t size, const Coefficients& c, int max_planes,
               std::vector<double>& out, int* planes = nullptr, double step = 0.01) {
   std::vector<uint8_t> exact(bytes.begin(), bytes.begin() + size);  // exact-size copy for ASan
@@ -50,11 +60,9 @@ Status decode(const std::vector<uint8_t>& bytes, size_t size, const Coefficients
 
 TEST(WaveletBitplane, FullStreamIsExactToTheStepAndMatchesTheEncoder) {
   const Coefficients c = makeCoefficients(400, 1);
-  BitplaneEncodeSettings settings;
-  settings.step = 0.01;
   std::vector<uint8_t> bytes;
   std::vector<double> encoder_view, decoded;
-  encodeBitplanes(c.values.data(), c.layout(), settings, bytes, encoder_view);
+  encode(c, 0.01, bytes, encoder_view);
   ASSERT_TRUE(decode(bytes, bytes.size(), c, 0, decoded).ok());
   EXPECT_EQ(decoded, encoder_view);
   for (size_t i = 0; i < c.values.size(); ++i) EXPECT_LE(std::fabs(decoded[i] - c.values[i]), 0.01);
@@ -62,11 +70,9 @@ TEST(WaveletBitplane, FullStreamIsExactToTheStepAndMatchesTheEncoder) {
 
 TEST(WaveletBitplane, ErrorFallsWithEveryBitplaneDecoded) {
   const Coefficients c = makeCoefficients(400, 2);
-  BitplaneEncodeSettings settings;
-  settings.step = 0.01;
   std::vector<uint8_t> bytes;
   std::vector<double> full, decoded;
-  encodeBitplanes(c.values.data(), c.layout(), settings, bytes, full);
+  encode(c, 0.01, bytes, full);
   double previous = squaredError(c.values, std::vector<double>(c.values.size(), 0.0));
   const int planes = bytes[0] & 0x7f;
   ASSERT_GT(planes, 8);
@@ -82,11 +88,9 @@ TEST(WaveletBitplane, ErrorFallsWithEveryBitplaneDecoded) {
 
 TEST(WaveletBitplane, EveryTruncationDecodesAndMoreBytesNeverHurt) {
   const Coefficients c = makeCoefficients(150, 3);
-  BitplaneEncodeSettings settings;
-  settings.step = 0.01;
   std::vector<uint8_t> bytes;
   std::vector<double> full, decoded;
-  encodeBitplanes(c.values.data(), c.layout(), settings, bytes, full);
+  encode(c, 0.01, bytes, full);
   double previous = INFINITY;
   int decodable = 0;
   for (size_t size = 0; size <= bytes.size(); ++size) {
@@ -109,12 +113,9 @@ TEST(WaveletBitplane, BudgetIsRespectedAndMoreBudgetMeansLessError) {
   const Coefficients c = makeCoefficients(500, 4);
   double previous = INFINITY;
   for (uint64_t budget : {40, 100, 250, 600, 1500}) {
-    BitplaneEncodeSettings settings;
-    settings.step = 0.001;
-    settings.byte_budget = budget;
     std::vector<uint8_t> bytes;
     std::vector<double> encoder_view, decoded;
-    encodeBitplanes(c.values.data(), c.layout(), settings, bytes, encoder_view);
+    encode(c, 0.001, bytes, encoder_view, budget);
     EXPECT_LE(bytes.size(), budget + 8) << budget;
     if (budget >= 250) {
       EXPECT_GE(bytes.size(), budget * 8 / 10) << budget;
