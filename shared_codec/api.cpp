@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "codecs/affine_octree/affine_octree_codec.h"
+#include "codecs/wavelet/wavelet_codec.h"
 #include "container/container_writer.h"
 #include "io/byte_writer.h"
 
@@ -45,15 +46,52 @@ Status checkDecodable(const Topology& t) {
   return Status();
 }
 
+std::vector<uint8_t> codecParameters(const EncodeSettings& s) {
+  ByteWriter w;
+  if (s.codec == CodecId::kWavelet) s.wavelet.write(w);
+  else s.octree.write(w);
+  return w.bytes();
+}
+
+std::unique_ptr<FrameEncoder> makeEncoder(const EncodeSettings& s, const Topology& topology) {
+  if (s.codec == CodecId::kWavelet) return makeWaveletEncoder(s.wavelet, topology);
+  return makeAffineOctreeEncoder(s.octree, topology);
+}
+
+// Fills the codec's half of settings from the HEAD section's parameters.
+Status readCodecParameters(const ContainerHeader& h, EncodeSettings& settings) {
+  ByteReader params(h.codec_params.data(), h.codec_params.size());
+  settings.codec = h.codec;
+  settings.iframe_interval = h.iframe_interval;
+  if (h.codec == CodecId::kWavelet) {
+    ANIMC_ASSIGN_OR_RETURN(settings.wavelet, WaveletOptions::read(params));
+  } else {
+    ANIMC_ASSIGN_OR_RETURN(settings.octree, AffineOctreeOptions::read(params));
+  }
+  return Status();
+}
+
 }  // namespace
 
 Status EncodeSettings::validate() const {
-  if (codec != CodecId::kAffineOctree) return invalidArgument("unknown codec");
-  return octree.validate();
+  switch (codec) {
+    case CodecId::kAffineOctree: return octree.validate();
+    case CodecId::kWavelet: return wavelet.validate();
+  }
+  return invalidArgument("unknown codec");
 }
 
 std::string describeSettings(const EncodeSettings& s) {
-  char line[256];
+  char line[320];
+  if (s.codec == CodecId::kWavelet) {
+    const WaveletOptions& w = s.wavelet;
+    char rate[64] = "no rate limit";
+    if (w.bits_per_vertex > 0) std::snprintf(rate, sizeof rate, "fixed rate %g bits per vertex", w.bits_per_vertex);
+    std::snprintf(line, sizeof line, "codec: wavelet, %s, step %g of the diagonal, parametric bits %d, %s, "
+                  "iframe interval %u\n", rate, w.step, w.parametric_bits,
+                  w.temporal_prediction ? "P-frames" : "I-frames only", s.iframe_interval);
+    return line;
+  }
   std::snprintf(line, sizeof line, "codec: %s, profile %s, max error %g of the root cube, bits %d, "
                 "iframe interval %u\n", codecName(s.codec), profileName(s.octree.profile),
                 s.octree.max_error, s.octree.bits, s.iframe_interval);
@@ -69,9 +107,7 @@ Result<EncodeReport> encodeSequence(FrameSource& source, const EncodeSettings& s
   const Topology& topology = source.topology();
   ContainerHeader header;
   header.codec = settings.codec;
-  ByteWriter params;
-  settings.octree.write(params);
-  header.codec_params = params.bytes();
+  header.codec_params = codecParameters(settings);
   header.vertex_count = topology.vertex_count;
   header.triangle_count = topology.triangles.size();
   header.frame_rate = source.frameRate();
@@ -79,7 +115,7 @@ Result<EncodeReport> encodeSequence(FrameSource& source, const EncodeSettings& s
 
   ContainerWriter writer;
   ANIMC_RETURN_IF_ERROR(writer.open(out_path, header, topology));
-  std::unique_ptr<FrameEncoder> encoder = makeAffineOctreeEncoder(settings.octree, topology);
+  std::unique_ptr<FrameEncoder> encoder = makeEncoder(settings, topology);
   EncodeReport report;
   report.vertices = topology.vertex_count;
   report.triangles = topology.triangles.size();
@@ -118,19 +154,23 @@ Result<EncodeReport> encodeSequence(FrameSource& source, const EncodeSettings& s
   return report;
 }
 
-Result<std::unique_ptr<AmsSource>> AmsSource::open(const std::string& path, const DecoderLimits& limits) {
+Result<std::unique_ptr<AmsSource>> AmsSource::open(const std::string& path, const DecoderLimits& limits,
+                                                   const WaveletDecodeControl& progressive) {
   std::unique_ptr<AmsSource> s(new AmsSource());
   s->path_ = path;
   ANIMC_ASSIGN_OR_RETURN(s->reader_, ContainerReader::open(path, limits));
-  const ContainerHeader& h = s->reader_->info().header;
-  ByteReader params(h.codec_params.data(), h.codec_params.size());
-  s->settings_.codec = h.codec;
-  s->settings_.iframe_interval = h.iframe_interval;
-  auto options = AffineOctreeOptions::read(params);
-  if (!options.ok()) return options.status().withContext(path);
-  s->settings_.octree = options.value();
-  s->decoder_ = makeAffineOctreeDecoder(s->settings_.octree, s->reader_->topology());
-  Status st = s->seek(0);
+  Status st = readCodecParameters(s->reader_->info().header, s->settings_);
+  if (!st.ok()) return st.withContext(path);
+  const bool partial = progressive.max_bitplanes > 0 || progressive.max_payload_bytes > 0;
+  if (s->settings_.codec == CodecId::kWavelet) {
+    s->decoder_ = makeWaveletDecoder(s->settings_.wavelet, s->reader_->topology(), progressive);
+  } else if (partial) {
+    return invalidArgument(path + ": progressive decoding (fewer bitplanes or bytes) needs a wavelet-coded "
+                           "file; this one is " + codecName(s->settings_.codec));
+  } else {
+    s->decoder_ = makeAffineOctreeDecoder(s->settings_.octree, s->reader_->topology());
+  }
+  st = s->seek(0);
   if (!st.ok()) return st;
   return s;
 }

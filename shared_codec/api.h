@@ -10,6 +10,7 @@
 #include "codecs/affine_octree/options.h"
 #include "codecs/codec_ids.h"
 #include "codecs/frame_codec.h"
+#include "codecs/wavelet/options.h"
 #include "container/container_reader.h"
 #include "core/sequence.h"
 #include "core/status.h"
@@ -18,13 +19,15 @@ namespace animc {
 
 struct EncodeSettings {
   CodecId codec = CodecId::kAffineOctree;
-  AffineOctreeOptions octree;
+  AffineOctreeOptions octree;  // used when codec is kAffineOctree
+  WaveletOptions wavelet;      // used when codec is kWavelet
   uint32_t iframe_interval = 0;  // an intra frame every K frames; 0 = the first frame only
 
   Status validate() const;
 };
 
-// One line such as "codec: affine-octree, profile default, max error 0.01 of the root cube, ...".
+// One line such as "codec: affine-octree, profile default, max error 0.01 of the root cube, ..."
+// naming the settings of the chosen codec only.
 std::string describeSettings(const EncodeSettings& s);
 
 struct EncodeReport {
@@ -53,8 +56,11 @@ Result<EncodeReport> encodeSequence(FrameSource& source, const EncodeSettings& s
 // decoding only the frame group that holds the frame asked for.
 class AmsSource final : public FrameSource {
  public:
+  // progressive: decode fewer bitplanes or bytes of each frame (wavelet files only; asking
+  // it of another codec is an error).
   static Result<std::unique_ptr<AmsSource>> open(const std::string& path,
-                                                 const DecoderLimits& limits = {});
+                                                 const DecoderLimits& limits = {},
+                                                 const WaveletDecodeControl& progressive = {});
 
   const Topology& topology() const override { return reader_->topology(); }
   int64_t frameCount() const override { return int64_t(reader_->info().frame_count); }

@@ -6,6 +6,7 @@ namespace animc {
 
 enum class CodecId : uint8_t {
   kAffineOctree = 1,
+  kWavelet = 2,  // Guskov & Khodakovsky 2004 (docs/wavelet.md)
 };
 
 enum class Profile : uint8_t {
@@ -13,7 +14,8 @@ enum class Profile : uint8_t {
   kDefault = 1,  // our predictive variant of the same octree (docs/affine_octree.md, "default")
 };
 
-const char* codecName(CodecId id);
+const char* codecName(CodecId id);  // "affine-octree", "wavelet"
+bool isKnownCodec(uint8_t id);
 const char* profileName(Profile p);
 
 }  // namespace animc

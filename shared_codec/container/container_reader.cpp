@@ -90,7 +90,7 @@ Status ContainerReader::openHeader() {
   ByteReader r(head.data(), head.size(), kFileHeaderBytes + 12);
   ContainerHeader& hd = info_.header;
   ANIMC_ASSIGN_OR_RETURN(uint8_t codec, r.u8("Codec_Id"));
-  if (codec != uint8_t(CodecId::kAffineOctree)) return corrupt("unknown codec id " + std::to_string(codec));
+  if (!isKnownCodec(codec)) return corrupt("unknown codec id " + std::to_string(codec));
   hd.codec = CodecId(codec);
   ANIMC_ASSIGN_OR_RETURN(uint64_t params_bytes, r.varint("Codec_Params_Length"));
   if (params_bytes > r.remaining()) return r.truncatedAt("Codec_Params");

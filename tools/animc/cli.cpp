@@ -9,9 +9,6 @@
 
 namespace animc::cli {
 
-const std::set<std::string> kEncodeOptions = {"codec", "profile", "max-error", "bits",
-                                              "iframe-interval", "max-depth"};
-
 Status Args::parse(const std::vector<std::string>& argv, const std::set<std::string>& value_options,
                    const std::set<std::string>& switches) {
   for (size_t i = 0; i < argv.size(); ++i) {
@@ -60,23 +57,72 @@ Result<long long> Args::integer(const std::string& name, long long fallback) con
   return v;
 }
 
+namespace {
+
+const std::set<std::string> kOctreeOptions = {"profile", "max-error", "bits", "max-depth"};
+const std::set<std::string> kWaveletOptions = {"step", "bpv", "parametric-bits", "i-frames-only"};
+
+// An option of the other codec is a mistake, not something to ignore.
+Status rejectForeignOptions(const Args& args, const std::set<std::string>& foreign, const char* codec) {
+  for (const std::string& name : foreign)
+    if (args.has(name)) return invalidArgument("--" + name + " does not apply to --codec " + codec);
+  return Status();
+}
+
+Status readOctreeOptions(const Args& args, AffineOctreeOptions& o) {
+  const std::string profile = args.get("profile", "default");
+  if (profile == "paper") o.profile = Profile::kPaper;
+  else if (profile == "default") o.profile = Profile::kDefault;
+  else return invalidArgument("unknown profile '" + profile + "' (paper, default)");
+  ANIMC_ASSIGN_OR_RETURN(o.max_error, args.number("max-error", o.max_error));
+  ANIMC_ASSIGN_OR_RETURN(long long bits, args.integer("bits", o.bits));
+  ANIMC_ASSIGN_OR_RETURN(long long depth, args.integer("max-depth", o.max_depth));
+  if (bits < kMinBits || bits > kMaxBits) return invalidArgument("--bits must be in [8, 24]");
+  if (depth < 1 || depth > kMaxDepthLimit) return invalidArgument("--max-depth must be in [1, 16]");
+  o.bits = int(bits);
+  o.max_depth = int(depth);
+  return Status();
+}
+
+Status readWaveletOptions(const Args& args, WaveletOptions& o) {
+  ANIMC_ASSIGN_OR_RETURN(o.step, args.number("step", o.step));
+  ANIMC_ASSIGN_OR_RETURN(o.bits_per_vertex, args.number("bpv", o.bits_per_vertex));
+  ANIMC_ASSIGN_OR_RETURN(long long bits, args.integer("parametric-bits", o.parametric_bits));
+  if (bits < kMinParametricBits || bits > kMaxParametricBits)
+    return invalidArgument("--parametric-bits must be in [" + std::to_string(kMinParametricBits) + ", " +
+                           std::to_string(kMaxParametricBits) + "]");
+  o.parametric_bits = int(bits);
+  o.temporal_prediction = !args.has("i-frames-only");
+  return Status();
+}
+
+std::set<std::string> encodeOptionNames() {
+  std::set<std::string> names = {"codec", "iframe-interval"};
+  names.insert(kOctreeOptions.begin(), kOctreeOptions.end());
+  names.insert(kWaveletOptions.begin(), kWaveletOptions.end());
+  return names;
+}
+
+}  // namespace
+
+const std::set<std::string> kEncodeOptions = encodeOptionNames();
+const std::set<std::string> kEncodeSwitches = {"i-frames-only"};
+
 Result<EncodeSettings> encodeSettingsFrom(const Args& args) {
   EncodeSettings s;
   const std::string codec = args.get("codec", "affine-octree");
-  if (codec != "affine-octree") return invalidArgument("unknown codec '" + codec + "' (affine-octree)");
-  const std::string profile = args.get("profile", "default");
-  if (profile == "paper") s.octree.profile = Profile::kPaper;
-  else if (profile == "default") s.octree.profile = Profile::kDefault;
-  else return invalidArgument("unknown profile '" + profile + "' (paper, default)");
-  ANIMC_ASSIGN_OR_RETURN(s.octree.max_error, args.number("max-error", s.octree.max_error));
-  ANIMC_ASSIGN_OR_RETURN(long long bits, args.integer("bits", s.octree.bits));
-  ANIMC_ASSIGN_OR_RETURN(long long depth, args.integer("max-depth", s.octree.max_depth));
+  if (codec == "affine-octree") {
+    ANIMC_RETURN_IF_ERROR(rejectForeignOptions(args, kWaveletOptions, "affine-octree"));
+    ANIMC_RETURN_IF_ERROR(readOctreeOptions(args, s.octree));
+  } else if (codec == "wavelet") {
+    s.codec = CodecId::kWavelet;
+    ANIMC_RETURN_IF_ERROR(rejectForeignOptions(args, kOctreeOptions, "wavelet"));
+    ANIMC_RETURN_IF_ERROR(readWaveletOptions(args, s.wavelet));
+  } else {
+    return invalidArgument("unknown codec '" + codec + "' (affine-octree, wavelet)");
+  }
   ANIMC_ASSIGN_OR_RETURN(long long interval, args.integer("iframe-interval", 0));
-  if (bits < kMinBits || bits > kMaxBits) return invalidArgument("--bits must be in [8, 24]");
-  if (depth < 1 || depth > kMaxDepthLimit) return invalidArgument("--max-depth must be in [1, 16]");
   if (interval < 0 || interval > 0x7fffffff) return invalidArgument("--iframe-interval must be >= 0");
-  s.octree.bits = int(bits);
-  s.octree.max_depth = int(depth);
   s.iframe_interval = uint32_t(interval);
   ANIMC_RETURN_IF_ERROR(s.validate());
   return s;

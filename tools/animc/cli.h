@@ -28,8 +28,11 @@ class Args {
   std::map<std::string, std::string> values_;
 };
 
-// --codec --profile --max-error --bits --iframe-interval --max-depth
+// --codec --iframe-interval, the Affine-Octree's --profile --max-error --bits --max-depth and
+// the wavelet's --step --bpv --parametric-bits (options of the codec not chosen are errors).
 extern const std::set<std::string> kEncodeOptions;
+// The wavelet's --i-frames-only (no temporal prediction: every frame decodes on its own).
+extern const std::set<std::string> kEncodeSwitches;
 Result<EncodeSettings> encodeSettingsFrom(const Args& args);
 
 // Progress on stderr, at most ten updates a second, only when stderr is a terminal or

@@ -40,7 +40,9 @@ int runBench(const std::vector<std::string>& argv) {
   Args args;
   std::set<std::string> options = kEncodeOptions;
   options.insert({"mesh", "runs", "output"});
-  Status s = args.parse(argv, options, {"json", "progress"});
+  std::set<std::string> switches = kEncodeSwitches;
+  switches.insert({"progress", "json"});
+  Status s = args.parse(argv, options, switches);
   if (!s.ok()) return fail(s);
   if (args.positional().size() != 1) return fail(invalidArgument("usage: animc bench IN [--mesh M] [options] [--runs R]"));
   auto settings = encodeSettingsFrom(args);

@@ -28,22 +28,43 @@ Status parseRange(const std::string& text, int64_t count, int64_t& first, int64_
   return Status();
 }
 
+// --bitplanes K / --max-bytes N: progressive decoding of a wavelet-coded file.
+Result<WaveletDecodeControl> progressiveControl(const Args& args) {
+  WaveletDecodeControl c;
+  ANIMC_ASSIGN_OR_RETURN(long long planes, args.integer("bitplanes", 0));
+  ANIMC_ASSIGN_OR_RETURN(long long bytes, args.integer("max-bytes", 0));
+  if (planes < 0 || planes > 64) return invalidArgument("--bitplanes must be in [1, 64] (0 = all)");
+  if (bytes < 0) return invalidArgument("--max-bytes must be >= 1 (0 = all)");
+  c.max_bitplanes = int(planes);
+  c.max_payload_bytes = uint64_t(bytes);
+  return c;
+}
+
 }  // namespace
 
 int runDecode(const std::vector<std::string>& argv) {
   Args args;
-  Status s = args.parse(argv, {"output", "format", "frames"}, {"progress"});
+  Status s = args.parse(argv, {"output", "format", "frames", "bitplanes", "max-bytes"}, {"progress"});
   if (!s.ok()) return fail(s);
   if (args.positional().size() != 1 || !args.has("output"))
-    return fail(invalidArgument("usage: animc decode IN.ams -o OUT [--format ply|off|pc2|mdd] [--frames A:B]"));
+    return fail(invalidArgument("usage: animc decode IN.ams -o OUT [--format ply|off|pc2|mdd] [--frames A:B] "
+                                "[--bitplanes K] [--max-bytes N]"));
   const std::string out = args.get("output");
   std::string format = args.get("format");
   if (format.empty()) format = endsWith(out, ".pc2") ? "pc2" : endsWith(out, ".mdd") ? "mdd" : endsWith(out, ".off") ? "off" : "ply";
   auto fmt = formatFromName(format);
   if (!fmt.ok()) return fail(fmt.status());
-  auto source = AmsSource::open(args.positional()[0]);
+  auto control = progressiveControl(args);
+  if (!control.ok()) return fail(control.status());
+  auto source = AmsSource::open(args.positional()[0], DecoderLimits(), control.value());
   if (!source.ok()) return fail(source.status());
   AmsSource& ams = *source.value();
+  const EncodeSettings& coded = ams.settings();
+  if ((control.value().max_bitplanes > 0 || control.value().max_payload_bytes > 0) &&
+      coded.codec == CodecId::kWavelet && coded.wavelet.temporal_prediction)
+    std::fprintf(stderr, "animc: warning: this file predicts each frame from the previous one (P-frames): "
+                 "frames decoded from fewer bits drift until the next intra frame%s\n",
+                 coded.iframe_interval ? "" : " (there is none: it was encoded with --iframe-interval 0)");
   int64_t first = 0, last = 0;
   try {
     s = parseRange(args.get("frames"), ams.frameCount(), first, last);

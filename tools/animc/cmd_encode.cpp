@@ -10,7 +10,9 @@ int runEncode(const std::vector<std::string>& argv) {
   Args args;
   std::set<std::string> options = kEncodeOptions;
   options.insert({"output", "mesh"});
-  Status s = args.parse(argv, options, {"progress", "json"});
+  std::set<std::string> switches = kEncodeSwitches;
+  switches.insert({"progress", "json"});
+  Status s = args.parse(argv, options, switches);
   if (!s.ok()) return fail(s);
   if (args.positional().size() != 1 || !args.has("output"))
     return fail(invalidArgument("usage: animc encode IN -o OUT.ams [options]"));

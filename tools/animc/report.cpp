@@ -5,10 +5,17 @@ namespace animc::cli {
 
 void addSettings(JsonObject& o, const EncodeSettings& s) {
   o.add("codec", codecName(s.codec));
-  o.add("profile", profileName(s.octree.profile));
-  o.add("max_error_setting", s.octree.max_error);
-  o.add("bits", s.octree.bits);
-  o.add("max_depth", s.octree.max_depth);
+  if (s.codec == CodecId::kWavelet) {
+    o.add("bits_per_vertex_setting", s.wavelet.bits_per_vertex);
+    o.add("step", s.wavelet.step);
+    o.add("parametric_bits", s.wavelet.parametric_bits);
+    o.add("temporal_prediction", s.wavelet.temporal_prediction);
+  } else {
+    o.add("profile", profileName(s.octree.profile));
+    o.add("max_error_setting", s.octree.max_error);
+    o.add("bits", s.octree.bits);
+    o.add("max_depth", s.octree.max_depth);
+  }
   o.add("iframe_interval", s.iframe_interval);
 }
 

@@ -5,21 +5,6 @@
 
 namespace animc {
 
-const char* codecName(CodecId id) {
-  switch (id) {
-    case CodecId::kAffineOctree: return "affine-octree";
-  }
-  return "unknown";
-}
-
-const char* profileName(Profile p) {
-  switch (p) {
-    case Profile::kPaper: return "paper";
-    case Profile::kDefault: return "default";
-  }
-  return "unknown";
-}
-
 Status AffineOctreeOptions::validate() const {
   if (profile != Profile::kPaper && profile != Profile::kDefault)
     return invalidArgument("unknown profile " + std::to_string(int(profile)));
