@@ -13,7 +13,11 @@ For each sequence folder NAME/ (NAME.ply + NAME.pc2.xz) of --data (default
    uncompressed sequence and B) over a max-error sweep of the default profile;
 3. unless --quick: peak memory of `animc encode` / `animc decode` on a 100 000-frame
    sequence made by tools/long_sequence.py from sydney_md2, and on a 1 000-frame one;
-4. unless --no-plugin: encoding through the MeshLab filter against animc encode
+4. the wavelet codec (tools/bench_wavelet.py): quality steps and the paper's 1/2/4/8 bpv
+   fixed rates on every sequence, against the Affine-Octree sweep at equal KG error, with the
+   rate-distortion plot docs/img/rate_distortion.png (tools/rd_plot.py, gnuplot), and the
+   parametric archive size against the paper's Cow;
+5. unless --no-plugin: encoding through the MeshLab filter against animc encode
    (tools/bench_plugin.py; needs the staged MeshLab of `cmake --install build --prefix build/stage`).
 Progress goes to stderr; the Markdown report to --out (default docs/benchmarks.md)."""
 import argparse
@@ -21,7 +25,6 @@ import datetime
 import hashlib
 import json
 import lzma
-import math
 import os
 import platform
 import re
@@ -33,18 +36,19 @@ import sys
 import tempfile
 import time
 
-import numpy as np
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(REPO, 'tools'))
 from long_sequence import write_long_sequence  # noqa: E402
 from bench_plugin import plugin_section  # noqa: E402
+from bench_wavelet import wavelet_section  # noqa: E402
+from bench_common import (log, run_bench, loglog_interp, num, pct, mib, table,  # noqa: E402
+                          failed_cell, START)
 
 PROFILES = ['paper', 'default']
 MAX_ERRORS = [0.01, 0.05, 0.10]
 SWEEP_MAX_ERRORS = [0.001, 0.002, 0.005, 0.01, 0.02, 0.05, 0.10, 0.15, 0.25]  # default profile, runs=1
 BASELINE_BITS = list(range(4, 15))
-ANIMC_TIMEOUT_S = 3600
 
 # Affine-Octree paper, Table II, "Ours" on Chicken: ME, Size (bytes), ratio, PSNR (dB).
 PAPER_SEQUENCE = 'chickenCrossing'
@@ -58,14 +62,6 @@ DESIGN_REFERENCE = [(12, 0.20, 7.2), (10, 0.81, 4.8), (8, 3.3, 3.4)]
 LONG_SOURCE = 'sydney_md2'
 LONG_FRAMES = [1000, 100000]
 LONG_SETTINGS = ['--profile', 'default', '--max-error', '0.01']
-
-START = time.monotonic()
-
-
-def log(message):
-    """Progress line on stderr, with the time since start."""
-    print(f'[{time.monotonic() - START:7.1f} s] {message}', file=sys.stderr, flush=True)
-
 
 # ---------------------------------------------------------------- running things
 
@@ -81,22 +77,8 @@ def find_sequences(data_dir):
     return found
 
 
-def run_bench(animc, pc2, ply, profile, max_error, runs):
-    """One `animc bench --json`; its JSON object, or {'error': text} if it failed."""
-    cmd = [animc, 'bench', pc2, '--mesh', ply, '--profile', profile,
-           '--max-error', repr(max_error), '--runs', str(runs), '--json']
-    try:
-        p = subprocess.run(cmd, capture_output=True, text=True, timeout=ANIMC_TIMEOUT_S)
-    except subprocess.TimeoutExpired:
-        return {'error': f'timed out after {ANIMC_TIMEOUT_S} s'}
-    if p.returncode != 0:
-        message = (p.stderr.strip().splitlines() or [''])[-1]
-        log(f'  FAILED (exit {p.returncode}): {shlex.join(cmd)}\n    {p.stderr.strip()}')
-        return {'error': f'exit {p.returncode}' + (f': {message}' if message else '')}
-    try:
-        return json.loads(p.stdout)
-    except json.JSONDecodeError:
-        return {'error': 'output is not JSON'}
+def octree_settings(profile, max_error):
+    return ['--profile', profile, '--max-error', repr(max_error)]
 
 
 def bench_sequence(animc, name, pc2, ply, runs):
@@ -108,7 +90,7 @@ def bench_sequence(animc, name, pc2, ply, runs):
     for profile in PROFILES:
         for me in max_errors:
             log(f'{name}: bench --profile {profile} --max-error {me} --runs {runs}')
-            results[(profile, me)] = run_bench(animc, pc2, ply, profile, me, runs)
+            results[(profile, me)] = run_bench(animc, pc2, ply, octree_settings(profile, me), runs)
     return results
 
 
@@ -121,7 +103,7 @@ def sweep_sequence(animc, name, pc2, ply, main_results):
             sweep[me] = main_results[('default', me)]
             continue
         log(f'{name}: sweep --profile default --max-error {me}')
-        sweep[me] = run_bench(animc, pc2, ply, 'default', me, 1)
+        sweep[me] = run_bench(animc, pc2, ply, octree_settings('default', me), 1)
     return sweep
 
 
@@ -179,21 +161,6 @@ def baseline_points(name, pc2, sha, entries, cache_path, baseline_hash):
             entries[f'{sha}:{point["bits"]}'] = point
         save_baseline_cache(cache_path, baseline_hash, entries)
     return [entries[f'{sha}:{b}'] for b in BASELINE_BITS if f'{sha}:{b}' in entries]
-
-
-# ---------------------------------------------------------------- interpolation
-
-def loglog_interp(points, x):
-    """y at x by linear interpolation of log y over log x between the (x, y) points;
-    None outside the range of the points' x (no extrapolation)."""
-    pts = sorted((px, py) for px, py in points
-                 if px is not None and py is not None and px > 0 and py > 0
-                 and math.isfinite(px) and math.isfinite(py))
-    if not pts or x < pts[0][0] or x > pts[-1][0]:
-        return None
-    xs = np.log([p[0] for p in pts])
-    ys = np.log([p[1] for p in pts])
-    return float(np.exp(np.interp(math.log(x), xs, ys)))
 
 
 # ---------------------------------------------------------------- peak memory
@@ -260,36 +227,6 @@ def memory_test(animc, data_dir, tmp_root, frame_counts):
 
 
 # ---------------------------------------------------------------- Markdown
-
-def num(x, digits=2):
-    """A number for a table cell; 'n/a' for None, '∞' for +inf."""
-    if x is None:
-        return 'n/a'
-    if isinstance(x, float) and math.isinf(x):
-        return '∞' if x > 0 else '−∞'
-    if isinstance(x, float) and math.isnan(x):
-        return 'NaN'
-    return f'{x:.{digits}f}'
-
-
-def pct(fraction):
-    return f'{100 * fraction:g} %'
-
-
-def mib(n_bytes):
-    return f'{n_bytes / 2**20:.1f} MiB'
-
-
-def table(header, rows):
-    """Markdown table lines."""
-    lines = ['| ' + ' | '.join(header) + ' |', '|' + '---|' * len(header)]
-    lines += ['| ' + ' | '.join(str(c) for c in row) + ' |' for row in rows]
-    return lines
-
-
-def failed_cell(result):
-    return 'failed: ' + result['error'].replace('|', '\\|')
-
 
 def main_table(results):
     rows = []
@@ -432,7 +369,7 @@ def command_line():
     return shlex.join(sys.argv), where
 
 
-def write_report(path, args, sequences, memory_rows, plugin_lines, elapsed_s):
+def write_report(path, args, sequences, wavelet_lines, memory_rows, plugin_lines, elapsed_s):
     command, where = command_line()
     lines = ['# animcompress benchmarks', '',
              f'Generated by `{command}` ({where})  ',
@@ -472,6 +409,7 @@ def write_report(path, args, sequences, memory_rows, plugin_lines, elapsed_s):
                       'Our bpvf interpolated log-log from the sweep above at the KG errors of the baseline '
                       'points DESIGN.md quotes ("Measured on chickenCrossing").', '']
             lines += reference_table(s['sweep'], s['baseline']) + ['']
+    lines += wavelet_lines
     lines += ['## Peak memory on a long sequence', '']
     if args.quick:
         lines += ['Skipped (--quick).', '']
@@ -541,9 +479,12 @@ def main():
         points = baseline_points(name, pc2, sha, entries, args.baseline_cache, baseline_hash)
         failures += sum('error' in r for r in list(results.values()) + list(sweep.values())) + (not points)
         sequences.append({'name': name, 'sha256': sha, 'results': results, 'sweep': sweep, 'baseline': points,
-                          'vertices': vertices, 'frames': frames})
+                          'vertices': vertices, 'frames': frames, 'pc2': pc2, 'ply': ply})
     if not sequences:
         sys.exit(f'no sequence folders (NAME/NAME.pc2.xz + NAME/NAME.ply) in {args.data}')
+    wavelet_lines, wavelet_failures = wavelet_section(args.animc, sequences, args.runs,
+                                                      os.path.dirname(os.path.abspath(args.out)))
+    failures += wavelet_failures
     memory_rows = []
     if not args.quick:
         counts = sorted({min(LONG_FRAMES[0], args.long_frames), args.long_frames})
@@ -554,7 +495,7 @@ def main():
         log('MeshLab filter against animc encode')
         plugin_lines = plugin_section(args.animc, args.data, args.runs, command_line()[0])
     elapsed = time.monotonic() - START
-    write_report(args.out, args, sequences, memory_rows, plugin_lines, elapsed)
+    write_report(args.out, args, sequences, wavelet_lines, memory_rows, plugin_lines, elapsed)
     log(f'wrote {args.out} ({failures} failure(s)) in {elapsed / 60:.1f} min')
     sys.exit(1 if failures else 0)
 

@@ -1,0 +1,82 @@
+#!/usr/bin/python3
+"""Helpers shared by the benchmark scripts (bench.py, bench_wavelet.py): running
+`animc bench --json`, log-log interpolation, Markdown cells and tables, progress lines."""
+import json
+import math
+import shlex
+import subprocess
+import sys
+import time
+
+import numpy as np
+
+ANIMC_TIMEOUT_S = 3600
+START = time.monotonic()
+
+
+def log(message):
+    """Progress line on stderr, with the time since start."""
+    print(f'[{time.monotonic() - START:7.1f} s] {message}', file=sys.stderr, flush=True)
+
+
+def run_bench(animc, pc2, ply, settings, runs):
+    """One `animc bench --json` with the encoder settings (a list of animc arguments, e.g.
+    ['--profile', 'default', '--max-error', '0.01']); its JSON object, or {'error': text}."""
+    cmd = [animc, 'bench', pc2, '--mesh', ply] + settings + ['--runs', str(runs), '--json']
+    try:
+        p = subprocess.run(cmd, capture_output=True, text=True, timeout=ANIMC_TIMEOUT_S)
+    except subprocess.TimeoutExpired:
+        return {'error': f'timed out after {ANIMC_TIMEOUT_S} s'}
+    if p.returncode != 0:
+        message = (p.stderr.strip().splitlines() or [''])[-1]
+        log(f'  FAILED (exit {p.returncode}): {shlex.join(cmd)}\n    {p.stderr.strip()}')
+        return {'error': f'exit {p.returncode}' + (f': {message}' if message else '')}
+    try:
+        return json.loads(p.stdout)
+    except json.JSONDecodeError:
+        return {'error': 'output is not JSON'}
+
+
+def loglog_interp(points, x):
+    """y at x by linear interpolation of log y over log x between the (x, y) points;
+    None outside the range of the points' x (no extrapolation)."""
+    pts = sorted((px, py) for px, py in points
+                 if px is not None and py is not None and px > 0 and py > 0
+                 and math.isfinite(px) and math.isfinite(py))
+    if not pts or x < pts[0][0] or x > pts[-1][0]:
+        return None
+    xs = np.log([p[0] for p in pts])
+    ys = np.log([p[1] for p in pts])
+    return float(np.exp(np.interp(math.log(x), xs, ys)))
+
+
+def num(x, digits=2):
+    """A number for a table cell; 'n/a' for None, '∞' for +inf."""
+    if x is None:
+        return 'n/a'
+    if isinstance(x, float) and math.isinf(x):
+        return '∞' if x > 0 else '−∞'
+    if isinstance(x, float) and math.isnan(x):
+        return 'NaN'
+    return f'{x:.{digits}f}'
+
+
+def pct(fraction):
+    return f'{100 * fraction:g} %'
+
+
+def mib(n_bytes):
+    return f'{n_bytes / 2**20:.1f} MiB'
+
+
+def table(header, rows):
+    """Markdown table lines."""
+    lines = ['| ' + ' | '.join(header) + ' |', '|' + '---|' * len(header)]
+    lines += ['| ' + ' | '.join(str(c) for c in row) + ' |' for row in rows]
+    return lines
+
+
+def failed_cell(result):
+    return 'failed: ' + result['error'].replace('|', '\\|')
+
+
