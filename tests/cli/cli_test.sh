@@ -116,6 +116,38 @@ frame = 12 * points
 assert part == full[10 * frame:20 * frame], "frame data differ"
 EOF
 
+# --- the wavelet codec: encode, info, quality vs rate, progressive decoding ------------------
+W_AMS=$TMP/wavelet.ams
+run w_encode "$ANIMC" encode "$PC2" --mesh "$MESH" -o "$W_AMS" --codec wavelet --step 3e-4 --json
+json_check 'd["codec"] == "wavelet" and d["step"] == 3e-4 and d["kg_error"] < 0.2 and d["bpvf"] < 96' "$TMP/w_encode.out"
+run w_info "$ANIMC" info "$W_AMS" --json
+json_check 'd["codec"] == "wavelet" and d["frames"] == 50 and d["file_bytes"] == e["file_bytes"] and "profile" not in d' \
+  "$TMP/w_info.out" "$TMP/w_encode.out"
+grep -q "codec: wavelet" < <("$ANIMC" info "$W_AMS") || check_failed "animc info does not name the wavelet codec"
+run w_compare "$ANIMC" compare "$PC2" "$W_AMS" --mesh "$MESH" --json
+same_kg "$TMP/w_compare.out" "$TMP/w_encode.out"
+# Fixed rate: more bits per vertex, less error.
+run w_bpv2 "$ANIMC" encode "$PC2" --mesh "$MESH" -o "$TMP/w2.ams" --codec wavelet --bpv 2 --json
+run w_bpv8 "$ANIMC" encode "$PC2" --mesh "$MESH" -o "$TMP/w8.ams" --codec wavelet --bpv 8 --json
+json_check 'd["kg_error"] > e["kg_error"] and d["file_bytes"] < e["file_bytes"]' "$TMP/w_bpv2.out" "$TMP/w_bpv8.out"
+run w_bench "$ANIMC" bench "$PC2" --mesh "$MESH" --codec wavelet --bpv 4 --runs 1 --json
+json_check 'd["codec"] == "wavelet" and d["decode_mvps"] > 0 and d["bits_per_vertex_setting"] == 4' "$TMP/w_bench.out"
+# Progressive decoding of an I-frames-only file: fewer bitplanes, more error, same frame count.
+run w_intra "$ANIMC" encode "$PC2" --mesh "$MESH" -o "$TMP/wi.ams" --codec wavelet --step 1e-4 --i-frames-only --json
+json_check 'd["temporal_prediction"] == False' "$TMP/w_intra.out"
+run w_dec_full "$ANIMC" decode "$TMP/wi.ams" -o "$TMP/wi_full.pc2"
+run w_dec_4 "$ANIMC" decode "$TMP/wi.ams" -o "$TMP/wi_4.pc2" --bitplanes 4
+run w_dec_bytes "$ANIMC" decode "$TMP/wi.ams" -o "$TMP/wi_bytes.pc2" --max-bytes 100
+for part in full 4 bytes; do
+  run "w_cmp_$part" "$ANIMC" compare "$PC2" "$TMP/wi_$part.pc2" --mesh "$MESH" --json
+done
+json_check 'd["frames"] == e["frames"] == 50 and d["kg_error"] > 10 * e["kg_error"]' "$TMP/w_cmp_4.out" "$TMP/w_cmp_full.out"
+json_check 'd["frames"] == 50 and d["kg_error"] > e["kg_error"]' "$TMP/w_cmp_bytes.out" "$TMP/w_cmp_full.out"
+[[ ! -s $TMP/w_dec_4.err ]] || check_failed "decoding an I-frames-only file progressively warned: $(cat "$TMP/w_dec_4.err")"
+# With P-frames it works too, and says that frames drift.
+run w_dec_p "$ANIMC" decode "$W_AMS" -o "$TMP/wp_4.pc2" --bitplanes 4
+grep -q "drift" "$TMP/w_dec_p.err" || check_failed "no drift warning when decoding P-frames progressively"
+
 # --- errors: exit != 0, nothing on stdout, one "animc: " line on stderr, no output ---------
 ERRDIR=$TMP/errors
 mkdir "$ERRDIR"
@@ -173,6 +205,13 @@ expect_error corrupt_compare "" "$ANIMC" compare "$PC2" "$BAD_AMS" --mesh "$MESH
 expect_error max_error_zero "$ERRDIR/x.ams" "$ANIMC" encode "$PC2" --mesh "$MESH" -o "$ERRDIR/x.ams" --max-error 0
 expect_error bad_range "$ERRDIR/x.pc2" "$ANIMC" decode "$AMS" -o "$ERRDIR/x.pc2" --frames 20:10
 expect_error range_past_end "$ERRDIR/x.pc2" "$ANIMC" decode "$AMS" -o "$ERRDIR/x.pc2" --frames 40:51
+expect_error unknown_codec "$ERRDIR/x.ams" "$ANIMC" encode "$PC2" --mesh "$MESH" -o "$ERRDIR/x.ams" --codec mpeg
+expect_error wavelet_profile "$ERRDIR/x.ams" "$ANIMC" encode "$PC2" --mesh "$MESH" -o "$ERRDIR/x.ams" --codec wavelet --profile paper
+expect_error octree_step "$ERRDIR/x.ams" "$ANIMC" encode "$PC2" --mesh "$MESH" -o "$ERRDIR/x.ams" --step 1e-3
+expect_error wavelet_step_zero "$ERRDIR/x.ams" "$ANIMC" encode "$PC2" --mesh "$MESH" -o "$ERRDIR/x.ams" --codec wavelet --step 0
+expect_error wavelet_bpv_negative "$ERRDIR/x.ams" "$ANIMC" encode "$PC2" --mesh "$MESH" -o "$ERRDIR/x.ams" --codec wavelet --bpv -1
+expect_error progressive_octree "$ERRDIR/x.pc2" "$ANIMC" decode "$AMS" -o "$ERRDIR/x.pc2" --bitplanes 3
+expect_error negative_bitplanes "$ERRDIR/x.pc2" "$ANIMC" decode "$W_AMS" -o "$ERRDIR/x.pc2" --bitplanes -2
 
 if ((FAILURES > 0)); then
   echo "$FAILURES check(s) failed" >&2
