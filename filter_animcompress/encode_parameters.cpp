@@ -6,38 +6,74 @@ namespace animc::meshlab {
 namespace {
 
 // Enum order is the script value: append, never reorder.
-const QStringList kCodecs = {"Affine-Octree"};
+const QStringList kCodecs = {"Affine-Octree", "Wavelet"};
 const QStringList kProfiles = {"default", "paper"};
 
 }  // namespace
 
 void addEncodeParameters(RichParameterList& par) {
   const EncodeSettings defaults;
-  par.addParam(RichEnum("Codec", 0, kCodecs, "Codec", "Affine-Octree: per-frame octree of affine motions (docs/affine_octree.md)."));
-  par.addParam(RichEnum("Profile", 0, kProfiles, "Profile",
+  par.addParam(RichEnum("Codec", 0, kCodecs, "Codec",
+                        "Affine-Octree: per-frame octree of affine motions, every vertex within the max error "
+                        "(docs/affine_octree.md). Wavelet: progressive wavelet coding on a mesh hierarchy, "
+                        "error set by the step or the bits per vertex (docs/wavelet.md)."));
+  par.addParam(RichEnum("Profile", 0, kProfiles, "Profile (Affine-Octree)",
                         "default: our predictive octree (smaller files); paper: the method exactly as published."));
-  par.addParam(RichFloat("MaxErrorPercent", float(100 * defaults.octree.max_error), "Max error (%)",
+  par.addParam(RichFloat("MaxErrorPercent", float(100 * defaults.octree.max_error), "Max error (%) (Affine-Octree)",
                          "Largest vertex error, in percent of the side of the frame's bounding cube "
                          "(the paper's ME; animc encode --max-error takes the same as a fraction)."));
-  par.addParam(RichInt("Bits", defaults.octree.bits, "Bits",
+  par.addParam(RichInt("Bits", defaults.octree.bits, "Bits (Affine-Octree)",
                        "Paper profile: bits per affine parameter and stored coordinate (8 to 24)."));
+  par.addParam(RichFloat("WaveletStepPercent", float(100 * defaults.wavelet.step), "Step (% of diagonal) (Wavelet)",
+                         "Finest quantisation step of the wavelet coefficients, in percent of the diagonal of "
+                         "the first frame's bounding box (animc encode --step takes the same as a fraction). "
+                         "Smaller: more accurate, larger file."));
+  par.addParam(RichFloat("WaveletBitsPerVertex", float(defaults.wavelet.bits_per_vertex),
+                         "Bits per vertex per frame (Wavelet)",
+                         "Fixed rate: each frame is cut at this many bits per vertex (the paper's 1, 2, 4, 8); "
+                         "0 = no limit, the step alone sets the quality."));
   par.addParam(RichInt("IFrameInterval", int(defaults.iframe_interval), "I-frame interval",
                        "An intra frame every K frames, so playback can start there; 0 = only the first frame."));
 }
 
-Result<EncodeSettings> encodeSettingsFrom(const RichParameterList& par) {
-  EncodeSettings s;
-  const int codec = par.getEnum("Codec");
-  if (codec != 0) return invalidArgument("unknown codec " + std::to_string(codec));
+namespace {
+
+// MeshLab keeps a float: 0.3 comes back as 0.30000001. The decimal the user typed (7
+// significant digits) is what animc would get from the same text, so both write the same file.
+double typedValue(const RichParameterList& par, const QString& name) {
+  return QString::number(double(par.getFloat(name)), 'g', 7).toDouble();
+}
+
+Status readOctreeParameters(const RichParameterList& par, AffineOctreeOptions& o) {
   const int profile = par.getEnum("Profile");
   if (profile < 0 || profile >= kProfiles.size()) return invalidArgument("unknown profile " + std::to_string(profile));
-  s.octree.profile = profile == 0 ? Profile::kDefault : Profile::kPaper;
-  const double percent = par.getFloat("MaxErrorPercent");
+  o.profile = profile == 0 ? Profile::kDefault : Profile::kPaper;
+  const double percent = typedValue(par, "MaxErrorPercent");
   if (!(percent >= 100 * kMinMaxError && percent <= 100 * kMaxMaxError))
     return invalidArgument("the max error must be between 0.0001 % and 50 % of the cube's side, not " +
                            std::to_string(percent) + " %");
-  s.octree.max_error = percent / 100;
-  s.octree.bits = par.getInt("Bits");
+  o.max_error = percent / 100;
+  o.bits = par.getInt("Bits");
+  return Status();
+}
+
+void readWaveletParameters(const RichParameterList& par, WaveletOptions& o) {
+  o.step = typedValue(par, "WaveletStepPercent") / 100;
+  o.bits_per_vertex = typedValue(par, "WaveletBitsPerVertex");
+}
+
+}  // namespace
+
+Result<EncodeSettings> encodeSettingsFrom(const RichParameterList& par) {
+  EncodeSettings s;
+  const int codec = par.getEnum("Codec");
+  if (codec < 0 || codec >= kCodecs.size()) return invalidArgument("unknown codec " + std::to_string(codec));
+  if (codec == 1) {
+    s.codec = CodecId::kWavelet;
+    readWaveletParameters(par, s.wavelet);
+  } else {
+    ANIMC_RETURN_IF_ERROR(readOctreeParameters(par, s.octree));
+  }
   const int interval = par.getInt("IFrameInterval");
   if (interval < 0) return invalidArgument("the I-frame interval must be 0 or more");
   s.iframe_interval = uint32_t(interval);

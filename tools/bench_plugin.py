@@ -33,10 +33,12 @@ MAX_ERROR_PERCENT = 1
 SCRIPT = '''<!DOCTYPE FilterScript>
 <FilterScript>
  <filter name="Compress Animation Layers">
-  <Param type="RichEnum" name="Codec" value="0" enum_cardinality="1" enum_val0="Affine-Octree"/>
+  <Param type="RichEnum" name="Codec" value="0" enum_cardinality="2" enum_val0="Affine-Octree" enum_val1="Wavelet"/>
   <Param type="RichEnum" name="Profile" value="0" enum_cardinality="2" enum_val0="default" enum_val1="paper"/>
   <Param type="RichFloat" name="MaxErrorPercent" value="{percent}"/>
   <Param type="RichInt" name="Bits" value="16"/>
+  <Param type="RichFloat" name="WaveletStepPercent" value="0.01"/>
+  <Param type="RichFloat" name="WaveletBitsPerVertex" value="0"/>
   <Param type="RichInt" name="IFrameInterval" value="0"/>
   <Param type="RichBool" name="VisibleOnly" value="false"/>
   <Param type="RichSaveFile" name="OutputFile" value="{output}" ext="*.ams"/>

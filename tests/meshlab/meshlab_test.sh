@@ -2,7 +2,7 @@
 # End-to-end tests of the MeshLab plugins in the real meshlabserver (staged by
 # `cmake --install BUILD --prefix STAGE`, run headless under xvfb-run by tools/meshlabserver.sh).
 # usage: meshlab_test.sh CASE ANIMC_BINARY SOURCE_DIR STAGE_DIR
-#   CASE: dump | scripts | filter_roundtrip | io_roundtrip | bad_layers | bad_ams
+#   CASE: dump | scripts | filter_roundtrip | io_roundtrip | wavelet | bad_layers | bad_ams
 set -euo pipefail
 
 CASE=${1:?usage: meshlab_test.sh CASE ANIMC SOURCE_DIR STAGE_DIR}
@@ -60,7 +60,8 @@ case_dump() {
   for text in "section f0 Compress Animation Layers" "Animation Reconstruction Error" "Import Compressed Animation" \
               "Max error (%)" "I-frame interval" "Output .ams file" "Add reconstructed layers" "Colour by error" \
               "Visible layers only" "First original layer" "First reconstructed layer" "Colour scale max" \
-              "Compressed animation" "Last frame"; do
+              "Compressed animation" "Last frame" "Step (% of diagonal) (Wavelet)" \
+              "Bits per vertex per frame (Wavelet)" "Profile (Affine-Octree)"; do
     grep -qF -- "$text" dump.txt || check_failed "dump: '$text' missing"
   done
 }
@@ -128,6 +129,28 @@ case_io_roundtrip() {
   out=$("$ANIMC" compare frames.txt saved.ams --json) || die "animc compare of saved.ams failed"
   "$PY" -c 'import json,sys; d=json.loads(sys.argv[1]); sys.exit(0 if d["frames"]==int(sys.argv[2]) and 0 < d["max_error_rel_cube"] <= 0.01 else 1)' "$out" "$N" ||
     check_failed "io_save: saved.ams is not the $N frames within 1 %: $out"
+}
+
+case_wavelet() {
+  # The filter with Codec = Wavelet writes what animc encode --codec wavelet writes, its
+  # reconstructed layers are what animc decodes, and the IO plugin opens the file.
+  sed -e 's|name="Codec" value="0"|name="Codec" value="1"|' \
+      -e 's|name="WaveletStepPercent" value="0.01"|name="WaveletStepPercent" value="0.03"|' \
+      "$SRC/samples/compress_error.mlx" >wavelet.mlx
+  grep -q 'name="Codec" value="1"' wavelet.mlx && grep -q 'value="0.03"' wavelet.mlx ||
+    die "wavelet.mlx: the sample's Codec or WaveletStepPercent parameter changed"
+  layer_exports "$N" "$N" recon
+  server wavelet -i "${FRAMES[@]}" -s "$TMP/wavelet.mlx" "${EXPORTS[@]}"
+  expect_ok wavelet
+  expect_log wavelet "codec: wavelet, no rate limit, step 0.0003 of the diagonal"
+  "$ANIMC" encode "$SRC/samples/sydney/frames" -o cli_wavelet.ams --codec wavelet --step 3e-4 >/dev/null
+  cmp -s sydney_24.ams cli_wavelet.ams || check_failed "the filter's wavelet sydney_24.ams differs from animc encode's"
+  "$ANIMC" decode sydney_24.ams -o decoded --format ply >/dev/null
+  expect_same_frames wavelet recon.txt decoded "$N"
+  layer_exports 0 "$N" opened
+  server wavelet_open -i "$TMP/sydney_24.ams" "${EXPORTS[@]}"
+  expect_ok wavelet_open
+  expect_same_frames wavelet_open opened.txt decoded "$N"
 }
 
 # bad_case NAME EXPECTED_TEXT FRAME_FILES...: compress.mlx on these layers fails cleanly.
