@@ -14,7 +14,7 @@ struct Coefficients {
   std::vector<double> values;
   std::vector<uint8_t> classes;
   std::vector<uint32_t> parents;
-  BitplaneLayout layout() const { return BitplaneLayout{classes.data(), parents.data(), values.size()}; }
+  BitplaneLayout layout() const { return BitplaneLayout{classes.data(), parents.data(), classes.size()}; }
 };
 
 // Laplacian-like values, larger for the first (coarse) groups, parents pointing backwards.
@@ -22,13 +22,12 @@ Coefficients makeCoefficients(size_t groups, uint32_t seed) {
   std::mt19937 rng(seed);
   std::exponential_distribution<double> magnitude(1.0);
   Coefficients c;
-  for (size_t g = 0; g < groups; ++g)
-    for (int a = 0; a < 3; ++a) {
-      const double scale = 50.0 / (1.0 + double(g) / 8.0);
-      c.values.push_back((rng() & 1 ? 1 : -1) * scale * magnitude(rng));
-      c.classes.push_back(uint8_t(1 + (g % 7) * 2 + (a != 0)));
-      c.parents.push_back(g == 0 ? kNoParent : uint32_t(3 * (g / 2) + a));
-    }
+  for (size_t g = 0; g < groups; ++g) {
+    const double scale = 50.0 / (1.0 + double(g) / 8.0);
+    for (int a = 0; a < 3; ++a) c.values.push_back((rng() & 1 ? 1 : -1) * scale * magnitude(rng));
+    c.classes.push_back(uint8_t(g < 20 ? 0 : 1 + g % 15));
+    c.parents.push_back(g == 0 ? kNoParent : uint32_t(g / 2));
+  }
   return c;
 }
 
@@ -41,21 +40,24 @@ double squaredError(const std::vector<double>& a, const std::vector<double>& b) 
 // Encodes c down to `step` (within `budget` bytes when not 0): the stream and what the encoder
 // expects a full decode to give.
 void encode(const Coefficients& c, double step, std::vector<uint8_t>& bytes, std::vector<double>& encoder_view,
-            uint64_t budget = 0) {
+            uint64_t budget = 0, const BitplaneHistory* context = nullptr, BitplaneHistory* history = nullptr) {
   BitplaneEncodeSettings settings;
   settings.step = step;
   settings.byte_budget = budget;
-  encodeBitplanes(c.values.data(), c.layout(), settings, bytes, encoder_view);
+  settings.context = context;
+  encodeBitplanes(c.values.data(), c.layout(), settings, bytes, encoder_view, history);
 }
 
 Status decode(const std::vector<uint8_t>& bytes, size_t size, const Coefficients& c, int max_planes,
-              std::vector<double>& out, int* planes = nullptr, double step = 0.01) {
+              std::vector<double>& out, int* planes = nullptr, double step = 0.01,
+              const BitplaneHistory* context = nullptr, BitplaneHistory* history = nullptr) {
   std::vector<uint8_t> exact(bytes.begin(), bytes.begin() + size);  // exact-size copy for ASan
   ByteReader in(exact.data(), exact.size());
   BitplaneDecodeSettings settings;
   settings.step = step;
   settings.max_planes = max_planes;
-  return decodeBitplanes(in, c.layout(), settings, out, planes);
+  settings.context = context;
+  return decodeBitplanes(in, c.layout(), settings, out, planes, history);
 }
 
 TEST(WaveletBitplane, FullStreamIsExactToTheStepAndMatchesTheEncoder) {
@@ -126,6 +128,55 @@ TEST(WaveletBitplane, BudgetIsRespectedAndMoreBudgetMeansLessError) {
     EXPECT_LT(error, previous);
     previous = error;
   }
+}
+
+// A second frame close to the first, coded with the first's history as temporal context:
+// both sides agree, and the context saves bytes.
+TEST(WaveletBitplane, TemporalContextRoundTripsAndHelps) {
+  const Coefficients first = makeCoefficients(600, 8);
+  Coefficients second = first;
+  std::mt19937 rng(9);
+  std::normal_distribution<double> noise(0.0, 0.5);
+  for (double& v : second.values) v = 0.8 * v + noise(rng);
+  std::vector<uint8_t> bytes;
+  std::vector<double> view;
+  BitplaneHistory history, decoder_history;
+  encode(first, 0.01, bytes, view, 0, nullptr, &history);
+  std::vector<double> decoded;
+  ASSERT_TRUE(decode(bytes, bytes.size(), first, 0, decoded, nullptr, 0.01, nullptr, &decoder_history).ok());
+  EXPECT_EQ(decoder_history.bits, history.bits);
+  EXPECT_EQ(decoder_history.negative, history.negative);
+  std::vector<uint8_t> with, without;
+  std::vector<double> view_with, view_without;
+  encode(second, 0.01, with, view_with, 0, &history);
+  encode(second, 0.01, without, view_without);
+  EXPECT_EQ(view_with, view_without);  // the context changes the bytes, not the values
+  EXPECT_LT(with.size(), without.size() * 97 / 100);
+  ASSERT_TRUE(decode(with, with.size(), second, 0, decoded, nullptr, 0.01, &decoder_history).ok());
+  EXPECT_EQ(decoded, view_with);
+}
+
+// The encoder's preview of a cut is exactly what a stream cut there decodes to.
+TEST(WaveletBitplane, CutPreviewMatchesAForcedCut) {
+  const Coefficients c = makeCoefficients(300, 10);
+  auto workspace = makeBitplaneWorkspace();
+  const BitplaneCutPreview preview(c.values.data(), c.layout(), 0.01, workspace.get());
+  ASSERT_GT(preview.planeCount(), 4);
+  for (int planes : {1, 3, preview.planeCount()})
+    for (size_t blocks : {size_t(1), preview.blockCount() / 2, preview.blockCount()}) {
+      std::vector<double> expected, decoded;
+      preview.decoded(planes, blocks, expected);
+      BitplaneEncodeSettings settings;
+      settings.step = 0.01;
+      settings.max_planes = planes;
+      settings.last_plane_blocks = blocks;
+      std::vector<uint8_t> bytes;
+      std::vector<double> view;
+      encodeBitplanes(c.values.data(), c.layout(), settings, bytes, view);
+      EXPECT_EQ(view, expected) << planes << " planes, " << blocks << " blocks";
+      ASSERT_TRUE(decode(bytes, bytes.size(), c, 0, decoded).ok());
+      EXPECT_EQ(decoded, expected);
+    }
 }
 
 TEST(WaveletBitplane, AllZeroCostsOneByte) {

@@ -188,6 +188,50 @@ TEST(WaveletCodec, DriftOverManyPFramesStaysBounded) {
   EXPECT_LT(kgError(seq, decoded), 0.5);
 }
 
+// Rate control by target error: the decoded excerpt's KG error stays within the target (a
+// group start included, whose parametric frame must meet it too), and a looser target costs
+// fewer bytes.
+TEST(WaveletCodec, TargetKgBoundsTheSequenceErrorAndLooserTargetsCostLess) {
+  MemorySequence seq = sharedSequence("chickenCrossing", 24);
+  size_t previous_bytes = SIZE_MAX;
+  for (double target : {0.1, 0.5, 2.0}) {
+    WaveletOptions options;
+    options.step = 1e-6;
+    options.parametric_bits = 8;  // too coarse for the tighter targets: the encoder must refine it
+    options.target_kg = target;
+    const Coded coded = encodeAll(seq, options, 16);
+    const auto decoded = decodeAll(seq, options, coded);
+    ASSERT_EQ(decoded.size(), seq.frames().size());
+    EXPECT_EQ(decoded, coded.encoder_view);
+    const double kg = kgError(seq, decoded);
+    EXPECT_LE(kg, target) << target;
+    EXPECT_GT(kg, 0.5 * target) << target;  // the search does not overshoot wildly either
+    EXPECT_LT(totalBytes(coded), previous_bytes) << target;
+    previous_bytes = totalBytes(coded);
+  }
+}
+
+TEST(WaveletCodec, OptionsRoundTripAndRejectBadTargets) {
+  WaveletOptions options;
+  options.target_kg = 0.25;
+  options.step = 3e-4;
+  options.truncatable = false;
+  ByteWriter w;
+  options.write(w);
+  ByteReader r(w.bytes().data(), w.bytes().size());
+  auto back = WaveletOptions::read(r);
+  ASSERT_TRUE(back.ok()) << back.status().message();
+  EXPECT_EQ(back.value().target_kg, 0.25);
+  EXPECT_EQ(back.value().step, 3e-4);
+  EXPECT_FALSE(back.value().truncatable);
+  for (double bad : {-1.0, 100.5, double(NAN)}) {
+    options.target_kg = bad;
+    EXPECT_FALSE(options.validate().ok()) << bad;
+  }
+  options.target_kg = 100;
+  EXPECT_TRUE(options.validate().ok());
+}
+
 TEST(WaveletCodec, DetailFrameWithoutParametricFrameIsRejected) {
   MemorySequence seq = gridSequence(12, 12, 3, 1.0, 0.0);
   WaveletOptions options;

@@ -12,12 +12,12 @@ double boxDiagonal(const std::vector<double>& xyz) {
   return std::sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
 }
 
-// Context of a coefficient: base vertices share one class; details are split by how coarse
-// their level is (coarsest six levels apart, the rest together) and normal vs tangential.
-uint8_t classOf(int level, int level_count, int component) {
+// Context class of a vertex: base vertices share one; details are split by level, the seven
+// finest (which hold most vertices) and the eight coarsest apart, the middle ones together.
+uint8_t classOf(int level, int level_count) {
   if (level < 0) return 0;
-  const int coarseness = std::min(level_count - 1 - level, 6);
-  return uint8_t(1 + 2 * coarseness + (component == 0 ? 0 : 1));
+  if (level <= 6) return uint8_t(1 + level);
+  return uint8_t(8 + std::min(level_count - 1 - level, 7));
 }
 
 }  // namespace
@@ -45,11 +45,13 @@ void WaveletFrameModel::setParametric(const std::vector<double>& parametric_xyz)
   for (const Collapse& c : pm.collapses) target[c.vertex] = c.target;
   classes_.clear();
   parents_.clear();
-  for (uint32_t v : order_)
-    for (int a = 0; a < 3; ++a) {
-      classes_.push_back(classOf(transform_->levelOf()[v], pm.level_count, a));
-      parents_.push_back(target[v] == kNoVertex ? kNoParent : 3 * position[target[v]] + uint32_t(a));
-    }
+  group_.clear();
+  for (uint32_t v : order_) {
+    classes_.push_back(classOf(transform_->levelOf()[v], pm.level_count));
+    group_.push_back(classes_.back() == 0 ? 0 : 1);
+    parents_.push_back(target[v] == kNoVertex ? kNoParent : position[target[v]]);
+  }
+  context_.reset(coefficientCount());
   const double diagonal = boxDiagonal(parametric_xyz);
   step_ = options_.step * (diagonal > 0 ? diagonal : 1.0);
   transform_->forward(parametric_xyz.data(), previous_);
@@ -60,46 +62,93 @@ void WaveletFrameModel::setParametric(const std::vector<double>& parametric_xyz)
   history_ = 1;
 }
 
-bool WaveletFrameModel::hasReference(DetailReference ref) const {
-  return ready() && (ref != DetailReference::kLinear || history_ >= 2);
+bool WaveletFrameModel::canPredict(const Prediction& prediction) const {
+  if (!ready()) return false;
+  for (uint8_t s : prediction.selector)
+    if (s > kIntraSelector || (s != 0 && s != kIntraSelector && history_ < 2)) return false;
+  return true;
 }
 
-const std::vector<double>& WaveletFrameModel::referenceOf(DetailReference ref) const {
-  if (ref == DetailReference::kIntra) return intra_reference_;
-  return ref == DetailReference::kInter ? previous_ : extrapolated_;
+double WaveletFrameModel::predicted(const Prediction& prediction, size_t coding_index, size_t j) const {
+  const uint8_t s = prediction.selector[group_[coding_index]];
+  if (s == kIntraSelector) return intra_reference_[j];
+  if (s == 0) return previous_[j];
+  return previous_[j] + (double(s) / kDampingSteps) * (previous_[j] - before_previous_[j]);
 }
 
-void WaveletFrameModel::residual(const std::vector<double>& coefficients, DetailReference ref,
+Prediction WaveletFrameModel::choosePrediction(const std::vector<double>& coefficients, bool temporal) const {
+  if (!temporal) return Prediction::intra();
+  // Residual energy against previous + a * (previous - before) is quadratic in a:
+  // sum (d - a g)^2 with d = c - previous, g = previous - before.
+  struct Sums { double dd = 0, dg = 0, gg = 0, intra = 0; };
+  std::array<Sums, kPredictionGroups> sums;
+  const std::vector<double>& weights = transform_->weights();
+  const bool two = history_ >= 2;
+  for (size_t i = 0; i < order_.size(); ++i) {
+    const size_t v = order_[i];
+    const double w2 = weights[v] * weights[v];
+    Sums& s = sums[group_[i]];
+    for (size_t j = 3 * v; j < 3 * v + 3; ++j) {
+      const double d = coefficients[j] - previous_[j], g = two ? previous_[j] - before_previous_[j] : 0.0;
+      const double e = coefficients[j] - intra_reference_[j];
+      s.dd += w2 * d * d;
+      s.dg += w2 * d * g;
+      s.gg += w2 * g * g;
+      s.intra += w2 * e * e;
+    }
+  }
+  Prediction best;
+  for (int group = 0; group < kPredictionGroups; ++group) {
+    const Sums& s = sums[group];
+    double best_energy = s.intra;
+    best.selector[group] = kIntraSelector;
+    for (uint8_t k = 0; k <= (two ? kDampingSteps : 0); ++k) {
+      const double a = double(k) / kDampingSteps;
+      const double energy = s.dd - 2 * a * s.dg + a * a * s.gg;
+      if (energy < best_energy) {
+        best_energy = energy;
+        best.selector[group] = k;
+      }
+    }
+  }
+  return best;
+}
+
+void WaveletFrameModel::residual(const std::vector<double>& coefficients, const Prediction& prediction,
                                  std::vector<double>& out) const {
-  const std::vector<double>& reference = referenceOf(ref);
   const std::vector<double>& weights = transform_->weights();
   out.resize(coefficientCount());
   for (size_t i = 0; i < order_.size(); ++i) {
     const size_t v = order_[i];
-    for (int a = 0; a < 3; ++a) out[3 * i + a] = weights[v] * (coefficients[3 * v + a] - reference[3 * v + a]);
+    for (size_t a = 0; a < 3; ++a)
+      out[3 * i + a] = weights[v] * (coefficients[3 * v + a] - predicted(prediction, i, 3 * v + a));
   }
 }
 
-double WaveletFrameModel::residualEnergy(const std::vector<double>& coefficients, DetailReference ref) const {
-  std::vector<double> r;
-  residual(coefficients, ref, r);
-  double sum = 0;
-  for (double x : r) sum += x * x;
-  return sum;
-}
-
-void WaveletFrameModel::accept(const std::vector<double>& decoded_residual, DetailReference ref) {
-  std::vector<double> next = referenceOf(ref);
+void WaveletFrameModel::addResidual(const std::vector<double>& decoded_residual, const Prediction& prediction,
+                                    std::vector<double>& coefficients) const {
   const std::vector<double>& weights = transform_->weights();
+  coefficients.resize(previous_.size());
   for (size_t i = 0; i < order_.size(); ++i) {
     const size_t v = order_[i];
-    for (int a = 0; a < 3; ++a) next[3 * v + a] += decoded_residual[3 * i + a] / weights[v];
+    for (size_t a = 0; a < 3; ++a)
+      coefficients[3 * v + a] = predicted(prediction, i, 3 * v + a) + decoded_residual[3 * i + a] / weights[v];
   }
+}
+
+void WaveletFrameModel::previewReconstruction(const std::vector<double>& decoded_residual,
+                                              const Prediction& prediction, std::vector<double>& xyz) {
+  addResidual(decoded_residual, prediction, preview_);
+  transform_->inverse(preview_, xyz);
+}
+
+void WaveletFrameModel::accept(const std::vector<double>& decoded_residual, const Prediction& prediction) {
+  addResidual(decoded_residual, prediction, next_);
+  context_.bits.swap(next_context_.bits);
+  context_.negative.swap(next_context_.negative);
   before_previous_.swap(previous_);
-  previous_.swap(next);
+  previous_.swap(next_);
   history_ = std::min(history_ + 1, 2);
-  extrapolated_.resize(previous_.size());
-  for (size_t i = 0; i < previous_.size(); ++i) extrapolated_[i] = 2 * previous_[i] - before_previous_[i];
   transform_->inverse(previous_, reconstruction_);
 }
 

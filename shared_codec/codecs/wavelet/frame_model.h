@@ -17,10 +17,28 @@ namespace animc {
 // Extent (max - min) of x y z triples along each axis; zeros when there are none.
 std::array<double, 3> boxExtent(const std::vector<double>& xyz);
 
-enum class DetailReference : uint8_t {
-  kIntra,  // base vertices relative to the parametric mesh's, details relative to zero
-  kInter,  // relative to the previous frame's reconstructed coefficients (the paper's P-frame)
-  kLinear, // relative to their linear extrapolation from the two previous frames
+// How a detail frame predicts its coefficients, per group of vertices (base vertices, then
+// removed ones): selector k <= kDampingSteps predicts previous + (k / kDampingSteps) *
+// (previous - the one before), i.e. 0 = the paper's P-frame, kDampingSteps = linear
+// extrapolation, in between damped (quantisation noise of the references is amplified by
+// extrapolation); kIntraSelector = no temporal prediction (base vertices: the parametric
+// mesh's, details: 0). All references are reconstructed coefficients (closed loop).
+constexpr int kPredictionGroups = 2;
+constexpr uint8_t kDampingSteps = 8;
+constexpr uint8_t kIntraSelector = kDampingSteps + 1;
+
+struct Prediction {
+  std::array<uint8_t, kPredictionGroups> selector{};
+  static Prediction intra() {
+    Prediction p;
+    p.selector.fill(kIntraSelector);
+    return p;
+  }
+  bool isIntra() const {
+    for (uint8_t s : selector)
+      if (s != kIntraSelector) return false;
+    return true;
+  }
 };
 
 class WaveletFrameModel {
@@ -31,35 +49,55 @@ class WaveletFrameModel {
   // also the reconstruction of that frame.
   void setParametric(const std::vector<double>& parametric_xyz);
   bool ready() const { return transform_ != nullptr; }
-  // Whether a reference is available (kLinear needs two reconstructed frames since the last
-  // parametric frame).
-  bool hasReference(DetailReference ref) const;
+  // Whether the references a prediction needs exist (selectors above 0 need two
+  // reconstructed frames since the last parametric frame; selectors are <= kIntraSelector).
+  bool canPredict(const Prediction& prediction) const;
+  // The prediction leaving the smallest weighted residual energy (a proxy for its rate);
+  // intra only when temporal is false.
+  Prediction choosePrediction(const std::vector<double>& coefficients, bool temporal) const;
 
   const WaveletTransform& transform() const { return *transform_; }
   BitplaneLayout layout() const { return BitplaneLayout{classes_.data(), parents_.data(), classes_.size()}; }
-  size_t coefficientCount() const { return classes_.size(); }
+  size_t coefficientCount() const { return 3 * classes_.size(); }
+  // Temporal contexts of a frame: the previous frame's decoded residual for predicted
+  // frames; none for I-frames, which must decode on their own.
+  const BitplaneHistory* contextFor(const Prediction& prediction) const {
+    return prediction.isIntra() ? nullptr : &context_;
+  }
+  // Where the coder leaves this frame's history; accept() makes it the next context.
+  BitplaneHistory& nextHistory() { return next_context_; }
+  BitplaneWorkspace* workspace() const { return workspace_.get(); }
   double step() const { return step_; }
 
-  // Weighted residual of coefficients against a reference, in coding order.
-  void residual(const std::vector<double>& coefficients, DetailReference ref, std::vector<double>& out) const;
-  // Squared norm of that residual, to choose the reference.
-  double residualEnergy(const std::vector<double>& coefficients, DetailReference ref) const;
-  // Adds a decoded residual to the reference; the result becomes the reference of the next
-  // P-frame and its inverse transform the reconstructed frame.
-  void accept(const std::vector<double>& decoded_residual, DetailReference ref);
+  // Weighted residual of coefficients against their prediction, in coding order.
+  void residual(const std::vector<double>& coefficients, const Prediction& prediction,
+                std::vector<double>& out) const;
+  // Adds a decoded residual to the prediction; the result becomes the reference of the next
+  // frame and its inverse transform the reconstructed frame.
+  void accept(const std::vector<double>& decoded_residual, const Prediction& prediction);
 
   const std::vector<double>& reconstruction() const { return reconstruction_; }
+  // The frame accept() would reconstruct from this residual, leaving the model unchanged
+  // (encoder-side search of a cut).
+  void previewReconstruction(const std::vector<double>& decoded_residual, const Prediction& prediction,
+                             std::vector<double>& xyz);
 
  private:
-  const std::vector<double>& referenceOf(DetailReference ref) const;
+  double predicted(const Prediction& prediction, size_t coding_index, size_t coefficient) const;
+  void addResidual(const std::vector<double>& decoded_residual, const Prediction& prediction,
+                   std::vector<double>& coefficients) const;
 
   WaveletOptions options_;
   const Topology& topology_;
   std::unique_ptr<WaveletTransform> transform_;
   std::vector<uint32_t> order_;     // vertices in coding order: base, then coarse to fine
-  std::vector<uint8_t> classes_;    // significance class of each coded coefficient
-  std::vector<uint32_t> parents_;   // the same component of the collapse target, coded earlier
-  std::vector<double> intra_reference_, previous_, before_previous_, extrapolated_, reconstruction_;
+  std::vector<uint8_t> classes_;    // significance class of each vertex, in coding order
+  std::vector<uint32_t> parents_;   // coding position of the vertex it collapses onto
+  BitplaneHistory context_, next_context_;
+  BitplaneWorkspacePtr workspace_ = makeBitplaneWorkspace();
+  std::vector<uint8_t> group_;      // prediction group of each vertex, in coding order
+  std::vector<double> intra_reference_, previous_, before_previous_, next_, reconstruction_;
+  std::vector<double> preview_;
   int history_ = 0;  // reconstructed frames since the last parametric frame (capped at 2)
   double step_ = 1;
 };

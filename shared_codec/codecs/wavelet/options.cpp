@@ -13,6 +13,8 @@ Status WaveletOptions::validate() const {
                            " outside [1e-9, 1] (a fraction of the parametric mesh's diagonal)");
   if (parametric_bits < kMinParametricBits || parametric_bits > kMaxParametricBits)
     return invalidArgument("parametric bits " + std::to_string(parametric_bits) + " outside [4, 28]");
+  if (!(target_kg == 0 || (target_kg > 0 && target_kg <= kMaxTargetKg)))
+    return invalidArgument("target KG error " + std::to_string(target_kg) + " % outside (0, 100] (0 = off)");
   return Status();
 }
 
@@ -21,6 +23,7 @@ void WaveletOptions::write(ByteWriter& w) const {
   w.f64(step);
   w.u8(uint8_t(parametric_bits));
   w.u8(uint8_t((temporal_prediction ? 1 : 0) | (truncatable ? 2 : 0) | (local_frames ? 4 : 0)));
+  w.f64(target_kg);
 }
 
 Result<WaveletOptions> WaveletOptions::read(ByteReader& r) {
@@ -34,6 +37,7 @@ Result<WaveletOptions> WaveletOptions::read(ByteReader& r) {
   o.temporal_prediction = flags & 1;
   o.truncatable = flags & 2;
   o.local_frames = flags & 4;
+  ANIMC_ASSIGN_OR_RETURN(o.target_kg, r.f64("Target_KG"));
   if (r.remaining() != 0) return corrupt("codec parameters: " + std::to_string(r.remaining()) + " unread bytes");
   Status s = o.validate();
   if (!s.ok()) return corrupt("codec parameters: " + s.message());

@@ -25,6 +25,14 @@ struct WaveletOptions {
   // Off by default: on chickenCrossing the frames' rotation by quantisation errors of the
   // coarser levels multiplies the error 15-25x at the same step (docs/wavelet.md).
   bool local_frames = false;
+  // Rate control by target error, in percent of the KG error (0 = off): each detail frame is
+  // cut after the shortest prefix of its bitplanes whose float output has a squared error
+  // <= (target_kg / 100)^2 * sum |x - centroid|^2 of that frame, and parametric frames get
+  // a finer grid than parametric_bits when they need it; summed over frames, the sequence's
+  // KG error is then <= target_kg. `step` still sets the finest plane available (a target
+  // the step cannot reach is missed), and a bits_per_vertex budget wins over the target.
+  // Encoder only; stored so that `animc info` can show it.
+  double target_kg = 0;
   // Write the per-bitplane byte checkpoints that let a payload cut at any byte decode to its
   // last complete bitplane (about 1.5 bytes per bitplane per frame).
   bool truncatable = true;
@@ -40,6 +48,7 @@ constexpr double kMinWaveletStep = 1e-9;
 constexpr double kMaxWaveletStep = 1.0;
 constexpr int kMinParametricBits = 4;
 constexpr int kMaxParametricBits = 28;
+constexpr double kMaxTargetKg = 100;
 
 // What a decoder may be asked to drop (progressive decoding); not part of the stream.
 struct WaveletDecodeControl {

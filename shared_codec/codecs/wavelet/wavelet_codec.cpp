@@ -6,17 +6,19 @@
 #include "codecs/affine_octree/iframe_coder.h"
 #include "codecs/wavelet/bitplane_coder.h"
 #include "codecs/wavelet/frame_model.h"
+#include "codecs/wavelet/rate_control.h"
 
 namespace animc {
 namespace {
 
-uint8_t frameTypeOf(DetailReference ref) {
-  switch (ref) {
-    case DetailReference::kIntra: return uint8_t(WaveletFrameType::kDetailIntra);
-    case DetailReference::kInter: return uint8_t(WaveletFrameType::kDetailInter);
-    case DetailReference::kLinear: return uint8_t(WaveletFrameType::kDetailLinear);
-  }
-  return 0;
+static_assert(kPredictionGroups == 2 && kIntraSelector < 16, "selectors are two nibbles of one byte");
+
+uint8_t packSelectors(const Prediction& p) { return uint8_t(p.selector[0] | (p.selector[1] << 4)); }
+
+Prediction unpackSelectors(uint8_t byte) {
+  Prediction p;
+  p.selector = {uint8_t(byte & 15), uint8_t(byte >> 4)};
+  return p;
 }
 
 double largestSide(const std::vector<double>& xyz) {
@@ -30,46 +32,64 @@ class WaveletEncoder final : public FrameEncoder {
       : options_(options), topology_(topology), static_coder_(topology_), model_(options, topology_) {}
 
   void encodeFrame(const float* xyz, bool intra, std::vector<uint8_t>& out, FrameCodingStats& stats) override {
+    original_ = xyz;
     x_.assign(xyz, xyz + 3 * size_t(topology_.vertex_count));
+    error_bound_ = options_.target_kg > 0 ? frameErrorBound(xyz, topology_.vertex_count, options_.target_kg) : 0;
     stats = FrameCodingStats();
     if (intra || !model_.ready()) return encodeParametric(out, stats);
     model_.transform().forward(x_.data(), coefficients_);
-    const DetailReference ref = chooseReference();
-    out.push_back(frameTypeOf(ref));
-    model_.residual(coefficients_, ref, residual_);
+    const Prediction prediction = model_.choosePrediction(coefficients_, options_.temporal_prediction);
+    if (prediction.isIntra()) {
+      out.push_back(uint8_t(WaveletFrameType::kDetailIntra));
+    } else {
+      out.push_back(uint8_t(WaveletFrameType::kDetailPredicted));
+      out.push_back(packSelectors(prediction));
+    }
+    model_.residual(coefficients_, prediction, residual_);
     BitplaneEncodeSettings settings;
     settings.step = model_.step();
     settings.checkpoints = options_.truncatable;
+    settings.context = model_.contextFor(prediction);
     if (options_.bits_per_vertex > 0)
       settings.byte_budget = uint64_t(std::max(2.0, options_.bits_per_vertex * topology_.vertex_count / 8 - 1));
-    encodeBitplanes(residual_.data(), model_.layout(), settings, out, decoded_);
-    model_.accept(decoded_, ref);
+    if (options_.target_kg > 0 && !cutForTarget(prediction, settings)) std::fill(residual_.begin(), residual_.end(), 0.0);
+    encodeBitplanes(residual_.data(), model_.layout(), settings, out, decoded_, &model_.nextHistory(),
+                    model_.workspace());
+    model_.accept(decoded_, prediction);
   }
 
   const std::vector<double>& reconstruction() const override { return model_.reconstruction(); }
 
  private:
-  // The reference leaving the smallest weighted residual (a proxy for its rate).
-  DetailReference chooseReference() const {
-    DetailReference best = DetailReference::kIntra;
-    if (!options_.temporal_prediction) return best;
-    double best_energy = model_.residualEnergy(coefficients_, best);
-    for (DetailReference ref : {DetailReference::kInter, DetailReference::kLinear}) {
-      if (!model_.hasReference(ref)) continue;
-      const double energy = model_.residualEnergy(coefficients_, ref);
-      if (energy < best_energy) {
-        best = ref;
-        best_energy = energy;
-      }
-    }
-    return best;
+  // Sets the shortest cut whose output meets the frame's error bound; false when nothing at
+  // all (a zero residual) meets it.
+  bool cutForTarget(const Prediction& prediction, BitplaneEncodeSettings& settings) {
+    const BitplaneCutPreview preview(residual_.data(), model_.layout(), settings.step, model_.workspace());
+    const int hint = preview.planeCount() - planes_dropped_;
+    const BitplaneCut cut = shortestCut(preview.planeCount(), preview.blockCount(), error_bound_, hint,
+                                        [&](const BitplaneCut& c) {
+                                          preview.decoded(c.planes, c.blocks, decoded_);
+                                          model_.previewReconstruction(decoded_, prediction, trial_);
+                                          return floatOutputError(original_, trial_);
+                                        });
+    planes_dropped_ = preview.planeCount() - cut.planes;
+    if (cut.planes == 0) return false;
+    settings.max_planes = cut.planes;
+    settings.last_plane_blocks = cut.blocks;
+    return true;
   }
 
+  // The static coder at parametric_bits, or finer when the target error needs it.
   void encodeParametric(std::vector<uint8_t>& out, FrameCodingStats& stats) {
     stats.intra = true;
-    out.push_back(uint8_t(WaveletFrameType::kParametric));
+    const size_t start = out.size();
     std::vector<double> recon;
-    static_coder_.encode(x_, parametricStep(options_, largestSide(x_)), out, recon);
+    for (int bits = options_.parametric_bits;; ++bits) {
+      out.resize(start);
+      out.push_back(uint8_t(WaveletFrameType::kParametric));
+      static_coder_.encode(x_, parametricStep(bits, largestSide(x_)), out, recon);
+      if (options_.target_kg <= 0 || bits >= kMaxParametricBits || floatOutputError(original_, recon) <= error_bound_) break;
+    }
     model_.setParametric(recon);
   }
 
@@ -77,7 +97,10 @@ class WaveletEncoder final : public FrameEncoder {
   Topology topology_;
   IFrameCoder static_coder_;
   WaveletFrameModel model_;
-  std::vector<double> x_, coefficients_, residual_, decoded_;
+  const float* original_ = nullptr;
+  double error_bound_ = 0;
+  int planes_dropped_ = 0;  // below the top plane in the last frame's cut: the next one's guess
+  std::vector<double> x_, coefficients_, residual_, decoded_, trial_;
 };
 
 class WaveletDecoder final : public FrameDecoder {
@@ -88,17 +111,19 @@ class WaveletDecoder final : public FrameDecoder {
   Status decodeFrame(ByteReader payload, std::vector<float>& xyz, bool* intra) override {
     ANIMC_ASSIGN_OR_RETURN(uint8_t type, payload.u8("Frame_Type"));
     // Progressive decoding cuts detail frames only: a parametric frame is needed whole.
-    if (type != uint8_t(WaveletFrameType::kParametric) && control_.max_payload_bytes > 0 &&
-        payload.remaining() + 1 > control_.max_payload_bytes)
+    cut_ = type != uint8_t(WaveletFrameType::kParametric) && control_.max_payload_bytes > 0 &&
+           payload.remaining() + 1 > control_.max_payload_bytes;
+    if (cut_)
       payload = ByteReader(payload.cursor(), size_t(std::max<uint64_t>(control_.max_payload_bytes, 1) - 1), payload.offset());
     if (type == uint8_t(WaveletFrameType::kParametric)) {
       std::vector<double> recon;
       ANIMC_RETURN_IF_ERROR(static_coder_.decode(payload, recon));
       model_.setParametric(recon);
-    } else if (type <= uint8_t(WaveletFrameType::kDetailLinear)) {
-      const DetailReference ref = DetailReference(type - 1);
-      if (!model_.hasReference(ref)) return corrupt("detail frame without the frames it refers to");
-      ANIMC_RETURN_IF_ERROR(decodeDetails(payload, ref));
+    } else if (type == uint8_t(WaveletFrameType::kDetailIntra)) {
+      ANIMC_RETURN_IF_ERROR(decodeDetails(payload, Prediction::intra()));
+    } else if (type == uint8_t(WaveletFrameType::kDetailPredicted)) {
+      ANIMC_ASSIGN_OR_RETURN(uint8_t selectors, payload.u8("Prediction_Selectors"));
+      ANIMC_RETURN_IF_ERROR(decodeDetails(payload, unpackSelectors(selectors)));
     } else {
       return corrupt("unknown wavelet frame type " + std::to_string(type));
     }
@@ -107,12 +132,21 @@ class WaveletDecoder final : public FrameDecoder {
   }
 
  private:
-  Status decodeDetails(ByteReader& payload, DetailReference ref) {
+  Status decodeDetails(ByteReader& payload, const Prediction& prediction) {
+    if (!model_.canPredict(prediction)) return corrupt("detail frame without the frames it refers to");
     BitplaneDecodeSettings settings;
     settings.step = model_.step();
     settings.max_planes = control_.max_bitplanes;
-    ANIMC_RETURN_IF_ERROR(decodeBitplanes(payload, model_.layout(), settings, decoded_));
-    model_.accept(decoded_, ref);
+    settings.context = model_.contextFor(prediction);
+    Status s = decodeBitplanes(payload, model_.layout(), settings, decoded_, nullptr, &model_.nextHistory(),
+                               model_.workspace());
+    // A cut inside the block's header leaves no complete plane: the frame is its prediction.
+    if (cut_ && s.code() == StatusCode::kTruncated) {
+      decoded_.assign(model_.coefficientCount(), 0.0);
+      s = Status();
+    }
+    ANIMC_RETURN_IF_ERROR(s);
+    model_.accept(decoded_, prediction);
     return Status();
   }
 
@@ -128,6 +162,7 @@ class WaveletDecoder final : public FrameDecoder {
   }
 
   WaveletDecodeControl control_;
+  bool cut_ = false;  // the current payload was shortened by control_.max_payload_bytes
   Topology topology_;
   IFrameCoder static_coder_;
   WaveletFrameModel model_;
@@ -136,9 +171,9 @@ class WaveletDecoder final : public FrameDecoder {
 
 }  // namespace
 
-double parametricStep(const WaveletOptions& options, double largest_side) {
+double parametricStep(int bits, double largest_side) {
   const double side = largest_side > 0 && std::isfinite(largest_side) ? largest_side : 1.0;
-  return side / double(1u << options.parametric_bits);
+  return side / double(1u << bits);
 }
 
 std::unique_ptr<FrameEncoder> makeWaveletEncoder(const WaveletOptions& options, const Topology& topology) {

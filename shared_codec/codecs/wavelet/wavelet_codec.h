@@ -1,8 +1,8 @@
 // The wavelet codec (Guskov & Khodakovsky 2004) as seen by the container. Three frame types:
 // a parametric frame (the first frame of every group: positions through the static
 // IFrameCoder, then the hierarchy is rebuilt on its reconstruction), and detail I- and
-// P-frames (bitplane-coded wavelet coefficients, P-frames against the previous frame's
-// reconstructed coefficients). docs/wavelet.md describes the payloads.
+// P-frames (bitplane-coded wavelet coefficients, P-frames against a damped linear
+// extrapolation of the previous frames' reconstructed coefficients). docs/wavelet.md describes the payloads.
 #pragma once
 #include <memory>
 
@@ -11,7 +11,8 @@
 
 namespace animc {
 
-enum class WaveletFrameType : uint8_t { kParametric = 0, kDetailIntra = 1, kDetailInter = 2, kDetailLinear = 3 };
+// kDetailPredicted is followed by one byte of prediction selectors (docs/wavelet.md).
+enum class WaveletFrameType : uint8_t { kParametric = 0, kDetailIntra = 1, kDetailPredicted = 2 };
 
 std::unique_ptr<FrameEncoder> makeWaveletEncoder(const WaveletOptions& options, const Topology& topology);
 // control: progressive decoding (fewer bitplanes, fewer bytes per frame); the default
@@ -20,7 +21,7 @@ std::unique_ptr<FrameEncoder> makeWaveletEncoder(const WaveletOptions& options, 
 std::unique_ptr<FrameDecoder> makeWaveletDecoder(const WaveletOptions& options, const Topology& topology,
                                                  const WaveletDecodeControl& control = {});
 
-// Grid step of a parametric frame with the given largest bounding-box side.
-double parametricStep(const WaveletOptions& options, double largest_side);
+// Grid step of a parametric frame coded at `bits` bits with the given largest bounding-box side.
+double parametricStep(int bits, double largest_side);
 
 }  // namespace animc
