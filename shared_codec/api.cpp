@@ -163,6 +163,13 @@ Result<std::unique_ptr<AmsSource>> AmsSource::open(const std::string& path, cons
   if (!st.ok()) return st.withContext(path);
   const bool partial = progressive.max_bitplanes > 0 || progressive.max_payload_bytes > 0;
   if (s->settings_.codec == CodecId::kWavelet) {
+    // A P-frame decoded from part of its payload leaves the decoder's reference and its
+    // coding contexts different from the encoder's: every later frame of the group would
+    // decode wrongly. Only files whose frames stand alone decode progressively.
+    if (partial && s->settings_.wavelet.temporal_prediction)
+      return invalidArgument(path + ": progressive decoding (fewer bitplanes or bytes) needs a file whose frames "
+                             "decode on their own (animc encode --codec wavelet --i-frames-only); this one "
+                             "predicts each frame from the previous one (P-frames)");
     s->decoder_ = makeWaveletDecoder(s->settings_.wavelet, s->reader_->topology(), progressive);
   } else if (partial) {
     return invalidArgument(path + ": progressive decoding (fewer bitplanes or bytes) needs a wavelet-coded "

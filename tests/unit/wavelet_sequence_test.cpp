@@ -163,23 +163,38 @@ TEST(WaveletSequence, ErrorFallsAsMoreOfTheStreamIsDecoded) {
   }
 }
 
-// A stream cut very short (one bitplane, a few bytes per frame), with P-frames and intra
-// frames every 10 frames, still decodes to the right number of finite frames.
+// A stream cut very short (one bitplane, a few bytes per frame), with intra frames every 10
+// frames, still decodes to the right number of finite frames.
 TEST(WaveletSequence, ATruncatedStreamDecodesToACoarserValidSequence) {
   MemorySequence seq = sharedSequence("chickenCrossing", 40);
   const std::string path = tempPath("wavelet_cut.ams");
-  EncodeSettings settings = waveletSettings(1e-4, 0);
+  EncodeSettings settings = waveletSettings(1e-4, 0, false);
   settings.iframe_interval = 10;
   encodeTo(seq, settings, path);
   const double full_kg = kgError(seq, decodeAll(path));
-  for (const WaveletDecodeControl c : {WaveletDecodeControl{1, 0}, WaveletDecodeControl{0, 60},
-                                        WaveletDecodeControl{0, 120}, WaveletDecodeControl{3, 200}}) {
+  for (const WaveletDecodeControl c : {WaveletDecodeControl{1, 0}, WaveletDecodeControl{0, 2},
+                                        WaveletDecodeControl{0, 60}, WaveletDecodeControl{3, 200}}) {
     SCOPED_TRACE("planes " + std::to_string(c.max_bitplanes) + ", bytes " + std::to_string(c.max_payload_bytes));
     const auto decoded = decodeProgressive(path, c);
     ASSERT_EQ(decoded.size(), seq.frames().size());
     EXPECT_TRUE(allFinite(decoded));
     EXPECT_GT(kgError(seq, decoded), full_kg);
   }
+  std::remove(path.c_str());
+}
+
+// A P-frame decoded from part of its payload would corrupt the rest of its group: such files
+// are refused progressive decoding, with a message that says how to encode for it.
+TEST(WaveletSequence, ProgressiveDecodingOfPFramesIsRefused) {
+  MemorySequence seq = sharedSequence("sydney_md2", 5);
+  const std::string path = tempPath("wavelet_p_progressive.ams");
+  encodeTo(seq, waveletSettings(1e-3, 0, true), path);
+  for (const WaveletDecodeControl c : {WaveletDecodeControl{2, 0}, WaveletDecodeControl{0, 100}}) {
+    auto ams = AmsSource::open(path, DecoderLimits(), c);
+    ASSERT_FALSE(ams.ok());
+    EXPECT_NE(ams.status().message().find("--i-frames-only"), std::string::npos) << ams.status().message();
+  }
+  EXPECT_TRUE(AmsSource::open(path).ok());
   std::remove(path.c_str());
 }
 

@@ -59,12 +59,6 @@ int runDecode(const std::vector<std::string>& argv) {
   auto source = AmsSource::open(args.positional()[0], DecoderLimits(), control.value());
   if (!source.ok()) return fail(source.status());
   AmsSource& ams = *source.value();
-  const EncodeSettings& coded = ams.settings();
-  if ((control.value().max_bitplanes > 0 || control.value().max_payload_bytes > 0) &&
-      coded.codec == CodecId::kWavelet && coded.wavelet.temporal_prediction)
-    std::fprintf(stderr, "animc: warning: this file predicts each frame from the previous one (P-frames): "
-                 "frames decoded from fewer bits drift until the next intra frame%s\n",
-                 coded.iframe_interval ? "" : " (there is none: it was encoded with --iframe-interval 0)");
   int64_t first = 0, last = 0;
   try {
     s = parseRange(args.get("frames"), ams.frameCount(), first, last);
