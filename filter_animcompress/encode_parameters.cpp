@@ -32,6 +32,9 @@ void addEncodeParameters(RichParameterList& par) {
                          "Bits per vertex per frame (Wavelet)",
                          "Fixed rate: each frame is cut at this many bits per vertex (the paper's 1, 2, 4, 8); "
                          "0 = no limit, the step alone sets the quality."));
+  par.addParam(RichFloat("WaveletTargetKG", float(defaults.wavelet.target_kg), "Target KG error (%) (Wavelet)",
+                         "Rate control by error: each frame gets the fewest bits that keep the animation's "
+                         "KG error at or below this (down to what the step allows); 0 = off."));
   par.addParam(RichInt("IFrameInterval", int(defaults.iframe_interval), "I-frame interval",
                        "An intra frame every K frames, so playback can start there; 0 = only the first frame."));
 }
@@ -60,6 +63,7 @@ Status readOctreeParameters(const RichParameterList& par, AffineOctreeOptions& o
 void readWaveletParameters(const RichParameterList& par, WaveletOptions& o) {
   o.step = typedValue(par, "WaveletStepPercent") / 100;
   o.bits_per_vertex = typedValue(par, "WaveletBitsPerVertex");
+  o.target_kg = typedValue(par, "WaveletTargetKG");
 }
 
 }  // namespace

@@ -8,7 +8,7 @@
 namespace animc::meshlab {
 
 // Codec, Profile, MaxErrorPercent, Bits, WaveletStepPercent, WaveletBitsPerVertex,
-// IFrameInterval. MaxErrorPercent is the CLI's --max-error times 100 (percent of the root
+// WaveletTargetKG, IFrameInterval. MaxErrorPercent is the CLI's --max-error times 100 (percent of the root
 // cube's side, as the paper writes ME), WaveletStepPercent its --step times 100. Every
 // parameter is always there (a script must name them all); those of the codec not chosen
 // are ignored.

@@ -82,11 +82,16 @@ Status EncodeSettings::validate() const {
 }
 
 std::string describeSettings(const EncodeSettings& s) {
-  char line[320];
+  char line[384];
   if (s.codec == CodecId::kWavelet) {
     const WaveletOptions& w = s.wavelet;
-    char rate[64] = "no rate limit";
-    if (w.bits_per_vertex > 0) std::snprintf(rate, sizeof rate, "fixed rate %g bits per vertex", w.bits_per_vertex);
+    char rate[96] = "no rate limit";
+    if (w.bits_per_vertex > 0 && w.target_kg > 0)
+      std::snprintf(rate, sizeof rate, "target KG %g %% within %g bits per vertex", w.target_kg, w.bits_per_vertex);
+    else if (w.bits_per_vertex > 0)
+      std::snprintf(rate, sizeof rate, "fixed rate %g bits per vertex", w.bits_per_vertex);
+    else if (w.target_kg > 0)
+      std::snprintf(rate, sizeof rate, "target KG %g %%", w.target_kg);
     std::snprintf(line, sizeof line, "codec: wavelet, %s, step %g of the diagonal, parametric bits %d, %s, "
                   "iframe interval %u\n", rate, w.step, w.parametric_bits,
                   w.temporal_prediction ? "P-frames" : "I-frames only", s.iframe_interval);

@@ -39,6 +39,7 @@ SCRIPT = '''<!DOCTYPE FilterScript>
   <Param type="RichInt" name="Bits" value="16"/>
   <Param type="RichFloat" name="WaveletStepPercent" value="0.01"/>
   <Param type="RichFloat" name="WaveletBitsPerVertex" value="0"/>
+  <Param type="RichFloat" name="WaveletTargetKG" value="0"/>
   <Param type="RichInt" name="IFrameInterval" value="0"/>
   <Param type="RichBool" name="VisibleOnly" value="false"/>
   <Param type="RichSaveFile" name="OutputFile" value="{output}" ext="*.ams"/>

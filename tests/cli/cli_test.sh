@@ -130,6 +130,11 @@ same_kg "$TMP/w_compare.out" "$TMP/w_encode.out"
 run w_bpv2 "$ANIMC" encode "$PC2" --mesh "$MESH" -o "$TMP/w2.ams" --codec wavelet --bpv 2 --json
 run w_bpv8 "$ANIMC" encode "$PC2" --mesh "$MESH" -o "$TMP/w8.ams" --codec wavelet --bpv 8 --json
 json_check 'd["kg_error"] > e["kg_error"] and d["file_bytes"] < e["file_bytes"]' "$TMP/w_bpv2.out" "$TMP/w_bpv8.out"
+# Target error: the sequence's KG stays at or below the target, and a looser one costs less.
+run w_kg05 "$ANIMC" encode "$PC2" --mesh "$MESH" -o "$TMP/wk05.ams" --codec wavelet --target-kg 0.5 --json
+run w_kg2 "$ANIMC" encode "$PC2" --mesh "$MESH" -o "$TMP/wk2.ams" --codec wavelet --target-kg 2 --json
+json_check 'd["target_kg_setting"] == 0.5 and d["kg_error"] <= 0.5 and e["kg_error"] <= 2 and e["file_bytes"] < d["file_bytes"]' \
+  "$TMP/w_kg05.out" "$TMP/w_kg2.out"
 run w_bench "$ANIMC" bench "$PC2" --mesh "$MESH" --codec wavelet --bpv 4 --runs 1 --json
 json_check 'd["codec"] == "wavelet" and d["decode_mvps"] > 0 and d["bits_per_vertex_setting"] == 4' "$TMP/w_bench.out"
 # Progressive decoding of an I-frames-only file: fewer bitplanes, more error, same frame count.
@@ -205,6 +210,7 @@ expect_error unknown_codec "$ERRDIR/x.ams" "$ANIMC" encode "$PC2" --mesh "$MESH"
 expect_error wavelet_profile "$ERRDIR/x.ams" "$ANIMC" encode "$PC2" --mesh "$MESH" -o "$ERRDIR/x.ams" --codec wavelet --profile paper
 expect_error octree_step "$ERRDIR/x.ams" "$ANIMC" encode "$PC2" --mesh "$MESH" -o "$ERRDIR/x.ams" --step 1e-3
 expect_error wavelet_step_zero "$ERRDIR/x.ams" "$ANIMC" encode "$PC2" --mesh "$MESH" -o "$ERRDIR/x.ams" --codec wavelet --step 0
+expect_error wavelet_target_too_large "$ERRDIR/x.ams" "$ANIMC" encode "$PC2" --mesh "$MESH" -o "$ERRDIR/x.ams" --codec wavelet --target-kg 200
 expect_error wavelet_bpv_negative "$ERRDIR/x.ams" "$ANIMC" encode "$PC2" --mesh "$MESH" -o "$ERRDIR/x.ams" --codec wavelet --bpv -1
 expect_error progressive_octree "$ERRDIR/x.pc2" "$ANIMC" decode "$AMS" -o "$ERRDIR/x.pc2" --bitplanes 3
 expect_error progressive_p_frames "$ERRDIR/x.pc2" "$ANIMC" decode "$W_AMS" -o "$ERRDIR/x.pc2" --bitplanes 4

@@ -61,7 +61,7 @@ case_dump() {
               "Max error (%)" "I-frame interval" "Output .ams file" "Add reconstructed layers" "Colour by error" \
               "Visible layers only" "First original layer" "First reconstructed layer" "Colour scale max" \
               "Compressed animation" "Last frame" "Step (% of diagonal) (Wavelet)" \
-              "Bits per vertex per frame (Wavelet)" "Profile (Affine-Octree)"; do
+              "Bits per vertex per frame (Wavelet)" "Target KG error (%) (Wavelet)" "Profile (Affine-Octree)"; do
     grep -qF -- "$text" dump.txt || check_failed "dump: '$text' missing"
   done
 }

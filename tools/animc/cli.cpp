@@ -60,7 +60,7 @@ Result<long long> Args::integer(const std::string& name, long long fallback) con
 namespace {
 
 const std::set<std::string> kOctreeOptions = {"profile", "max-error", "bits", "max-depth"};
-const std::set<std::string> kWaveletOptions = {"step", "bpv", "parametric-bits", "i-frames-only"};
+const std::set<std::string> kWaveletOptions = {"step", "bpv", "target-kg", "parametric-bits", "i-frames-only"};
 
 // An option of the other codec is a mistake, not something to ignore.
 Status rejectForeignOptions(const Args& args, const std::set<std::string>& foreign, const char* codec) {
@@ -87,6 +87,7 @@ Status readOctreeOptions(const Args& args, AffineOctreeOptions& o) {
 Status readWaveletOptions(const Args& args, WaveletOptions& o) {
   ANIMC_ASSIGN_OR_RETURN(o.step, args.number("step", o.step));
   ANIMC_ASSIGN_OR_RETURN(o.bits_per_vertex, args.number("bpv", o.bits_per_vertex));
+  ANIMC_ASSIGN_OR_RETURN(o.target_kg, args.number("target-kg", o.target_kg));
   ANIMC_ASSIGN_OR_RETURN(long long bits, args.integer("parametric-bits", o.parametric_bits));
   if (bits < kMinParametricBits || bits > kMaxParametricBits)
     return invalidArgument("--parametric-bits must be in [" + std::to_string(kMinParametricBits) + ", " +

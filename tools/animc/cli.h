@@ -29,7 +29,7 @@ class Args {
 };
 
 // --codec --iframe-interval, the Affine-Octree's --profile --max-error --bits --max-depth and
-// the wavelet's --step --bpv --parametric-bits (options of the codec not chosen are errors).
+// the wavelet's --step --bpv --target-kg --parametric-bits (options of the codec not chosen are errors).
 extern const std::set<std::string> kEncodeOptions;
 // The wavelet's --i-frames-only (no temporal prediction: every frame decodes on its own).
 extern const std::set<std::string> kEncodeSwitches;

@@ -11,7 +11,7 @@ constexpr const char* kUsage =
     "usage: animc <command> ...\n"
     "  encode IN -o OUT.ams [--mesh M] [--codec affine-octree|wavelet] [--iframe-interval K]\n"
     "         affine-octree: [--profile paper|default] [--max-error E] [--bits K] [--max-depth D]\n"
-    "         wavelet: [--step S] [--bpv B] [--parametric-bits P] [--i-frames-only]\n"
+    "         wavelet: [--step S] [--bpv B] [--target-kg X] [--parametric-bits P] [--i-frames-only]\n"
     "         [--progress] [--json]\n"
     "  decode IN.ams -o OUT [--format ply|off|pc2|mdd] [--frames A:B] [--progress]\n"
     "         [--bitplanes K] [--max-bytes N]: progressive, fewer bitplanes/bytes per frame\n"
@@ -22,7 +22,8 @@ constexpr const char* kUsage =
     "IN: .pc2/.mdd (optionally .xz, with --mesh), a .ply/.off frame, a folder of them or a\n"
     ".txt list of frame files. E is a fraction of the root cube's side (0.01 = 1%).\n"
     "S is the wavelet's finest quantisation step as a fraction of the first frame's bounding-box\n"
-    "diagonal; B caps each frame at B bits per vertex.\n";
+    "diagonal; B caps each frame at B bits per vertex; X is the KG error (in %) to reach with\n"
+    "the fewest bits (down to what S allows).\n";
 
 }  // namespace
 

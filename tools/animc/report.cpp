@@ -8,6 +8,7 @@ void addSettings(JsonObject& o, const EncodeSettings& s) {
   if (s.codec == CodecId::kWavelet) {
     o.add("bits_per_vertex_setting", s.wavelet.bits_per_vertex);
     o.add("step", s.wavelet.step);
+    o.add("target_kg_setting", s.wavelet.target_kg);
     o.add("parametric_bits", s.wavelet.parametric_bits);
     o.add("temporal_prediction", s.wavelet.temporal_prediction);
   } else {
