@@ -13,6 +13,8 @@ from rd_plot import draw_rd_plot
 
 # Quality mode (no rate limit): the finest quantisation step, fraction of the diagonal.
 STEPS = [1e-2, 3e-3, 1e-3, 3e-4, 1e-4, 3e-5]
+# Rate control by target error: KG error in percent.
+TARGETS_KG = [0.1, 0.3, 1, 3]
 # The paper's fixed-rate points (Guskov & Khodakovsky 2004, section 5): bits per vertex per frame.
 FIXED_RATES = [1, 2, 4, 8]
 # Paper, section 5: the Cow's parametric mesh (connectivity and geometry) takes 7 115 bytes for
@@ -22,16 +24,15 @@ PLOT = 'img/rate_distortion.png'
 
 
 def wavelet_points(animc, seq, runs):
-    """[(label, is_fixed_rate, result)] of the wavelet codec on one sequence."""
+    """[(label, mode, result)] of the wavelet codec on one sequence; mode is 'step',
+    'target' or 'fixed'."""
+    settings = ([(f'step {v:g}', 'step', ['--step', repr(v)]) for v in STEPS] +
+                [(f'target KG {v:g} %', 'target', ['--target-kg', repr(v)]) for v in TARGETS_KG] +
+                [(f'{v} bpv', 'fixed', ['--bpv', str(v)]) for v in FIXED_RATES])
     points = []
-    for step in STEPS:
-        log(f'{seq["name"]}: bench --codec wavelet --step {step}')
-        points.append((f'step {step:g}', False,
-                       run_bench(animc, seq['pc2'], seq['ply'], ['--codec', 'wavelet', '--step', repr(step)], runs)))
-    for bpv in FIXED_RATES:
-        log(f'{seq["name"]}: bench --codec wavelet --bpv {bpv}')
-        points.append((f'{bpv} bpv', True,
-                       run_bench(animc, seq['pc2'], seq['ply'], ['--codec', 'wavelet', '--bpv', str(bpv)], runs)))
+    for label, mode, args in settings:
+        log(f'{seq["name"]}: bench --codec wavelet {" ".join(args)}')
+        points.append((label, mode, run_bench(animc, seq['pc2'], seq['ply'], ['--codec', 'wavelet'] + args, runs)))
     return points
 
 
@@ -44,7 +45,7 @@ def rd_table(seq, points):
     octree = octree_curve(seq)
     base = [(p['kg_error'], p['bpvf']) for p in seq['baseline']]
     rows = []
-    for label, _fixed, r in points:
+    for label, _mode, r in points:
         if 'error' in r:
             rows.append([label, failed_cell(r)] + [''] * 7)
             continue
@@ -89,6 +90,10 @@ def static_table(rows):
                   'parametric frame + headers', 'bits per vertex'], out)
 
 
+def mode_points(points, mode):
+    return [(r['bpvf'], r['kg_error']) for _l, m, r in points if m == mode and 'error' not in r]
+
+
 def plot_series(seq, points):
     """The rate-distortion plot's series for one sequence: {label: [(bpvf, KG)]}."""
     paper_profile = [(r['bpvf'], r['kg_error']) for (profile, _me), r in seq['results'].items()
@@ -96,9 +101,9 @@ def plot_series(seq, points):
     return {
         'Affine-Octree default': [(r['bpvf'], r['kg_error']) for r in seq['sweep'].values() if 'error' not in r],
         'Affine-Octree paper': paper_profile,
-        'wavelet (step)': [(r['bpvf'], r['kg_error']) for _l, fixed, r in points if not fixed and 'error' not in r],
-        'wavelet at 1/2/4/8 bpv (points)': [(r['bpvf'], r['kg_error']) for _l, fixed, r in points
-                                             if fixed and 'error' not in r],
+        'wavelet (step)': mode_points(points, 'step'),
+        'wavelet (target KG)': mode_points(points, 'target'),
+        'wavelet at 1/2/4/8 bpv (points)': mode_points(points, 'fixed'),
         'baseline (quantise, delta, xz)': [(p['bpvf'], p['kg_error']) for p in seq['baseline']],
     }
 
@@ -108,8 +113,9 @@ def wavelet_section(animc, sequences, runs, docs_dir):
     lines = ['## Wavelet codec against the Affine-Octree codec', '',
              f'Every wavelet point is `animc bench IN --mesh M --codec wavelet --step S` (quality mode: no '
              f'rate limit, S = finest quantisation step as a fraction of the first frame\'s bounding-box '
-             f'diagonal) or `--bpv B` (fixed rate: each frame cut at B bits per vertex; the paper\'s '
-             f'1/2/4/8 bpv points), `--runs {runs}`, medians. "Affine-Octree default bpvf at same KG" is '
+             f'diagonal, default 1e-4), `--target-kg X` (rate control: the fewest bits per frame that keep '
+             f'the KG error at or below X %) or `--bpv B` (fixed rate: each frame cut at B bits per vertex; '
+             f'the paper\'s 1/2/4/8 bpv points), `--runs {runs}`, medians. "Affine-Octree default bpvf at same KG" is '
              'interpolated log-log on the default profile\'s max-error sweep of the same sequence (above); '
              '"wavelet / Affine-Octree" below 1.00× means the wavelet codec needs fewer bits at that KG '
              'error. The baseline is tools/baseline.py as above.', '',
@@ -119,7 +125,7 @@ def wavelet_section(animc, sequences, runs, docs_dir):
     static_rows = []
     for seq in sequences:
         points = wavelet_points(animc, seq, runs)
-        failures += sum('error' in r for _l, _f, r in points)
+        failures += sum('error' in r for _l, _m, r in points)
         lines += [f'### {seq["name"]}', ''] + rd_table(seq, points) + ['']
         series[seq['name']] = plot_series(seq, points)
         static_rows.append((seq['name'], static_size(animc, seq)))
