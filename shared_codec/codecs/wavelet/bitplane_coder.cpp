@@ -34,17 +34,18 @@ uint64_t headerEstimate(int planes, bool checkpoints) {
 // The encoder's side of the plane walk: each decision's value comes from the magnitudes.
 struct EncoderIo {
   static constexpr bool kEncodes = true;
-  RangeEncoder& rc;
+  RangeEncoder* rc;
   int code(BitModel& m, int bit) {
-
-    rc.encode(m, bit);
+    rc->encode(m, bit);
     return bit;
   }
 };
 
+// Holds the decoder by value: the walk copies it into a local for each plane, where its
+// state can live in registers.
 struct DecoderIo {
   static constexpr bool kEncodes = false;
-  RangeDecoder& rc;
+  BranchlessRangeDecoder rc;
   int code(BitModel& m, int) { return rc.decode(m); }
 };
 
@@ -81,21 +82,17 @@ void encodeBitplanes(const double* values, const BitplaneLayout& layout,
   ws.checkpoints.clear();
   ws.models.reset();
   RangeEncoder rc(range);
-  EncoderIo io{rc};
+  EncoderIo io{&rc};
   const size_t blocks = s.blockCount();
   const size_t forced_stop = settings.last_plane_blocks > 0 ? std::min(settings.last_plane_blocks, blocks) : blocks;
   int planes = 0;
   size_t stop = blocks;
   for (int p = top - 1; p >= lowest && stop == blocks; --p) {
     const size_t end = p == lowest ? forced_stop : blocks;
-    for (size_t b = 0; b < blocks; ++b) {
-      if (b == end || range.size() + kFlushSlack > budget) {
-        stop = b;
-        break;
-      }
-      if (b == 0) ++planes;
-      s.codeBlock(io, ws.models, p, b);
-    }
+    const size_t coded = s.codePlane(io, ws.models, p, end,
+                                     [&](size_t) { return range.size() + kFlushSlack > budget; });
+    if (coded > 0) ++planes;
+    if (coded < blocks) stop = coded;
     if (stop == blocks && settings.checkpoints) {  // bytes a decoder needs for this plane
       RangeEncoder probe(rc);
       const size_t before = range.size();
@@ -174,15 +171,14 @@ Status decodeBitplanes(ByteReader& in, const BitplaneLayout& layout,
     stop = blocks;
   }
   const size_t available = std::min<uint64_t>(in.remaining(), range_bytes);
-  RangeDecoder rc(in.cursor(), available);
-  DecoderIo io{rc};
+  DecoderIo io{BranchlessRangeDecoder(in.cursor(), available)};
   ws.models.reset();
   for (int i = 0; i < planes; ++i) {
     const int p = top - 1 - i;
     const size_t end = i + 1 == planes ? size_t(stop) : blocks;
-    for (size_t b = 0; b < end; ++b) s.codeBlock(io, ws.models, p, b);
+    s.codePlane(io, ws.models, p, end, [](size_t) { return false; });
   }
-  if (!cut && planes == int(coded) && rc.overran()) return corrupt("bitplanes: coded data ends early");
+  if (!cut && planes == int(coded) && io.rc.overran()) return corrupt("bitplanes: coded data ends early");
   ANIMC_RETURN_IF_ERROR(in.skip(available, "Bitplane_Data"));
   s.finish(top, planes, size_t(stop), settings.step, decoded, history);
   if (planes_decoded) *planes_decoded = planes;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <vector>
 
 #include "codecs/wavelet/bitplane_coder.h"
@@ -23,6 +24,56 @@ inline int temporalContext(uint8_t previous_bits, int plane) {
 }
 
 inline int bitLength(uint32_t v) { return v == 0 ? 0 : 32 - __builtin_clz(v); }
+
+// The range decoder of entropy/range_coder.h (RangeDecoder), restated decision for decision
+// with the same arithmetic, but applying the decoded bit through masks. The compiler turns
+// RangeDecoder::decode's selects into a branch on the bit, and most bits of the low planes
+// (refinements) are close to random, so that branch mispredicted about every other decision
+// and cost more than the decision itself. wavelet_bitplane_test checks that both decoders
+// agree bit for bit.
+class BranchlessRangeDecoder {
+ public:
+  BranchlessRangeDecoder(const uint8_t* data, size_t size) : p_(data), end_(data + size) {
+    for (int i = 0; i < 4; ++i) code_ = (code_ << 8) | nextByte();
+  }
+
+  int decode(BitModel& m) {
+    const uint32_t bound = (range_ >> kProbBits) * m.p0;
+    const uint32_t bit = code_ >= bound;
+    const uint32_t ones = 0u - bit;
+    code_ -= bound & ones;
+    range_ = bound ^ ((bound ^ (range_ - bound)) & ones);
+    // BitModel::update for both values, then the mask picks one (its own select branched).
+    BitModel after_zero = m, after_one = m;
+    after_zero.update(0);
+    after_one.update(1);
+    m.seen = after_zero.seen;
+    m.p0 = uint16_t(after_zero.p0 ^ ((after_zero.p0 ^ after_one.p0) & ones));
+    normalize();
+    return int(bit);
+  }
+  // As RangeDecoder::overran().
+  bool overran() const { return overrun_ > 4 || code_ >= range_; }
+
+ private:
+  void normalize() {
+    while (range_ < (1u << 24)) {
+      range_ <<= 8;
+      code_ = (code_ << 8) | nextByte();
+    }
+  }
+  uint8_t nextByte() {
+    if (p_ < end_) return *p_++;
+    ++overrun_;
+    return 0;
+  }
+
+  const uint8_t* p_;
+  const uint8_t* end_;
+  uint32_t code_ = 0;
+  uint32_t range_ = 0xFFFFFFFFu;
+  uint32_t overrun_ = 0;
+};
 
 // Every model of one frame (reset at the start of each frame, so a frame decodes on its
 // own given the temporal context). Significance odds change sharply with the plane and the
@@ -46,6 +97,9 @@ struct BitplaneContexts {
 constexpr double kFreshOffset = 0.25;
 constexpr double kRefinedOffset = 0.5;
 
+template <class Io>
+struct PlaneWalk;
+
 class BitplaneState {
  public:
   void start(const BitplaneLayout& layout, const BitplaneHistory* context) {
@@ -58,13 +112,14 @@ class BitplaneState {
     negative_.assign(count, 0);
     vertex_mask_.assign(vertices_, 0);
     block_significant_.assign(blocks_, 0);
-    previous_bits_.assign(count, 0);
-    previous_sign_.assign(count, 0);
-    if (context && context->bits.size() == count && context->negative.size() == count)
-      for (size_t j = 0; j < count; ++j) {
-        previous_bits_[j] = context->bits[j];
-        previous_sign_[j] = context->bits[j] == 0 ? 0 : context->negative[j] ? 2 : 1;
-      }
+    // The history is read in place (the walk only reads it); no history reads as all zero.
+    if (context && context->bits.size() == count && context->negative.size() == count) {
+      previous_bits_ = context->bits.data();
+      previous_negative_ = context->negative.data();
+    } else {
+      no_history_.assign(count, 0);
+      previous_bits_ = previous_negative_ = no_history_.data();
+    }
     summarise(previous_bits_, previous_vertex_bits_, previous_block_bits_);
   }
 
@@ -81,7 +136,7 @@ class BitplaneState {
       input_negative_[j] = values[j] < 0;
       bits_[j] = uint8_t(bitLength(magnitude_[j]));
     }
-    summarise(bits_, vertex_bits_, block_bits_);
+    summarise(bits_.data(), vertex_bits_, block_bits_);
   }
 
   int topPlane() const {
@@ -91,23 +146,16 @@ class BitplaneState {
   }
   size_t blockCount() const { return blocks_; }
 
-  template <class Io>
-  void codeBlock(Io& io, BitplaneContexts& m, int p, size_t b) {
-    const size_t first = b * kBlockVertices, last = std::min(first + kBlockVertices, vertices_);
-    if (!block_significant_[b]) {
-      BitModel& model = m.block[p][classes_[first]][temporalContext(previous_block_bits_[b], p)];
-      if (!io.code(model, Io::kEncodes ? block_bits_[b] == p + 1 : 0)) return;
-      block_significant_[b] = 1;
-      bool any = false;  // one vertex at least becomes significant: the last may be inferred
-      for (size_t v = first; v < last; ++v) any |= codeFreshVertex(io, m, p, v, !any && v + 1 == last);
-      return;
-    }
-    for (size_t v = first; v < last; ++v) {
-      if (vertex_mask_[v]) codeSignificantVertex(io, m, p, v);
-      else codeFreshVertex(io, m, p, v, false);
-    }
+  // Codes blocks [0, end) of plane p, or fewer: stop(b), asked before each block, may end the
+  // plane early (the encoder's byte budget). Returns the number of blocks coded.
+  template <class Io, class Stop>
+  size_t codePlane(Io& io, BitplaneContexts& m, int p, size_t end, Stop stop) {
+    PlaneWalk<Io> walk{io, m, p, *this};
+    size_t b = 0;
+    for (; b < end && !stop(b); ++b) walk.codeBlock(b);
+    io = walk.io;
+    return b;
   }
-
   // The decoder's view after `planes` planes from `top`, the last one stopping before block
   // `stop`, and what it leaves for the next frame's temporal contexts.
   void finish(int top, int planes, size_t stop, double step, std::vector<double>& decoded,
@@ -123,6 +171,9 @@ class BitplaneState {
   }
 
  private:
+  template <class Io>
+  friend struct PlaneWalk;
+
   template <class Known>
   void reconstruct(int top, int planes, size_t stop, double step, std::vector<double>& decoded,
                    BitplaneHistory* history, Known known) const {
@@ -134,84 +185,48 @@ class BitplaneState {
     }
     const int full_q = top - planes, short_q = std::min(top, full_q + 1);
     const double full_scale = std::ldexp(step, full_q), short_scale = std::ldexp(step, short_q);
-    for (size_t v = 0; v < vertices_; ++v) {
-      const bool complete = v / kBlockVertices < stop;
-      const int q = complete ? full_q : short_q;
-      const double scale = complete ? full_scale : short_scale;
-      for (size_t j = 3 * v; j < 3 * v + 3; ++j) {
-        const uint32_t k = planes == 0 ? 0 : known(j, q);
-        const double magnitude = k == 0 ? 0.0 : (double(k) + (k == 1 ? kFreshOffset : kRefinedOffset)) * scale;
-        decoded[j] = negative_[j] ? -magnitude : magnitude;
-        if (history) {
-          history->bits[j] = uint8_t(k == 0 ? 0 : bitLength(k) + q);
-          history->negative[j] = negative_[j];
-        }
-      }
+    const size_t complete_end = std::min(count, 3 * kBlockVertices * stop);  // blocks before the stop
+    reconstructRange(0, complete_end, planes, full_q, full_scale, decoded.data(), history, known);
+    reconstructRange(complete_end, count, planes, short_q, short_scale, decoded.data(), history, known);
+  }
+
+  // Coefficients [begin, end), known down to plane q. Without branches on the magnitude or
+  // the sign: both are close to random in the low planes. Same values as
+  // sign * (k == 0 ? 0 : (k + offset) * scale), bit for bit (negation flips the sign bit).
+  template <class Known>
+  void reconstructRange(size_t begin, size_t end, int planes, int q, double scale, double* decoded,
+                        BitplaneHistory* history, Known known) const {
+    const uint8_t* const negative = negative_.data();
+    const double offsets[2] = {kRefinedOffset, kFreshOffset};
+    for (size_t j = begin; j < end; ++j) {
+      const uint32_t k = planes == 0 ? 0 : known(j, q);
+      const double magnitude = (double(k) + offsets[k == 1]) * scale;
+      uint64_t bits;
+      std::memcpy(&bits, &magnitude, sizeof bits);
+      bits &= 0ull - uint64_t(k != 0);       // k = 0: +0.0
+      bits ^= uint64_t(negative[j] != 0) << 63;
+      std::memcpy(&decoded[j], &bits, sizeof bits);
+    }
+    if (!history) return;
+    uint8_t* const bit_lengths = history->bits.data();
+    uint8_t* const was_negative = history->negative.data();
+    for (size_t j = begin; j < end; ++j) {
+      const uint32_t k = planes == 0 ? 0 : known(j, q);
+      bit_lengths[j] = uint8_t((32 - __builtin_clz(k | 1) + q) & -int(k != 0));
+      was_negative[j] = negative[j];
     }
   }
 
-  template <class Io>
-  int magnitudeBit(size_t j, int p) const {
-    return Io::kEncodes ? int((magnitude_[j] >> p) & 1) : 0;
-  }
-
-  template <class Io>
-  bool codeFreshVertex(Io& io, BitplaneContexts& m, int p, size_t v, bool inferred) {
-    const int cls = classes_[v];
-    if (!inferred) {
-      const uint32_t parent = parents_[v];
-      const int parent_state = parent == kNoParent ? 0 : vertex_mask_[parent] ? 2 : 1;
-      BitModel& model = m.vertex[p][cls][temporalContext(previous_vertex_bits_[v], p)][parent_state];
-      if (!io.code(model, Io::kEncodes ? vertex_bits_[v] == p + 1 : 0)) return false;
-    }
-    int significant = 0;  // one component at least: the last may be inferred
-    for (int a = 0; a < 3; ++a) {
-      const size_t j = 3 * v + a;
-      const int bit = a == 2 && significant == 0
-                          ? 1
-                          : io.code(m.fresh[cls][a][significant][temporalContext(previous_bits_[j], p)],
-                                    magnitudeBit<Io>(j, p));
-      if (bit) {
-        becomeSignificant(io, m, v, a, cls);
-        ++significant;
-      }
-    }
-    return true;
-  }
-
-  template <class Io>
-  void codeSignificantVertex(Io& io, BitplaneContexts& m, int p, size_t v) {
-    const int cls = classes_[v];
-    for (int a = 0; a < 3; ++a) {
-      const size_t j = 3 * v + a;
-      if (vertex_mask_[v] & (1 << a)) {
-        const uint32_t k = known_[j];
-        known_[j] = (k << 1) | uint32_t(io.code(m.refine[cls][k == 1 ? 0 : k <= 3 ? 1 : 2], magnitudeBit<Io>(j, p)));
-        continue;
-      }
-      const int siblings = __builtin_popcount(vertex_mask_[v]) >= 2;
-      if (io.code(m.component[p][cls][temporalContext(previous_bits_[j], p)][siblings], magnitudeBit<Io>(j, p)))
-        becomeSignificant(io, m, v, a, cls);
-    }
-  }
-
-  template <class Io>
-  void becomeSignificant(Io& io, BitplaneContexts& m, size_t v, int a, int cls) {
-    const size_t j = 3 * v + a;
-    known_[j] = 1;
-    vertex_mask_[v] |= uint8_t(1 << a);
-    negative_[j] = uint8_t(io.code(m.sign[cls][previous_sign_[j]], Io::kEncodes ? input_negative_[j] : 0));
-  }
-
-  // Largest bit length per vertex and per block.
-  void summarise(const std::vector<uint8_t>& bits, std::vector<uint8_t>& per_vertex,
-                 std::vector<uint8_t>& per_block) const {
+  // Largest bit length per vertex and per block (raw pointers: the byte stores would make
+  // the compiler reload a vector's data pointer after each one).
+  void summarise(const uint8_t* bits, std::vector<uint8_t>& per_vertex, std::vector<uint8_t>& per_block) const {
     per_vertex.resize(vertices_);
     per_block.assign(blocks_, 0);
+    uint8_t* const vertex = per_vertex.data();
+    uint8_t* const block = per_block.data();
     for (size_t v = 0; v < vertices_; ++v) {
-      per_vertex[v] = std::max({bits[3 * v], bits[3 * v + 1], bits[3 * v + 2]});
-      uint8_t& b = per_block[v / kBlockVertices];
-      b = std::max(b, per_vertex[v]);
+      vertex[v] = std::max({bits[3 * v], bits[3 * v + 1], bits[3 * v + 2]});
+      block[v / kBlockVertices] = std::max(block[v / kBlockVertices], vertex[v]);
     }
   }
 
@@ -222,10 +237,126 @@ class BitplaneState {
   std::vector<uint8_t> negative_;
   std::vector<uint8_t> vertex_mask_;     // significant components of each vertex
   std::vector<uint8_t> block_significant_;
-  std::vector<uint8_t> previous_bits_, previous_vertex_bits_, previous_block_bits_, previous_sign_;
+  const uint8_t* previous_bits_ = nullptr;      // the context's history, or no_history_
+  const uint8_t* previous_negative_ = nullptr;
+  std::vector<uint8_t> no_history_, previous_vertex_bits_, previous_block_bits_;
   // Encoder only.
   std::vector<uint32_t> magnitude_;
   std::vector<uint8_t> input_negative_, bits_, vertex_bits_, block_bits_;
+};
+
+// One plane of the walk, shared by the encoder and the decoder. It works on raw copies of the
+// state's pointers and of the coder (Io) held as locals, not through BitplaneState: the walk
+// stores bytes (masks, signs), and a byte store may alias any object in memory, which would
+// make the compiler reload every pointer and the coder's range after each of them.
+template <class Io>
+struct PlaneWalk {
+  PlaneWalk(const Io& coder, BitplaneContexts& models, int plane, BitplaneState& s)
+      : io(coder), m(models), p(plane), vertices(s.vertices_), classes(s.classes_), parents(s.parents_),
+        known(s.known_.data()), negative(s.negative_.data()), mask(s.vertex_mask_.data()),
+        block_significant(s.block_significant_.data()), previous_bits(s.previous_bits_),
+        previous_vertex_bits(s.previous_vertex_bits_.data()),
+        previous_block_bits(s.previous_block_bits_.data()), previous_negative(s.previous_negative_),
+        magnitude(s.magnitude_.data()), input_negative(s.input_negative_.data()),
+        vertex_bits(s.vertex_bits_.data()), block_bits(s.block_bits_.data()) {}
+
+  Io io;
+  BitplaneContexts& m;
+  const int p;
+  const size_t vertices;
+  const uint8_t* const classes;
+  const uint32_t* const parents;
+  uint32_t* const known;
+  uint8_t* const negative;
+  uint8_t* const mask;
+  uint8_t* const block_significant;
+  const uint8_t *const previous_bits, *const previous_vertex_bits, *const previous_block_bits,
+      *const previous_negative;
+  // Encoder only (empty on the decoder's side, never read there).
+  const uint32_t* const magnitude;
+  const uint8_t *const input_negative, *const vertex_bits, *const block_bits;
+
+  // temporalContext() without branches: the three comparisons add up to the same value.
+  int temporal(uint8_t previous) const { return (previous != 0) + (previous > p) + (previous > p + 1); }
+  int magnitudeBit(size_t j) const { return Io::kEncodes ? int((magnitude[j] >> p) & 1) : 0; }
+  int newlySignificant(const uint8_t* bits, size_t i) const { return Io::kEncodes ? bits[i] == p + 1 : 0; }
+
+  void codeBlock(size_t b) {
+    const size_t first = b * kBlockVertices, last = std::min(first + kBlockVertices, vertices);
+    if (!block_significant[b]) {
+      BitModel& model = m.block[p][classes[first]][temporal(previous_block_bits[b])];
+      if (!io.code(model, newlySignificant(block_bits, b))) return;
+      block_significant[b] = 1;
+      bool any = false;  // one vertex at least becomes significant: the last may be inferred
+      for (size_t v = first; v < last; ++v) any |= codeFreshVertex(v, !any && v + 1 == last);
+      return;
+    }
+    for (size_t v = first; v < last; ++v) {
+      if (mask[v] == 7) codeRefinements(v);
+      else if (mask[v]) codeSignificantVertex(v);
+      else codeFreshVertex(v, false);
+    }
+  }
+
+  bool codeFreshVertex(size_t v, bool inferred) {
+    const int cls = classes[v];
+    if (!inferred) {
+      const uint32_t parent = parents[v];
+      const int parent_state = parent == kNoParent ? 0 : mask[parent] ? 2 : 1;
+      BitModel& model = m.vertex[p][cls][temporal(previous_vertex_bits[v])][parent_state];
+      if (!io.code(model, newlySignificant(vertex_bits, v))) return false;
+    }
+    uint8_t vertex_mask = 0;
+    int significant = 0;  // one component at least: the last may be inferred
+    for (int a = 0; a < 3; ++a) {
+      const size_t j = 3 * v + a;
+      const int bit = a == 2 && significant == 0
+                          ? 1
+                          : io.code(m.fresh[cls][a][significant][temporal(previous_bits[j])], magnitudeBit(j));
+      if (bit) {
+        becomeSignificant(j, cls);
+        vertex_mask |= uint8_t(1 << a);
+        ++significant;
+      }
+    }
+    mask[v] = vertex_mask;
+    return true;
+  }
+
+  // The common case of the low planes: all three components known, three refinement bits.
+  void codeRefinements(size_t v) {
+    BitModel* models = m.refine[classes[v]];
+    for (size_t j = 3 * v; j < 3 * v + 3; ++j) refine(models, j);
+  }
+
+  void codeSignificantVertex(size_t v) {
+    const int cls = classes[v];
+    uint8_t vertex_mask = mask[v];
+    for (int a = 0; a < 3; ++a) {
+      const size_t j = 3 * v + a;
+      if (vertex_mask & (1 << a)) {
+        refine(m.refine[cls], j);
+        continue;
+      }
+      const int siblings = (0xE8 >> vertex_mask) & 1;  // 2+ of the 3 bits set: masks 3, 5, 6, 7
+      if (io.code(m.component[p][cls][temporal(previous_bits[j])][siblings], magnitudeBit(j))) {
+        becomeSignificant(j, cls);
+        vertex_mask |= uint8_t(1 << a);
+      }
+    }
+    mask[v] = vertex_mask;
+  }
+
+  void refine(BitModel* models, size_t j) {
+    const uint32_t k = known[j];  // contexts: known magnitude 1, 2-3, 4+
+    known[j] = (k << 1) | uint32_t(io.code(models[(k > 1) + (k > 3)], magnitudeBit(j)));
+  }
+
+  void becomeSignificant(size_t j, int cls) {
+    known[j] = 1;
+    const int previous_sign = previous_bits[j] == 0 ? 0 : 1 + (previous_negative[j] != 0);  // none/+/-
+    negative[j] = uint8_t(io.code(m.sign[cls][previous_sign], Io::kEncodes ? input_negative[j] : 0));
+  }
 };
 
 }  // namespace animc

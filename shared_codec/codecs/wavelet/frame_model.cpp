@@ -69,13 +69,6 @@ bool WaveletFrameModel::canPredict(const Prediction& prediction) const {
   return true;
 }
 
-double WaveletFrameModel::predicted(const Prediction& prediction, size_t coding_index, size_t j) const {
-  const uint8_t s = prediction.selector[group_[coding_index]];
-  if (s == kIntraSelector) return intra_reference_[j];
-  if (s == 0) return previous_[j];
-  return previous_[j] + (double(s) / kDampingSteps) * (previous_[j] - before_previous_[j]);
-}
-
 Prediction WaveletFrameModel::choosePrediction(const std::vector<double>& coefficients, bool temporal) const {
   if (!temporal) return Prediction::intra();
   // Residual energy against previous + a * (previous - before) is quadratic in a:
@@ -114,26 +107,50 @@ Prediction WaveletFrameModel::choosePrediction(const std::vector<double>& coeffi
   return best;
 }
 
+template <class PerCoefficient>
+void WaveletFrameModel::forEachPrediction(const Prediction& prediction, PerCoefficient f) const {
+  // Groups are runs of coding positions (base vertices first): one selector per run.
+  const size_t n = order_.size();
+  for (size_t begin = 0, end; begin < n; begin = end) {
+    for (end = begin + 1; end < n && group_[end] == group_[begin];) ++end;
+    const uint8_t s = prediction.selector[group_[begin]];
+    const double damping = double(s) / kDampingSteps;
+    const double* const previous = previous_.data();
+    const double* const before = before_previous_.data();
+    const double* const intra = intra_reference_.data();
+    for (size_t i = begin; i < end; ++i) {
+      const size_t v = order_[i];
+      for (size_t j = 3 * v; j < 3 * v + 3; ++j) {
+        // k = 0: the previous frame; k in 1..8: damped extrapolation; 9: the I-frame reference.
+        const double p = s == kIntraSelector ? intra[j]
+                         : s == 0            ? previous[j]
+                                             : previous[j] + damping * (previous[j] - before[j]);
+        f(i, v, j, p);
+      }
+    }
+  }
+}
+
 void WaveletFrameModel::residual(const std::vector<double>& coefficients, const Prediction& prediction,
                                  std::vector<double>& out) const {
-  const std::vector<double>& weights = transform_->weights();
+  const double* const weights = transform_->weights().data();
   out.resize(coefficientCount());
-  for (size_t i = 0; i < order_.size(); ++i) {
-    const size_t v = order_[i];
-    for (size_t a = 0; a < 3; ++a)
-      out[3 * i + a] = weights[v] * (coefficients[3 * v + a] - predicted(prediction, i, 3 * v + a));
-  }
+  double* const r = out.data();
+  const double* const c = coefficients.data();
+  forEachPrediction(prediction, [&](size_t i, size_t v, size_t j, double p) {
+    r[3 * i + (j - 3 * v)] = weights[v] * (c[j] - p);
+  });
 }
 
 void WaveletFrameModel::addResidual(const std::vector<double>& decoded_residual, const Prediction& prediction,
                                     std::vector<double>& coefficients) const {
-  const std::vector<double>& weights = transform_->weights();
+  const double* const weights = transform_->weights().data();
   coefficients.resize(previous_.size());
-  for (size_t i = 0; i < order_.size(); ++i) {
-    const size_t v = order_[i];
-    for (size_t a = 0; a < 3; ++a)
-      coefficients[3 * v + a] = predicted(prediction, i, 3 * v + a) + decoded_residual[3 * i + a] / weights[v];
-  }
+  double* const c = coefficients.data();
+  const double* const r = decoded_residual.data();
+  forEachPrediction(prediction, [&](size_t i, size_t v, size_t j, double p) {
+    c[j] = p + r[3 * i + (j - 3 * v)] / weights[v];
+  });
 }
 
 void WaveletFrameModel::previewReconstruction(const std::vector<double>& decoded_residual,

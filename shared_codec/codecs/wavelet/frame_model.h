@@ -83,7 +83,9 @@ class WaveletFrameModel {
                              std::vector<double>& xyz);
 
  private:
-  double predicted(const Prediction& prediction, size_t coding_index, size_t coefficient) const;
+  // f(coding index, vertex, coefficient index, its prediction) for every coefficient.
+  template <class PerCoefficient>
+  void forEachPrediction(const Prediction& prediction, PerCoefficient f) const;
   void addResidual(const std::vector<double>& decoded_residual, const Prediction& prediction,
                    std::vector<double>& coefficients) const;
 

@@ -17,11 +17,22 @@ double triangleArea(const std::vector<double>& xyz, uint32_t a, uint32_t b, uint
   return 0.5 * (pb - pa).cross(pc - pa).norm();
 }
 
-Eigen::Vector3d predict(const PredictionStencils& s, size_t i, const double* xyz) {
-  Eigen::Vector3d p = Eigen::Vector3d::Zero();
-  for (uint32_t j = s.first[i]; j < s.first[i + 1]; ++j)
-    p += s.weight[j] * Eigen::Vector3d(xyz + 3 * size_t(s.vertex[j]));
-  return p;
+// Sum of weight * position over a stencil, component by component in stencil order (the
+// order Eigen's p += w * x used: encoder and decoder, old and new, round alike).
+inline void predict(const uint32_t* offsets, const double* weights, size_t size, const double* xyz, double p[3]) {
+  p[0] = p[1] = p[2] = 0.0;
+  for (size_t s = 0; s < size; ++s) {
+    const double* x = xyz + offsets[s];
+    p[0] += weights[s] * x[0];
+    p[1] += weights[s] * x[1];
+    p[2] += weights[s] * x[2];
+  }
+}
+
+// c[0] * normal + c[1] * tangent + c[2] * bitangent, evaluated as Eigen's toWorld did, even
+// for the world axes (0 * c and c * 1 are not no-ops for the sign of zero).
+inline void toWorld(const LocalFrame& f, const double c[3], double out[3]) {
+  for (int a = 0; a < 3; ++a) out[a] = (c[0] * f.normal[a] + c[1] * f.tangent[a]) + c[2] * f.bitangent[a];
 }
 
 }  // namespace
@@ -31,6 +42,7 @@ WaveletTransform::WaveletTransform(const Topology& topology, const std::vector<d
     : local_frames_(local_frames), pm_(buildProgressiveMesh(topology, parametric_xyz, settings)),
       stencils_(buildPredictor(pm_, parametric_xyz)),
       level_of_(topology.vertex_count, -1) {
+  flattenStencils();
   cosines_.resize(pm_.ring.size());
   sines_.resize(pm_.ring.size());
   for (const Collapse& c : pm_.collapses) {
@@ -41,6 +53,16 @@ WaveletTransform::WaveletTransform(const Topology& topology, const std::vector<d
     level_of_[c.vertex] = c.level;
   }
   computeWeights(topology, parametric_xyz);
+}
+
+void WaveletTransform::flattenStencils() {
+  stencil_offset_.resize(stencils_.vertex.size());
+  for (size_t s = 0; s < stencils_.vertex.size(); ++s) stencil_offset_[s] = 3 * stencils_.vertex[s];
+}
+
+void WaveletTransform::predictCollapse(size_t i, const double* xyz, double p[3]) const {
+  const uint32_t begin = stencils_.first[i], end = stencils_.first[i + 1];
+  predict(&stencil_offset_[begin], &stencils_.weight[begin], end - begin, xyz, p);
 }
 
 void WaveletTransform::computeWeights(const Topology& topology, const std::vector<double>& xyz) {
@@ -74,7 +96,9 @@ void WaveletTransform::forward(const double* xyz, std::vector<double>& coefficie
   for (size_t i = 0; i < pm_.collapses.size(); ++i) {
     const Collapse& c = pm_.collapses[i];
     const LocalFrame f = frameOf(c, xyz);
-    const Eigen::Vector3d d = Eigen::Vector3d(xyz + 3 * size_t(c.vertex)) - predict(stencils_, i, xyz);
+    double p[3];
+    predictCollapse(i, xyz, p);
+    const Eigen::Vector3d d = Eigen::Vector3d(xyz + 3 * size_t(c.vertex)) - Eigen::Vector3d(p[0], p[1], p[2]);
     const Eigen::Vector3d local = f.toLocal(d);
     for (int a = 0; a < 3; ++a) coefficients[3 * size_t(c.vertex) + a] = local[a];
   }
@@ -82,12 +106,14 @@ void WaveletTransform::forward(const double* xyz, std::vector<double>& coefficie
 
 void WaveletTransform::inverse(const std::vector<double>& coefficients, std::vector<double>& xyz) const {
   xyz = coefficients;  // base vertices are their own coefficients
+  double* const out = xyz.data();
+  const LocalFrame world;
   for (size_t i = pm_.collapses.size(); i-- > 0;) {
     const Collapse& c = pm_.collapses[i];
-    const LocalFrame f = frameOf(c, xyz.data());
-    const Eigen::Vector3d p = predict(stencils_, i, xyz.data()) +
-                              f.toWorld(Eigen::Vector3d(&coefficients[3 * size_t(c.vertex)]));
-    for (int a = 0; a < 3; ++a) xyz[3 * size_t(c.vertex) + a] = p[a];
+    double p[3], detail[3];
+    predictCollapse(i, out, p);
+    toWorld(local_frames_ ? frameOf(c, out) : world, &coefficients[3 * size_t(c.vertex)], detail);
+    for (int a = 0; a < 3; ++a) out[3 * size_t(c.vertex) + a] = p[a] + detail[a];
   }
 }
 

@@ -35,12 +35,16 @@ class WaveletTransform {
 
  private:
   void computeWeights(const Topology& topology, const std::vector<double>& xyz);
+  void flattenStencils();
+  // The anisotropic prediction of collapse i's vertex from the positions in xyz.
+  void predictCollapse(size_t i, const double* xyz, double p[3]) const;
 
   LocalFrame frameOf(const Collapse& c, const double* xyz) const;
 
   bool local_frames_;
   ProgressiveMesh pm_;
   PredictionStencils stencils_;
+  std::vector<uint32_t> stencil_offset_;  // 3 * stencils_.vertex: the x of each stencil vertex
   std::vector<double> cosines_, sines_;  // tangent masks, aligned with pm_.ring
   std::vector<double> weights_;
   std::vector<int> level_of_;
