@@ -23,21 +23,17 @@ void LevelMesh::rebuildIncidence() {
       for (uint32_t v : triangles_[t]) incident_[fill[v]++] = uint32_t(t);
 }
 
-bool LevelMesh::orderedRing(uint32_t v, std::vector<uint32_t>& ring) const {
-  // Each triangle (v, a, b) gives the step a -> b; a closed fan is one cycle through them all.
-  std::vector<std::pair<uint32_t, uint32_t>> steps;
-  for (const uint32_t* t = trianglesBegin(v); t != trianglesEnd(v); ++t) {
-    const Triangle& tri = triangles_[*t];
-    const int at = tri[0] == v ? 0 : (tri[1] == v ? 1 : 2);
-    const uint32_t a = tri[(at + 1) % 3], b = tri[(at + 2) % 3];
-    if (a == v || b == v || a == b) return false;
-    steps.emplace_back(a, b);
-  }
-  const size_t k = steps.size();
-  if (k < 3) return false;
+namespace {
+
+using Steps = std::vector<std::pair<uint32_t, uint32_t>>;
+
+// Follows the steps from `start` through all of them; false when some vertex has two ways
+// out (non-manifold or inconsistent orientation) or none before the steps are used up.
+// ring receives the vertices visited, start first, then the vertex reached last.
+bool walkSteps(const Steps& steps, uint32_t start, std::vector<uint32_t>& ring) {
   ring.clear();
-  uint32_t current = steps[0].first;
-  for (size_t i = 0; i < k; ++i) {
+  uint32_t current = start;
+  for (size_t i = 0; i < steps.size(); ++i) {
     uint32_t next = kNoVertex;
     for (const auto& s : steps) {
       if (s.first != current) continue;
@@ -48,10 +44,52 @@ bool LevelMesh::orderedRing(uint32_t v, std::vector<uint32_t>& ring) const {
     ring.push_back(current);
     current = next;
   }
-  if (current != steps[0].first) return false;
-  std::vector<uint32_t> sorted(ring);
-  std::sort(sorted.begin(), sorted.end());
-  return std::adjacent_find(sorted.begin(), sorted.end()) == sorted.end();
+  ring.push_back(current);
+  return true;
+}
+
+bool allDistinct(std::vector<uint32_t> vertices) {
+  std::sort(vertices.begin(), vertices.end());
+  return std::adjacent_find(vertices.begin(), vertices.end()) == vertices.end();
+}
+
+}  // namespace
+
+bool LevelMesh::fanSteps(uint32_t v, std::vector<std::pair<uint32_t, uint32_t>>& steps) const {
+  steps.clear();
+  for (const uint32_t* t = trianglesBegin(v); t != trianglesEnd(v); ++t) {
+    const Triangle& tri = triangles_[*t];
+    const int at = tri[0] == v ? 0 : (tri[1] == v ? 1 : 2);
+    const uint32_t a = tri[(at + 1) % 3], b = tri[(at + 2) % 3];
+    if (a == v || b == v || a == b) return false;
+    steps.emplace_back(a, b);
+  }
+  return true;
+}
+
+bool LevelMesh::orderedRing(uint32_t v, std::vector<uint32_t>& ring) const {
+  // A closed fan is one cycle through all the steps.
+  Steps steps;
+  if (!fanSteps(v, steps) || steps.size() < 3) return false;
+  if (!walkSteps(steps, steps[0].first, ring) || ring.back() != ring.front()) return false;
+  ring.pop_back();
+  return allDistinct(ring);
+}
+
+bool LevelMesh::openFan(uint32_t v, std::vector<uint32_t>& ring) const {
+  // An open fan is one chain through all the steps, from the one spoke no step enters.
+  Steps steps;
+  if (!fanSteps(v, steps) || steps.empty()) return false;
+  uint32_t start = kNoVertex;
+  for (const auto& s : steps) {
+    bool entered = false;
+    for (const auto& r : steps) entered = entered || r.second == s.first;
+    if (entered) continue;
+    if (start != kNoVertex) return false;  // several fans meet at v
+    start = s.first;
+  }
+  if (start == kNoVertex || !walkSteps(steps, start, ring)) return false;
+  return allDistinct(ring);
 }
 
 uint32_t LevelMesh::flapAcross(uint32_t a, uint32_t b, uint32_t v) const {

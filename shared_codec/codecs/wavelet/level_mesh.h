@@ -4,6 +4,7 @@
 // valid while the batch is applied.
 #pragma once
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "core/sequence.h"
@@ -26,6 +27,11 @@ class LevelMesh {
   // in a degenerate triangle or where its triangles disagree on orientation: such vertices
   // are never removed.
   bool orderedRing(uint32_t v, std::vector<uint32_t>& ring) const;
+  // The neighbours of a boundary vertex v whose triangles form one open, consistently
+  // oriented fan: (v, ring[k], ring[k+1]) are its triangles, ring.front() and ring.back() its
+  // two boundary neighbours (edges with one triangle). False otherwise (interior,
+  // non-manifold, several fans, degenerate or inconsistently oriented triangles).
+  bool openFan(uint32_t v, std::vector<uint32_t>& ring) const;
   // The third vertex of the one triangle on edge (a, b) that does not contain v; kNoVertex
   // when the edge has no such triangle or several (boundary, non-manifold).
   uint32_t flapAcross(uint32_t a, uint32_t b, uint32_t v) const;
@@ -39,6 +45,9 @@ class LevelMesh {
   std::vector<Triangle> liveTriangles() const;
 
  private:
+  // Each triangle (v, a, b) of v as the step a -> b around v; false on a degenerate one.
+  bool fanSteps(uint32_t v, std::vector<std::pair<uint32_t, uint32_t>>& steps) const;
+
   uint32_t vertex_count_;
   std::vector<Triangle> triangles_;
   std::vector<uint8_t> alive_;

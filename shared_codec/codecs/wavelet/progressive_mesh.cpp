@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
+#include <tuple>
 
 #include "codecs/wavelet/collapse_choice.h"
 
@@ -12,6 +14,7 @@ struct Candidate {
   double cost;
   uint32_t vertex;
   uint32_t target;
+  CollapseKind kind;
 };
 
 double meanEdgeLength(const Topology& topology, const std::vector<double>& xyz) {
@@ -27,20 +30,88 @@ double meanEdgeLength(const Topology& topology, const std::vector<double>& xyz) 
   return count ? sum / double(count) : 0.0;
 }
 
+// The boundary loops (edges with one live triangle, joined at shared vertices) and how many
+// vertices each still has, so that every loop keeps >= 3. Collapses that pass the link
+// condition keep the topology, so loops neither split nor merge: built once, after the
+// seams are welded, then only counted down.
+struct BoundaryLoops {
+  std::vector<uint32_t> loop_of;    // per vertex: a representative vertex of its loop
+  std::vector<uint32_t> remaining;  // per representative: vertices on the loop
+
+  BoundaryLoops(const LevelMesh& mesh, uint32_t vertex_count)
+      : loop_of(vertex_count), remaining(vertex_count, 0) {
+    std::iota(loop_of.begin(), loop_of.end(), 0u);
+    const auto edges = boundaryEdges(mesh, vertex_count);
+    for (const auto& [a, b] : edges) loop_of[find(a)] = find(b);
+    for (uint32_t v = 0; v < vertex_count; ++v) loop_of[v] = find(v);
+    std::vector<uint8_t> on_boundary(vertex_count, 0);
+    for (const auto& [a, b] : edges) on_boundary[a] = on_boundary[b] = 1;
+    for (uint32_t v = 0; v < vertex_count; ++v) remaining[loop_of[v]] += on_boundary[v];
+  }
+
+  bool onBoundary(uint32_t v) const { return remaining[loop_of[v]] > 0; }
+  bool canLose(uint32_t v) const { return remaining[loop_of[v]] > 3; }
+  // One vertex less on v's loop, if the loop keeps at least 3.
+  bool take(uint32_t v) {
+    if (!canLose(v)) return false;
+    --remaining[loop_of[v]];
+    return true;
+  }
+
+ private:
+  uint32_t find(uint32_t v) {
+    while (loop_of[v] != v) v = loop_of[v] = loop_of[loop_of[v]];
+    return v;
+  }
+
+  // Edges (a, b), a < b, held by exactly one live triangle: b appears once among the other
+  // corners of a's triangles.
+  static std::vector<std::pair<uint32_t, uint32_t>> boundaryEdges(const LevelMesh& mesh, uint32_t vertex_count) {
+    std::vector<std::pair<uint32_t, uint32_t>> out;
+    std::vector<uint32_t> corners;
+    for (uint32_t a = 0; a < vertex_count; ++a) {
+      corners.clear();
+      for (const uint32_t* t = mesh.trianglesBegin(a); t != mesh.trianglesEnd(a); ++t)
+        for (uint32_t b : mesh.triangle(*t))
+          if (b > a) corners.push_back(b);
+      std::sort(corners.begin(), corners.end());
+      for (size_t i = 0; i < corners.size(); ++i) {
+        const bool once = (i == 0 || corners[i - 1] != corners[i]) &&
+                          (i + 1 == corners.size() || corners[i + 1] != corners[i]);
+        if (once) out.emplace_back(a, corners[i]);
+      }
+    }
+    return out;
+  }
+};
+
+// v's one ring as a collapse sees it: its closed ring inside, its open fan on a boundary.
+bool ringOf(const LevelMesh& mesh, uint32_t v, CollapseKind kind, std::vector<uint32_t>& ring) {
+  return kind == CollapseKind::kBoundary ? mesh.openFan(v, ring) : mesh.orderedRing(v, ring);
+}
+
 // Every removable vertex's best collapse; any_valid tells whether relaxing the length bound
 // could still find work.
 std::vector<Candidate> levelCandidates(const LevelMesh& mesh, const std::vector<double>& xyz,
-                                       const std::vector<uint8_t>& removed, double max_length,
+                                       const std::vector<uint8_t>& removed, const BoundaryLoops& loops,
+                                       double max_length,
                                        const HierarchySettings& settings, bool& any_valid) {
   std::vector<Candidate> out;
   std::vector<uint32_t> ring;
   any_valid = false;
   for (uint32_t v = 0; v < removed.size(); ++v) {
-    if (removed[v] || !mesh.orderedRing(v, ring)) continue;
-    const CollapseChoice c = chooseCollapse(mesh, xyz, v, ring, max_length, settings.min_normal_cosine);
+    if (removed[v]) continue;
+    CollapseChoice c;
+    CollapseKind kind = CollapseKind::kInterior;
+    if (mesh.orderedRing(v, ring)) {
+      c = chooseCollapse(mesh, xyz, v, ring, max_length, settings.min_normal_cosine);
+    } else if (settings.collapse_boundaries && loops.canLose(v) && mesh.openFan(v, ring)) {
+      kind = CollapseKind::kBoundary;
+      c = chooseBoundaryCollapse(mesh, xyz, v, ring, max_length, settings.min_normal_cosine);
+    }
     if (c.target == kNoVertex) continue;
     any_valid = true;
-    if (c.fits_length) out.push_back({c.cost, v, c.target});
+    if (c.fits_length) out.push_back({c.cost, v, c.target, kind});
   }
   // Cost, then vertex index: a total order, so both sides pick the same batch.
   std::sort(out.begin(), out.end(), [](const Candidate& a, const Candidate& b) {
@@ -49,31 +120,71 @@ std::vector<Candidate> levelCandidates(const LevelMesh& mesh, const std::vector<
   return out;
 }
 
+Collapse recordCollapse(const LevelMesh& mesh, const Candidate& c, const std::vector<uint32_t>& ring, int level,
+                        ProgressiveMesh& pm) {
+  Collapse record;
+  record.vertex = c.vertex;
+  record.target = c.target;
+  record.ring_begin = uint32_t(pm.ring.size());
+  record.ring_size = uint16_t(ring.size());
+  record.level = uint16_t(level);
+  record.kind = c.kind;
+  const size_t k = ring.size();
+  for (size_t i = 0; i < k; ++i) {
+    pm.ring.push_back(ring[i]);
+    const bool wraps = c.kind != CollapseKind::kInterior && i + 1 == k;  // no edge from last to first
+    pm.flap.push_back(wraps ? kNoVertex : mesh.flapAcross(ring[i], ring[(i + 1) % k], c.vertex));
+  }
+  return record;
+}
+
+// Seams: boundary vertices at exactly the same parametric position (texture seams, split
+// normals) move together, so every copy but the lowest-numbered one is removed first,
+// predicted by that one, and welded onto it, which also closes the seam for the levels
+// above. Only non-adjacent boundary vertices are welded: coincident neighbours (a
+// coarse parametric grid merging close vertices) are degenerate edges, not seams. Exact
+// comparisons and index order keep it deterministic.
+int weldSeams(LevelMesh& mesh, const std::vector<double>& xyz, std::vector<uint8_t>& removed, ProgressiveMesh& pm) {
+  std::vector<uint32_t> order(removed.size());
+  std::iota(order.begin(), order.end(), 0u);
+  auto position = [&](uint32_t v) { return std::make_tuple(xyz[3 * size_t(v)], xyz[3 * size_t(v) + 1], xyz[3 * size_t(v) + 2]); };
+  std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
+    return position(a) < position(b) || (position(a) == position(b) && a < b);
+  });
+  const BoundaryLoops loops(mesh, uint32_t(removed.size()));
+  int welded = 0;
+  for (size_t first = 0, end = 0; first < order.size(); first = end) {
+    const uint32_t original = order[first];
+    for (end = first + 1; end < order.size() && position(order[end]) == position(original); ++end) {
+      const uint32_t copy = order[end];
+      if (!loops.onBoundary(original) || !loops.onBoundary(copy) || mesh.adjacent(copy, original)) continue;
+      const Candidate seam{0.0, copy, original, CollapseKind::kSeam};
+      pm.collapses.push_back(recordCollapse(mesh, seam, {original}, 0, pm));
+      removed[copy] = 1;
+      ++welded;
+    }
+  }
+  for (const Collapse& c : pm.collapses) mesh.collapse(c.vertex, c.target);
+  return welded;
+}
+
 // Greedy independent set: closed one rings of the batch are vertex-disjoint, so the batch's
-// collapses touch disjoint triangles and no removed vertex is in another's predictor stencil.
-int applyBatch(LevelMesh& mesh, const std::vector<Candidate>& candidates, int level,
+// collapses touch disjoint triangles and no removed vertex is in another's predictor stencil
+// (stencils reach at most one step beyond the ring: flaps, and on a boundary the next
+// boundary vertices, which a disjoint ring cannot remove).
+int applyBatch(LevelMesh& mesh, const std::vector<Candidate>& candidates, int level, BoundaryLoops& loops,
                std::vector<uint8_t>& removed, ProgressiveMesh& pm) {
   std::vector<uint8_t> marked(removed.size(), 0);
   std::vector<uint32_t> ring;
   int applied = 0;
   for (const Candidate& c : candidates) {
-    if (!mesh.orderedRing(c.vertex, ring)) continue;
+    if (!ringOf(mesh, c.vertex, c.kind, ring)) continue;
     bool free = !marked[c.vertex];
     for (uint32_t w : ring) free = free && !marked[w];
-    if (!free) continue;
+    if (!free || (c.kind == CollapseKind::kBoundary && !loops.take(c.vertex))) continue;
     marked[c.vertex] = 1;
     for (uint32_t w : ring) marked[w] = 1;
-    Collapse record;
-    record.vertex = c.vertex;
-    record.target = c.target;
-    record.ring_begin = uint32_t(pm.ring.size());
-    record.ring_size = uint16_t(ring.size());
-    record.level = uint16_t(level);
-    for (size_t k = 0; k < ring.size(); ++k) {
-      pm.ring.push_back(ring[k]);
-      pm.flap.push_back(mesh.flapAcross(ring[k], ring[(k + 1) % ring.size()], c.vertex));
-    }
-    pm.collapses.push_back(record);
+    pm.collapses.push_back(recordCollapse(mesh, c, ring, level, pm));
     removed[c.vertex] = 1;
     ++applied;
   }
@@ -92,12 +203,17 @@ ProgressiveMesh buildProgressiveMesh(const Topology& topology, const std::vector
   LevelMesh mesh(topology);
   std::vector<uint8_t> removed(topology.vertex_count, 0);
   double max_length = settings.first_length_factor * meanEdgeLength(topology, parametric_xyz);
+  if (settings.weld_seams && weldSeams(mesh, parametric_xyz, removed, pm) > 0) {
+    pm.level_count = 1;
+    mesh.rebuildIncidence();
+  }
+  BoundaryLoops loops(mesh, topology.vertex_count);
   for (int level = 0; level < settings.max_levels; ++level, max_length *= settings.length_growth) {
     bool any_valid = false;
     const std::vector<Candidate> candidates =
-        levelCandidates(mesh, parametric_xyz, removed, max_length, settings, any_valid);
+        levelCandidates(mesh, parametric_xyz, removed, loops, max_length, settings, any_valid);
     if (!any_valid) break;
-    if (applyBatch(mesh, candidates, pm.level_count, removed, pm) == 0) continue;
+    if (applyBatch(mesh, candidates, pm.level_count, loops, removed, pm) == 0) continue;
     ++pm.level_count;
     mesh.rebuildIncidence();
   }

@@ -12,15 +12,26 @@
 
 namespace animc {
 
+enum class CollapseKind : uint8_t {
+  kInterior,  // closed ring; anisotropic prediction
+  kBoundary,  // open fan, collapsed along a boundary edge; predicted along the boundary
+  kSeam,      // a copy of `target` (same parametric position, e.g. a texture seam); welded
+};
+
 // One half-edge collapse: `vertex` is removed onto its neighbour `target`. Its one ring at
 // that moment is ring[ring_begin .. ring_begin + ring_size) of the ProgressiveMesh, cyclic,
 // with flap[k] the vertex across the link edge (ring[k], ring[k+1]) or kNoVertex.
+// kBoundary: the ring is an open fan, v's triangles are (vertex, ring[k], ring[k+1]) for
+// k < ring_size - 1 only; ring's first and last vertices are its boundary neighbours, one of
+// them the target; the last flap is kNoVertex.
+// kSeam: the ring is the target alone, its flap kNoVertex.
 struct Collapse {
   uint32_t vertex = 0;
   uint32_t target = 0;
   uint32_t ring_begin = 0;
   uint16_t ring_size = 0;
   uint16_t level = 0;  // batch number; 0 = the first (finest) batch
+  CollapseKind kind = CollapseKind::kInterior;
 };
 
 struct ProgressiveMesh {
@@ -29,7 +40,8 @@ struct ProgressiveMesh {
   std::vector<Collapse> collapses;  // in removal order, finest batch first
   std::vector<uint32_t> ring;
   std::vector<uint32_t> flap;
-  std::vector<uint32_t> base;       // vertices never removed, ascending
+  std::vector<uint32_t> base;       // vertices never removed, ascending (each boundary loop
+                                    // keeps at least 3)
   std::vector<Triangle> base_triangles;
 };
 
@@ -38,6 +50,8 @@ struct HierarchySettings {
   double first_length_factor = 1.0;  // bound of level 0, times the mean edge length
   double length_growth = 1.25;       // the bound grows by this factor every level
   double min_normal_cosine = 0.3;    // a collapse may not turn a triangle by more than ~72 deg
+  bool collapse_boundaries = true;   // false keeps every boundary vertex in the base
+  bool weld_seams = true;            // false keeps coincident vertices apart
 };
 
 // parametric_xyz: 3 * vertex_count coordinates (the parametric mesh).
