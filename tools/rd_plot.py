@@ -43,7 +43,7 @@ def draw_rd_plot(points_by_sequence, out_png):
     rows = max(1, math.ceil(len(names) / COLUMNS))
     with tempfile.TemporaryDirectory(prefix='rdplot-') as work:
         tmp_png = os.path.join(work, 'plot.png')
-        script = [f"set terminal pngcairo size {620 * COLUMNS},{460 * rows} font 'DejaVu Sans,10'",
+        script = [f"set terminal pngcairo noenhanced size {620 * COLUMNS},{460 * rows} font 'DejaVu Sans,10'",
                   f"set output '{tmp_png}'",
                   'set logscale xy', 'set grid xtics ytics mxtics mytics lc rgb "#dddddd"',
                   'set xlabel "bits per vertex per frame (whole file)"', 'set ylabel "KG error (%)"',
