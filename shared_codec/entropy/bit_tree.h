@@ -23,10 +23,24 @@ void encodeTree(RangeEncoder& rc, BitTreeModel<kBits>& m, uint32_t value) {
   }
 }
 
+// Each level's probability is that of a child of the node just decoded: both children's are
+// fetched while the bit is decoded and the right one selected after, which keeps the memory
+// load off the chain from one bit to the next.
 template <int kBits>
-uint32_t decodeTree(RangeDecoder& rc, BitTreeModel<kBits>& m) {
+uint32_t decodeTree(RangeDecoder& decoder, BitTreeModel<kBits>& m) {
+  RangeDecoder rc = decoder;  // a local copy the compiler can keep in registers
   uint32_t node = 1;
-  for (int i = 0; i < kBits; ++i) node = node * 2 + uint32_t(rc.decode(m.node[node]));
+  uint32_t p0 = m.node[1].p0;
+  for (int i = 0; i < kBits; ++i) {
+    const bool inner = i + 1 < kBits;
+    const uint32_t p0_left = inner ? m.node[2 * node].p0 : 0;
+    const uint32_t p0_right = inner ? m.node[2 * node + 1].p0 : 0;
+    const int bit = rc.decodeWithProbability(p0);
+    m.node[node].update(bit);
+    node = node * 2 + uint32_t(bit);
+    p0 = bit ? p0_right : p0_left;
+  }
+  decoder = rc;
   return node - (1u << kBits);
 }
 

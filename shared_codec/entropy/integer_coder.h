@@ -40,17 +40,17 @@ void encodeInt(RangeEncoder& rc, Model& m, int ctx, int64_t v) {
   if (left > 0) rc.encodeRaw(uint32_t(mag & ((uint64_t(1) << left) - 1)), left);
 }
 
-// The rest of a non-zero value; kept out of line so the common zero case inlines.
+// The rest of a non-zero value.
 template <class Model>
-__attribute__((noinline)) int64_t decodeNonZero(RangeDecoder& rc, Model& m, int ctx) {
-  const bool negative = rc.decode(m.sign[ctx]);
+inline int64_t decodeMagnitudeAndSign(RangeDecoder& rc, Model& m, int ctx) {
+  const bool negative = rc.decodeData(m.sign[ctx]);
   int e = 0;
   while (e < kMaxExponent - 1 && rc.decode(m.exponent[ctx][e])) ++e;
   uint64_t mag = 1;
   int left = e;
   int node = 1;
   for (int i = 0; i < 2 && left > 0; ++i) {
-    const int bit = rc.decode(m.mantissa[e][node]);
+    const int bit = rc.decodeData(m.mantissa[e][node]);
     node = node * 2 + bit;
     mag = (mag << 1) | uint64_t(bit);
     --left;
@@ -59,10 +59,24 @@ __attribute__((noinline)) int64_t decodeNonZero(RangeDecoder& rc, Model& m, int 
   return negative ? -int64_t(mag) : int64_t(mag);
 }
 
+// Kept out of line so the common zero case inlines.
+template <class Model>
+__attribute__((noinline)) int64_t decodeNonZero(RangeDecoder& rc, Model& m, int ctx) {
+  return decodeMagnitudeAndSign(rc, m, ctx);
+}
+
 template <class Model>
 inline int64_t decodeInt(RangeDecoder& rc, Model& m, int ctx) {
   if (!rc.decode(m.zero[ctx])) return 0;
   return decodeNonZero(rc, m, ctx);
+}
+
+// The same, entirely inline: for a hot loop that keeps a local copy of the decoder, which
+// stays in registers only if its address never leaves the loop.
+template <class Model>
+inline int64_t decodeIntInline(RangeDecoder& rc, Model& m, int ctx) {
+  if (!rc.decode(m.zero[ctx])) return 0;
+  return decodeMagnitudeAndSign(rc, m, ctx);
 }
 
 // Estimated cost in bits of coding bit with model m, without coding it (rate decisions):

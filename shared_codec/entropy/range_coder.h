@@ -14,14 +14,22 @@ constexpr uint32_t kProbOne = 1u << kProbBits;
 // short streams (one frame of a small mesh) still learn their statistics.
 struct BitModel {
   uint16_t p0 = kProbOne / 2;
-  uint8_t seen = 0;
+  // Not uint8_t: a store through a char type may alias anything, which would force the
+  // coders' range and code out of registers after every bit.
+  uint16_t seen = 0;
 
   void update(int bit) {
-    static constexpr uint8_t kShift[] = {2, 3, 3, 4, 4, 4, 5, 5, 5, 5, 5, 5};
-    const int shift = seen < sizeof(kShift) ? kShift[seen++] : 5;
-    if (bit) p0 -= p0 >> shift;
-    else p0 += (kProbOne - p0) >> shift;
+    static constexpr uint8_t kShift[] = {2, 3, 3, 4, 4, 4, 5, 5, 5, 5, 5, 5, 5};
+    constexpr uint16_t kLearned = sizeof(kShift) - 1;  // from here on the rate stays 1/32
+    const int shift = kShift[seen];
+    seen += seen < kLearned;
+    // Both updates computed and one selected: the bit is close to random for many models,
+    // and the next use of this model waits for the result.
+    const uint32_t down = p0 - (p0 >> shift);
+    const uint32_t up = p0 + ((kProbOne - p0) >> shift);
+    p0 = uint16_t(up ^ ((up ^ down) & maskOf(bit)));
   }
+  static uint32_t maskOf(int bit) { return 0u - uint32_t(bit); }
 };
 
 class RangeEncoder {
@@ -85,18 +93,32 @@ class RangeDecoder {
     for (int i = 0; i < 4; ++i) code_ = (code_ << 8) | nextByte();
   }
 
+  // A bit the caller branches on: the compiler may branch here too, which lets a well
+  // predicted bit start the next decode before this one's comparison resolves.
   int decode(BitModel& m) {
     const uint32_t bound = (range_ >> kProbBits) * m.p0;
-    int bit;
-    if (code_ < bound) {
-      range_ = bound;
-      bit = 0;
-    } else {
-      code_ -= bound;
-      range_ -= bound;
-      bit = 1;
-    }
+    const int bit = code_ >= bound;
+    code_ -= bit ? bound : 0;
+    range_ = bit ? range_ - bound : bound;
     m.update(bit);
+    normalize();
+    return bit;
+  }
+  // A bit that only becomes data (a sign, a mantissa bit): masks instead of branches, since
+  // such bits are close to random and a branch on them is mispredicted half the time.
+  int decodeData(BitModel& m) {
+    const int bit = decodeWithProbability(m.p0);
+    m.update(bit);
+    return bit;
+  }
+  // decodeData() given the model's probability, for callers that fetch it ahead of time;
+  // they update the model themselves.
+  int decodeWithProbability(uint32_t p0) {
+    const uint32_t bound = (range_ >> kProbBits) * p0;
+    const int bit = code_ >= bound;
+    const uint32_t mask = BitModel::maskOf(bit);
+    code_ -= bound & mask;
+    range_ = bound + ((range_ - bound - bound) & mask);  // range_ - bound when the bit is 1
     normalize();
     return bit;
   }
@@ -105,7 +127,7 @@ class RangeDecoder {
     for (int i = 0; i < bits; ++i) {
       range_ >>= 1;
       const uint32_t bit = code_ >= range_;
-      if (bit) code_ -= range_;
+      code_ -= range_ & BitModel::maskOf(int(bit));
       v = (v << 1) | bit;
       normalize();
     }

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "codecs/affine_octree/cell_kernels.h"
+
 namespace animc {
 
 bool fitAffinePaper(const std::vector<double>& u, const std::vector<double>& q, const uint32_t* idx,
@@ -39,52 +41,20 @@ bool fitAffinePaper(const std::vector<double>& u, const std::vector<double>& q, 
   return singular;
 }
 
-CellFrame cellFrame(const std::vector<double>& u, const uint32_t* idx, size_t n) {
-  CellFrame f{{0, 0, 0}, 0};
-  double lo[3], hi[3];
-  for (int a = 0; a < 3; ++a) lo[a] = hi[a] = u[3 * size_t(idx[0]) + a];
-  for (size_t i = 0; i < n; ++i)
-    for (int a = 0; a < 3; ++a) {
-      const double x = u[3 * size_t(idx[i]) + a];
-      f.centroid[a] += x;
-      lo[a] = std::min(lo[a], x);
-      hi[a] = std::max(hi[a], x);
-    }
-  for (int a = 0; a < 3; ++a) f.centroid[a] /= double(n);
-  const double dx = hi[0] - lo[0], dy = hi[1] - lo[1], dz = hi[2] - lo[2];
-  f.radius = std::max(0.5 * std::sqrt(dx * dx + dy * dy + dz * dz), 1e-9);
-  return f;
-}
-
 // Plain loops rather than Eigen: the matrices are 3x3, and this runs for every cell the
 // encoder's search visits and every leaf the decoder reads.
-void fitCentred(const std::vector<double>& u, const std::vector<double>& q, const uint32_t* idx,
-                size_t n, const CellFrame& frame, const double prior_L[9], CentredAffine& out) {
-  const double* c = frame.centroid;
-  double sum_m[3] = {0, 0, 0}, sum_d[3] = {0, 0, 0};
-  double cov[9] = {0}, cross[9] = {0};  // Σ d·dᵀ and Σ m·dᵀ, row-major
-  for (size_t i = 0; i < n; ++i) {
-    const size_t v = 3 * size_t(idx[i]);
-    const double d[3] = {u[v] - c[0], u[v + 1] - c[1], u[v + 2] - c[2]};
-    const double m[3] = {q[v] - u[v], q[v + 1] - u[v + 1], q[v + 2] - u[v + 2]};
-    for (int r = 0; r < 3; ++r) {
-      sum_m[r] += m[r];
-      sum_d[r] += d[r];
-      for (int k = 0; k < 3; ++k) {
-        cov[3 * r + k] += d[r] * d[k];
-        cross[3 * r + k] += m[r] * d[k];
-      }
-    }
-  }
+void fitCentred(const double* u, const double* q, size_t n, const CellFrame& frame,
+                const double prior_L[9], CentredAffine& out) {
+  const FitSums s = fitSums(u, q, n, frame.centroid);
   const double inv_n = 1.0 / double(n);
   const double lambda = kRidge * double(n) * frame.radius * frame.radius;
   double a[9], b[9];
   for (int r = 0; r < 3; ++r) {
-    out.t[r] = sum_m[r] * inv_n;  // the centroid's displacement
+    out.t[r] = s.m[r] * inv_n;  // the centroid's displacement
     for (int k = 0; k < 3; ++k) {
       // Σ (m - m̄)·dᵀ = Σ m·dᵀ - m̄·(Σ d)ᵀ, and the ridge pulls L towards the prior.
-      b[3 * r + k] = cross[3 * r + k] - out.t[r] * sum_d[k] + lambda * prior_L[3 * r + k];
-      a[3 * r + k] = cov[3 * r + k] + (r == k ? lambda : 0.0);
+      b[3 * r + k] = s.cross[3 * r + k] - out.t[r] * s.d[k] + lambda * prior_L[3 * r + k];
+      a[3 * r + k] = s.cov[3 * r + k] + (r == k ? lambda : 0.0);
     }
   }
   // L = b · a⁻¹, a symmetric positive definite (λ > 0): inverse by cofactors.
@@ -92,9 +62,14 @@ void fitCentred(const std::vector<double>& u, const std::vector<double>& q, cons
                          a[5] * a[6] - a[3] * a[8], a[0] * a[8] - a[2] * a[6], a[2] * a[3] - a[0] * a[5],
                          a[3] * a[7] - a[4] * a[6], a[1] * a[6] - a[0] * a[7], a[0] * a[4] - a[1] * a[3]};
   const double det = a[0] * inv[0] + a[1] * inv[3] + a[2] * inv[6];
-  for (int r = 0; r < 3; ++r)
-    for (int k = 0; k < 3; ++k)
-      out.L[3 * r + k] = (b[3 * r] * inv[k] + b[3 * r + 1] * inv[3 + k] + b[3 * r + 2] * inv[6 + k]) / det;
+  // Columns 0 and 1 of each row through a Pair: the nine divisions are most of the solve.
+  for (int r = 0; r < 3; ++r) {
+    const double* row = &b[3 * r];
+    const Pair numerator = (splat(row[0]) * loadPair(&inv[0]) + splat(row[1]) * loadPair(&inv[3])) +
+                           splat(row[2]) * loadPair(&inv[6]);
+    storePair(&out.L[3 * r], numerator / splat(det));
+    out.L[3 * r + 2] = (row[0] * inv[2] + row[1] * inv[5] + row[2] * inv[8]) / det;
+  }
 }
 
 }  // namespace animc

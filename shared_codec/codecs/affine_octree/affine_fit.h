@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "codecs/affine_octree/simd_math.h"
+
 namespace animc {
 
 // The paper's form: q ≈ A·[u; 1], A row-major 3x4.
@@ -35,15 +37,20 @@ struct CellFrame {
   double centroid[3];
   double radius;  // half the diagonal of the vertices' bounding box (>= tiny): their scale
 };
-CellFrame cellFrame(const std::vector<double>& u, const uint32_t* idx, size_t n);
 
-void fitCentred(const std::vector<double>& u, const std::vector<double>& q, const uint32_t* idx,
-                size_t n, const CellFrame& frame, const double prior_L[9], CentredAffine& out);
+// u and q: a cell's points gathered in cell order, kPointStride doubles apart (cell_kernels.h).
+void fitCentred(const double* u, const double* q, size_t n, const CellFrame& frame,
+                const double prior_L[9], CentredAffine& out);
 
+// x and y of the result go through the two lanes of a Pair, z alone; each lane computes
+// u + t + ((L₀·d₀ + L₁·d₁) + L₂·d₂) exactly as the scalar formula would.
 inline void applyCentred(const CentredAffine& m, const double c[3], const double* u, double* out) {
-  const double d[3] = {u[0] - c[0], u[1] - c[1], u[2] - c[2]};
-  for (int r = 0; r < 3; ++r)
-    out[r] = u[r] + m.t[r] + (m.L[3 * r] * d[0] + m.L[3 * r + 1] * d[1] + m.L[3 * r + 2] * d[2]);
+  const Pair u_xy = loadPair(u);
+  const Pair d_xy = u_xy - loadPair(c);
+  const double dz = u[2] - c[2];
+  const Pair l0 = {m.L[0], m.L[3]}, l1 = {m.L[1], m.L[4]}, l2 = {m.L[2], m.L[5]};
+  storePair(out, (u_xy + loadPair(m.t)) + ((l0 * splat(d_xy[0]) + l1 * splat(d_xy[1])) + l2 * splat(dz)));
+  out[2] = (u[2] + m.t[2]) + ((m.L[6] * d_xy[0] + m.L[7] * d_xy[1]) + m.L[8] * dz);
 }
 
 }  // namespace animc

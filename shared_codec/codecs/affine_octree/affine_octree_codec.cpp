@@ -26,21 +26,18 @@ double innerMaxError(const AffineOctreeOptions& options) {
   return options.profile == Profile::kPaper ? me : me / (1.0 + 2.0 * me);
 }
 
-void denormalize(const RootCube& cube, const std::vector<double>& unit, std::vector<double>& out) {
-  out.resize(unit.size());
-  for (size_t i = 0; i < unit.size(); i += 3)
-    for (int a = 0; a < 3; ++a) out[i + a] = cube.min[a] + cube.side * unit[i + a];
-}
-
 // State both sides keep: the last two reconstructed frames.
 struct LoopState {
   std::vector<double> current, before;
   bool has_current = false, has_before = false;
   std::vector<double> u, u0, recon_unit;
+  // The bounding cube of `current` when advance() found it on the way, saving prepare() a pass.
+  RootCube current_cube;
+  bool current_cube_known = false;
 
   // Normalises the references into the root cube of `current`.
   RootCube prepare() {
-    const RootCube cube = boundingCube(current);
+    const RootCube cube = current_cube_known ? current_cube : boundingCube(current);
     normalize(cube, current, u);
     if (has_before) normalize(cube, before, u0);
     return cube;
@@ -48,11 +45,13 @@ struct LoopState {
   void advance(const RootCube& cube) {
     before.swap(current);
     has_before = true;
-    denormalize(cube, recon_unit, current);
+    current_cube = denormalize(cube, recon_unit, current);
+    current_cube_known = true;
   }
   void restart() {
     has_current = true;
     has_before = false;
+    current_cube_known = false;
   }
 };
 
@@ -116,8 +115,7 @@ class AffineOctreeEncoder final : public FrameEncoder {
 class AffineOctreeDecoder final : public FrameDecoder {
  public:
   AffineOctreeDecoder(const AffineOctreeOptions& options, const Topology& topology)
-      : options_(options), intra_(topology), paper_(options.bits), predictive_(topology.vertex_count),
-        vertex_count_(topology.vertex_count) {}
+      : options_(options), intra_(topology), paper_(options.bits), predictive_(topology.vertex_count) {}
 
   Status decodeFrame(ByteReader payload, std::vector<float>& xyz, bool* intra) override {
     ANIMC_ASSIGN_OR_RETURN(uint8_t type, payload.u8("Frame_Type"));
@@ -133,16 +131,17 @@ class AffineOctreeDecoder final : public FrameDecoder {
       return corrupt("unknown frame type " + std::to_string(type));
     }
     if (intra) *intra = type == kIntraFrame;
-    xyz.resize(3 * size_t(vertex_count_));
-    for (size_t i = 0; i < xyz.size(); ++i) {
-      if (!std::isfinite(state_.current[i]) || std::fabs(state_.current[i]) > 1e30)
-        return corrupt("decoded vertex " + std::to_string(i / 3) + " is out of range");
-      xyz[i] = float(state_.current[i]);
-    }
-    return Status();
+    return output(xyz);
   }
 
  private:
+  Status output(std::vector<float>& xyz) const {
+    if (toFloats(state_.current, xyz)) return Status();
+    for (size_t i = 0;; ++i)
+      if (!(std::fabs(state_.current[i]) <= 1e30))  // false for NaN and infinities too
+        return corrupt("decoded vertex " + std::to_string(i / 3) + " is out of range");
+  }
+
   Status decodeInter(ByteReader payload) {
     const RootCube cube = state_.prepare();
     PFrameInput in{&state_.u, state_.has_before ? &state_.u0 : nullptr, nullptr,
@@ -159,7 +158,6 @@ class AffineOctreeDecoder final : public FrameDecoder {
   IFrameCoder intra_;
   PaperOctreeDecoder paper_;
   PredictiveOctreeDecoder predictive_;
-  uint32_t vertex_count_;
   LoopState state_;
 };
 

@@ -1,68 +1,129 @@
 #include "codecs/affine_octree/octree_shared.h"
 
 #include <algorithm>
-#include <cmath>
 #include <cstring>
+
+#include "codecs/affine_octree/simd_math.h"
 
 namespace animc {
 
-RootCube boundingCube(const std::vector<double>& xyz) {
-  RootCube cube;
-  double max[3];
-  for (int a = 0; a < 3; ++a) cube.min[a] = max[a] = xyz.empty() ? 0.0 : xyz[a];
-  for (size_t i = 0; i < xyz.size(); i += 3) {
-    for (int a = 0; a < 3; ++a) {
-      cube.min[a] = std::min(cube.min[a], xyz[i + a]);
-      max[a] = std::max(max[a], xyz[i + a]);
+namespace {
+
+// Bit i of a 10-bit value moved to bit 3i, for interleaving three coordinates into a Morton
+// key with one lookup each (4 KB, stays in cache).
+constexpr int kSpreadBits = 10;
+struct SpreadTable {
+  uint32_t bits[1 << kSpreadBits];
+  constexpr SpreadTable() : bits() {
+    for (uint32_t x = 0; x < (1u << kSpreadBits); ++x)
+      for (int i = 0; i < kSpreadBits; ++i) bits[x] |= ((x >> i) & 1u) << (3 * i);
+  }
+};
+constexpr SpreadTable kSpread;
+
+constexpr int kLowBits = OctreePartition::kGridBits - kSpreadBits;
+
+// Interleaved top kSpreadBits bits of the three coordinates, then (for trees deeper than
+// kSpreadBits levels) the low bits.
+uint64_t mortonKey(const uint32_t g[3], bool deep) {
+  uint64_t key = 0;
+  for (int a = 0; a < 3; ++a) key |= uint64_t(kSpread.bits[g[a] >> kLowBits]) << a;
+  key <<= 3 * kLowBits;
+  if (deep)
+    for (int a = 0; a < 3; ++a) key |= uint64_t(kSpread.bits[g[a] & ((1u << kLowBits) - 1)]) << a;
+  return key;
+}
+
+// floor(p·2^16) has, as its k-th bit from the top, whether p >= mid of its depth-k cell (cell
+// bounds are dyadic, so both are exact); p = 1 clamps into the last cell, as does anything
+// beyond, and anything below 0 (or NaN) into the first. x and y go through one Pair; the
+// clamps are lane-wise std::max(0, g) and std::min(top, g).
+void gridCoordinates(const double* p, uint32_t g[3]) {
+  constexpr double kScale = double(1u << OctreePartition::kGridBits);
+  constexpr double kTop = double((1u << OctreePartition::kGridBits) - 1);
+  const Pair xy = minPair(splat(kTop), maxPair(splat(0.0), loadPair(p) * splat(kScale)));
+  const double z = std::min(kTop, std::max(0.0, p[2] * kScale));
+  g[0] = uint32_t(xy[0]);  // truncation = floor here
+  g[1] = uint32_t(xy[1]);
+  g[2] = uint32_t(z);
+}
+
+// Keys are stored shifted so that the octant of the cell's own depth is always bits 45-47:
+// a split reads it with a constant shift (a shift by a variable amount costs several
+// micro-operations on x86) and hands its children key << 3.
+constexpr int kTopOctantShift = 3 * (OctreePartition::kGridBits - 1);
+int octant(uint64_t key) { return int((key >> kTopOctantShift) & 7); }
+
+// Splits run through the cell in blocks of at most kBlock vertices, so that eight 8-bit
+// counters fit one register: counters in memory would make each increment wait for the
+// previous one whenever neighbouring vertices share an octant, which they usually do.
+constexpr uint32_t kBlock = 255;
+
+uint32_t lane(uint64_t packed, int c) { return uint32_t(packed >> (8 * c)) & 0xFF; }
+
+void mortonKeysPortable(const double* unit, size_t n, bool deep, uint64_t* keys) {
+  for (size_t v = 0; v < n; ++v) {
+    uint32_t g[3];
+    gridCoordinates(&unit[3 * v], g);
+    keys[v] = mortonKey(g, deep);
+  }
+}
+
+#if ANIMC_AVX2_PATH
+typedef int Int4 __attribute__((vector_size(16)));
+
+// Four vertices (twelve coordinates, three Quads) at a time through the grid conversion,
+// whose clamps are the lane-wise forms of gridCoordinates()'.
+ANIMC_TARGET_AVX2 void mortonKeysAvx2(const double* unit, size_t n, bool deep, uint64_t* keys) {
+  constexpr double kScale = double(1u << OctreePartition::kGridBits);
+  constexpr double kTop = double((1u << OctreePartition::kGridBits) - 1);
+  const Quad scale = {kScale, kScale, kScale, kScale}, top = {kTop, kTop, kTop, kTop}, zero = {0, 0, 0, 0};
+  size_t v = 0;
+  for (; v + 4 <= n; v += 4) {
+    uint32_t g[12];
+    for (int k = 0; k < 3; ++k) {
+      const Quad scaled = *reinterpret_cast<const UnalignedQuad*>(&unit[3 * v + 4 * k]) * scale;
+      const Quad above_zero = zero < scaled ? scaled : zero;  // NaN too
+      const Quad clamped = above_zero < top ? above_zero : top;
+      const Int4 grid = __builtin_convertvector(clamped, Int4);  // truncation = floor here
+      for (int l = 0; l < 4; ++l) g[4 * k + l] = uint32_t(grid[l]);
     }
+    for (int j = 0; j < 4; ++j) keys[v + j] = mortonKey(&g[3 * j], deep);
   }
-  double side = 0;
-  for (int a = 0; a < 3; ++a) side = std::max(side, max[a] - cube.min[a]);
-  // A frame collapsed to one point still needs a scale; any positive one will do.
-  cube.side = side > 0 ? side : 1.0;
-  return cube;
+  mortonKeysPortable(unit + 3 * v, n - v, deep, keys + v);
 }
+#endif
 
-void normalize(const RootCube& cube, const std::vector<double>& xyz, std::vector<double>& out) {
-  out.resize(xyz.size());
-  const double inv = 1.0 / cube.side;
-  for (size_t i = 0; i < xyz.size(); i += 3)
-    for (int a = 0; a < 3; ++a) out[i + a] = (xyz[i + a] - cube.min[a]) * inv;
-}
+}  // namespace
 
-Cell OctreePartition::reset(const std::vector<double>& unit_xyz) {
-  const double scale = double(1u << kGridBits);
-  const double top = double((1u << kGridBits) - 1);
-  grid_.resize(unit_xyz.size());
-  // floor(p·2^16) has, as its k-th bit from the top, whether p >= mid of its depth-k cell
-  // (cell bounds are dyadic, so both are exact); p = 1 clamps into the last cell.
-  for (size_t i = 0; i < unit_xyz.size(); ++i) {
-    const double g = unit_xyz[i] * scale;
-    grid_[i] = uint16_t(g > 0 ? (g < top ? g : top) : 0.0);  // truncation = floor here
+Cell OctreePartition::reset(const std::vector<double>& unit_xyz, int levels) {
+  const size_t n = unit_xyz.size() / 3;
+  const bool deep = levels > kSpreadBits;
+  vertex_key_.resize(n);
+#if ANIMC_AVX2_PATH
+  if (cpuHasAvx2()) {
+    mortonKeysAvx2(unit_xyz.data(), n, deep, vertex_key_.data());
+    return restart();
   }
+#endif
+  mortonKeysPortable(unit_xyz.data(), n, deep, vertex_key_.data());
   return restart();
 }
 
 Cell OctreePartition::restart() {
-  const uint32_t n = uint32_t(grid_.size() / 3);
-  order_.resize(n);
-  for (uint32_t i = 0; i < n; ++i) order_[i] = i;
-  return Cell{{0, 0, 0}, 1.0, 0, n, 0};
+  const uint32_t n = uint32_t(vertex_key_.size());
+  for (int b = 0; b < 2; ++b) {
+    key_[b].resize(n);
+    order_[b].resize(n);
+  }
+  for (uint32_t i = 0; i < n; ++i) order_[0][i] = i;
+  std::memcpy(key_[0].data(), vertex_key_.data(), n * sizeof(uint64_t));
+  return Cell{0, n, 0};
 }
 
 void OctreePartition::split(const Cell& cell, Cell children[8]) {
-  const int shift = kGridBits - 1 - cell.depth;
-  const uint32_t n = cell.end - cell.begin;
-  octant_.resize(order_.size());
-  scratch_.resize(order_.size());
-  uint32_t count[8] = {0};
-  for (uint32_t i = 0; i < n; ++i) {
-    const uint16_t* g = &grid_[3 * size_t(order_[cell.begin + i])];
-    const uint8_t o = uint8_t(((g[0] >> shift) & 1) | ((g[1] >> shift) & 1) << 1 | ((g[2] >> shift) & 1) << 2);
-    octant_[i] = o;
-    ++count[o];
-  }
-  const double half = cell.side * 0.5;
+  uint32_t count[8];
+  countOctants(cell, count);
   uint32_t start[8];
   uint32_t at = 0;
   for (int c = 0; c < 8; ++c) {
@@ -70,12 +131,93 @@ void OctreePartition::split(const Cell& cell, Cell children[8]) {
     children[c].begin = cell.begin + at;
     at += count[c];
     children[c].end = cell.begin + at;
-    children[c].side = half;
     children[c].depth = cell.depth + 1;
-    for (int a = 0; a < 3; ++a) children[c].corner[a] = cell.corner[a] + (((c >> a) & 1) ? half : 0.0);
   }
-  for (uint32_t i = 0; i < n; ++i) scratch_[start[octant_[i]]++] = order_[cell.begin + i];
-  std::memcpy(&order_[cell.begin], scratch_.data(), n * sizeof(uint32_t));
+  scatter(cell, start);
+}
+
+namespace {
+
+// The loops of a split, written once and compiled twice: for any x86-64 and for CPUs with
+// AVX2 and BMI2, where the shifts by a variable amount (8 · octant) take one micro-operation
+// instead of three. always_inline makes each wrapper below compile its own copy.
+__attribute__((always_inline)) inline void countLoop(const uint64_t* key, uint32_t n,
+                                                     uint64_t* block_counts, uint32_t count[8]) {
+  for (uint32_t i = 0, block = 0; i < n; ++block) {
+    const uint32_t block_end = n - i > kBlock ? i + kBlock : n;
+    uint64_t packed = 0;
+    for (; i < block_end; ++i) packed += uint64_t(1) << (8 * octant(key[i]));
+    block_counts[block] = packed;
+    for (int c = 0; c < 8; ++c) count[c] += lane(packed, c);
+  }
+}
+
+// Stable counting-sort pass: each vertex (and its key) to the next free slot of its octant.
+// Within a block a vertex's slot is its block's base for the octant plus an 8-bit cursor
+// held in one register; the bases only change between blocks.
+__attribute__((always_inline)) inline void scatterLoop(const uint64_t* key, const uint32_t* order, uint32_t n,
+                                                       const uint64_t* block_counts, const uint32_t start[8],
+                                                       uint64_t* key_out, uint32_t* order_out) {
+  uint32_t base[8];
+  for (int c = 0; c < 8; ++c) base[c] = start[c];
+  for (uint32_t i = 0, block = 0; i < n; ++block) {
+    const uint32_t block_end = n - i > kBlock ? i + kBlock : n;
+    uint64_t cursors = 0;
+    for (; i < block_end; ++i) {
+      const int o = octant(key[i]);
+      const uint32_t slot = base[o] + lane(cursors, o);
+      cursors += uint64_t(1) << (8 * o);
+      key_out[slot] = key[i] << 3;
+      order_out[slot] = order[i];
+    }
+    for (int c = 0; c < 8; ++c) base[c] += lane(block_counts[block], c);
+  }
+}
+
+void countPortable(const uint64_t* key, uint32_t n, uint64_t* block_counts, uint32_t count[8]) {
+  countLoop(key, n, block_counts, count);
+}
+void scatterPortable(const uint64_t* key, const uint32_t* order, uint32_t n, const uint64_t* block_counts,
+                     const uint32_t start[8], uint64_t* key_out, uint32_t* order_out) {
+  scatterLoop(key, order, n, block_counts, start, key_out, order_out);
+}
+
+#if ANIMC_AVX2_PATH
+ANIMC_TARGET_AVX2 void countAvx2(const uint64_t* key, uint32_t n, uint64_t* block_counts, uint32_t count[8]) {
+  countLoop(key, n, block_counts, count);
+}
+ANIMC_TARGET_AVX2 void scatterAvx2(const uint64_t* key, const uint32_t* order, uint32_t n,
+                                   const uint64_t* block_counts, const uint32_t start[8],
+                                   uint64_t* key_out, uint32_t* order_out) {
+  scatterLoop(key, order, n, block_counts, start, key_out, order_out);
+}
+#endif
+
+}  // namespace
+
+// Counts per block, kept for scatter(), and in total.
+void OctreePartition::countOctants(const Cell& cell, uint32_t count[8]) {
+  const uint64_t* key = &key_[cell.depth & 1][cell.begin];
+  const uint32_t n = cell.end - cell.begin;
+  block_counts_.resize(n / kBlock + 1);
+  for (int c = 0; c < 8; ++c) count[c] = 0;
+#if ANIMC_AVX2_PATH
+  if (cpuHasAvx2()) return countAvx2(key, n, block_counts_.data(), count);
+#endif
+  countPortable(key, n, block_counts_.data(), count);
+}
+
+void OctreePartition::scatter(const Cell& cell, const uint32_t start[8]) {
+  const uint32_t n = cell.end - cell.begin;
+  const int from = cell.depth & 1;
+  const uint64_t* key = &key_[from][cell.begin];
+  const uint32_t* order = &order_[from][cell.begin];
+  uint64_t* key_out = &key_[from ^ 1][cell.begin];
+  uint32_t* order_out = &order_[from ^ 1][cell.begin];
+#if ANIMC_AVX2_PATH
+  if (cpuHasAvx2()) return scatterAvx2(key, order, n, block_counts_.data(), start, key_out, order_out);
+#endif
+  scatterPortable(key, order, n, block_counts_.data(), start, key_out, order_out);
 }
 
 }  // namespace animc

@@ -15,38 +15,51 @@ struct RootCube {
 // Positions are xyz-interleaved doubles.
 RootCube boundingCube(const std::vector<double>& xyz);
 void normalize(const RootCube& cube, const std::vector<double>& xyz, std::vector<double>& out);
+// out = cube.min + cube.side · unit, returning the bounding cube of out (what boundingCube(out)
+// returns) found in the same pass.
+RootCube denormalize(const RootCube& cube, const std::vector<double>& unit, std::vector<double>& out);
+// The frame as floats; false if a coordinate is NaN, infinite or beyond ±1e30, which no valid
+// stream decodes to.
+bool toFloats(const std::vector<double>& frame, std::vector<float>& out);
 
-// A cell: its corner and side in normalised units, its depth, and the range [begin, end) of
-// the partition's vertex order holding its vertices.
+// A cell: its depth and the range [begin, end) of the partition's vertex order holding its
+// vertices. (Its corner and side follow from the path to it; nothing needs them.)
 struct Cell {
-  double corner[3];
-  double side;
   uint32_t begin, end;
   int depth;
 };
 
 // The octree over a reference frame's normalised positions, as both sides walk it. Each
 // vertex's cell at every depth comes from its 16-bit grid coordinates (computed once per
-// frame), so a split tests bits instead of comparing doubles. A vertex on a split plane goes
-// to the upper child, exactly as the comparison p >= mid would put it.
+// frame) interleaved into one Morton key, so a split reads three bits of a key kept next to
+// the vertex instead of comparing doubles. A vertex on a split plane goes to the upper child,
+// exactly as the comparison p >= mid would put it. A split is stable, so every cell lists its
+// vertices in increasing index order (the order both sides sum and code them in).
 class OctreePartition {
  public:
   static constexpr int kGridBits = 16;  // >= the deepest allowed octree level
 
-  // Takes a new reference frame and returns the root cell holding all its vertices.
-  Cell reset(const std::vector<double>& unit_xyz);
+  // Takes a new reference frame and returns the root cell holding all its vertices. Cells
+  // split down to depth `levels` at most (the tree's depth limit).
+  Cell reset(const std::vector<double>& unit_xyz, int levels);
   // Back to the root with the same reference (the encoder's second pass).
   Cell restart();
   // Reorders the cell's vertices by child octant (bit 0 = x upper half, bit 1 = y, bit 2 = z)
   // and fills the 8 children; children may be empty.
   void split(const Cell& cell, Cell children[8]);
-  const uint32_t* vertices(const Cell& cell) const { return order_.data() + cell.begin; }
-  uint32_t vertex(uint32_t position) const { return order_[position]; }
+  const uint32_t* vertices(const Cell& cell) const { return order_[cell.depth & 1].data() + cell.begin; }
 
  private:
-  std::vector<uint16_t> grid_;  // x y z per vertex
-  std::vector<uint32_t> order_, scratch_;
-  std::vector<uint8_t> octant_;
+  void countOctants(const Cell& cell, uint32_t count[8]);
+  void scatter(const Cell& cell, const uint32_t start[8]);
+
+  std::vector<uint64_t> vertex_key_;  // by vertex index
+  // The vertices in partition order, each with its key. A cell at depth d holds its range of
+  // buffer d % 2 and its children are written to the other buffer: the parent's copy is
+  // dead once split, so nothing is copied back.
+  std::vector<uint64_t> key_[2];
+  std::vector<uint32_t> order_[2];
+  std::vector<uint64_t> block_counts_;  // of the cell being split: see countOctants()
 };
 
 }  // namespace animc

@@ -73,7 +73,13 @@ class PaperOctreeDecoder {
 
 // Shared arithmetic of the two sides.
 uint32_t quantizeUnit(double value, double lo, double hi, int bits);
-double dequantizeUnit(uint32_t q, double lo, double hi, int bits);
-void applyAffine34(const double a[12], const double* u, double* out);
+// Inline: the decoder calls these for every coded value and every vertex.
+inline double dequantizeUnit(uint32_t q, double lo, double hi, int bits) {
+  return lo + double(q) * (hi - lo) / double((1u << bits) - 1);
+}
+inline void applyAffine34(const double a[12], const double* u, double* out) {
+  for (int r = 0; r < 3; ++r)
+    out[r] = a[4 * r] * u[0] + a[4 * r + 1] * u[1] + a[4 * r + 2] * u[2] + a[4 * r + 3];
+}
 
 }  // namespace animc

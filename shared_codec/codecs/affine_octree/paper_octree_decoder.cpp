@@ -14,7 +14,7 @@ struct PaperOctreeDecoder::Walk {
 
 Status PaperOctreeDecoder::decode(const PFrameInput& in, ByteReader payload,
                                   std::vector<double>& recon) {
-  const Cell root = partition_.reset(*in.reference);
+  const Cell root = partition_.reset(*in.reference, in.max_depth);
   recon.resize(in.reference->size());
   Walk w{in, RangeDecoder(payload.cursor(), payload.remaining()), recon};
   ANIMC_RETURN_IF_ERROR(decodeCell(w, root));
@@ -39,14 +39,16 @@ Status PaperOctreeDecoder::decodeCell(Walk& w, const Cell& cell) {
   for (int i = 0; i < 12; ++i)
     a[i] = dequantizeUnit(decodeWide(w.rc, models_->affine[i], bits_), kPaperAffineMin,
                           kPaperAffineMax, bits_);
-  for (uint32_t i = cell.begin; i < cell.end; ++i)
-    applyAffine34(a, &u[3 * size_t(partition_.vertex(i))], &w.recon[3 * size_t(partition_.vertex(i))]);
+  const uint32_t* idx = partition_.vertices(cell);
+  for (uint32_t i = 0; i < cell.end - cell.begin; ++i)
+    applyAffine34(a, &u[3 * size_t(idx[i])], &w.recon[3 * size_t(idx[i])]);
   return Status();
 }
 
 Status PaperOctreeDecoder::decodePositions(Walk& w, const Cell& cell) {
-  for (uint32_t i = cell.begin; i < cell.end; ++i) {
-    double* r = &w.recon[3 * size_t(partition_.vertex(i))];
+  const uint32_t* idx = partition_.vertices(cell);
+  for (uint32_t i = 0; i < cell.end - cell.begin; ++i) {
+    double* r = &w.recon[3 * size_t(idx[i])];
     const bool escape = w.rc.decode(models_->escape);
     for (int a = 0; a < 3; ++a) {
       if (escape) {
@@ -55,7 +57,7 @@ Status PaperOctreeDecoder::decodePositions(Walk& w, const Cell& cell) {
         std::memcpy(&r[a], &bits, 8);
         if (!std::isfinite(r[a]) || std::fabs(r[a]) > 1e12)
           return corrupt("octree frame: stored position of vertex " +
-                         std::to_string(partition_.vertex(i)) + " out of range");
+                         std::to_string(idx[i]) + " out of range");
       } else {
         r[a] = dequantizeUnit(decodeWide(w.rc, models_->position[a], bits_), kPaperPositionMin,
                               kPaperPositionMax, bits_);

@@ -14,7 +14,7 @@ struct PaperOctreeEncoder::Walk {
 
 void PaperOctreeEncoder::encode(const PFrameInput& in, std::vector<uint8_t>& out,
                                 std::vector<double>& recon, PaperFrameStats& stats) {
-  const Cell root = partition_.reset(*in.reference);
+  const Cell root = partition_.reset(*in.reference, in.max_depth);
   recon.resize(in.reference->size());
   Walk w{in, RangeEncoder(out), recon, stats};
   encodeCell(w, root);
@@ -63,9 +63,10 @@ void PaperOctreeEncoder::encodeCell(Walk& w, const Cell& cell) {
 void PaperOctreeEncoder::encodePositions(Walk& w, const Cell& cell) {
   ++w.stats.position_cells;
   const std::vector<double>& q = *w.in.target;
-  for (uint32_t i = cell.begin; i < cell.end; ++i) {
-    const double* t = &q[3 * size_t(partition_.vertex(i))];
-    double* r = &w.recon[3 * size_t(partition_.vertex(i))];
+  const uint32_t* idx = partition_.vertices(cell);
+  for (uint32_t i = 0; i < cell.end - cell.begin; ++i) {
+    const double* t = &q[3 * size_t(idx[i])];
+    double* r = &w.recon[3 * size_t(idx[i])];
     uint32_t coded[3];
     double p[3];
     for (int a = 0; a < 3; ++a) {

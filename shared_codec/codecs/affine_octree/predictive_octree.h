@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "codecs/affine_octree/affine_fit.h"
+#include "codecs/affine_octree/cell_kernels.h"
 #include "codecs/affine_octree/octree_shared.h"
 #include "codecs/affine_octree/options.h"
 #include "codecs/affine_octree/pframe.h"
@@ -58,18 +59,30 @@ inline bool canSplit(const Cell& cell, int max_depth) {
   return cell.depth < max_depth && cell.end - cell.begin >= kMinSplitVertices;
 }
 
+// A cell's vertices copied out of the frames, in cell order and kPointStride doubles apart
+// (cell_kernels.h), so that the per-cell passes (fits, predictions) stream through memory
+// instead of hopping through the vertex index; the frames of the reference and the before
+// points are found on the way. The buffers only grow, so cells allocate nothing.
+struct CellPoints {
+  std::vector<double> reference, before, target;  // before/target: when the input has them
+  CellFrame reference_frame, before_frame;
+  void gather(const PFrameInput& in, const uint32_t* idx, size_t n);
+  const double* referencePoint(size_t i) const { return &reference[kPointStride * i]; }
+  const double* targetPoint(size_t i) const { return &target[kPointStride * i]; }
+};
+
 // Leaf arithmetic shared by encoder and decoder.
 struct LeafModel {
   CellFrame frame;
   CentredAffine prior;
 };
-LeafModel leafModel(const PFrameInput& in, const Cell& cell, const uint32_t* idx);
-// Prediction of vertex v from the reference frame with the leaf's coded affine. (Adding a
-// share of the vertex's own last motion beyond its cell's was tried: it amplifies the
-// reconstruction noise and cost 60-200 % more bits on chickenCrossing.)
-inline void predictVertex(const PFrameInput& in, const LeafModel& m, const CentredAffine& a,
-                          uint32_t v, double out[3]) {
-  applyCentred(a, m.frame.centroid, &(*in.reference)[3 * size_t(v)], out);
+LeafModel leafModel(const CellPoints& points, size_t n, bool has_before);
+// Prediction of the cell's i-th vertex from the reference frame with the leaf's coded affine.
+// (Adding a share of the vertex's own last motion beyond its cell's was tried: it amplifies
+// the reconstruction noise and cost 60-200 % more bits on chickenCrossing.)
+inline void predictVertex(const CellPoints& points, const LeafModel& m, const CentredAffine& a,
+                          size_t i, double out[3]) {
+  applyCentred(a, m.frame.centroid, points.referencePoint(i), out);
 }
 // coded[0..2] translation, coded[3..11] linear part, in quantisation steps.
 CentredAffine codedAffine(const LeafModel& m, const int64_t coded[12], double step);
@@ -107,6 +120,7 @@ class PredictiveOctreeEncoder {
   std::unique_ptr<PredictiveModels> models_ = std::make_unique<PredictiveModels>();
   ResidualContexts contexts_;
   OctreePartition partition_;
+  CellPoints points_;
   std::vector<Node> plan_;
   std::vector<int64_t> residual_;
 };
@@ -123,11 +137,14 @@ class PredictiveOctreeDecoder {
  private:
   struct Walk;
   Status decodeCell(Walk& w, const Cell& cell);
-  Status decodeLeaf(Walk& w, const Cell& cell);
+  void decodeLeaf(Walk& w, const Cell& cell);
+  void decodeParameters(Walk& w, uint32_t n, int64_t coded[12]);
+  void decodeResiduals(Walk& w, const uint32_t* vertices, uint32_t n);
 
   std::unique_ptr<PredictiveModels> models_ = std::make_unique<PredictiveModels>();
   ResidualContexts contexts_;
   OctreePartition partition_;
+  CellPoints points_;
 };
 
 }  // namespace animc

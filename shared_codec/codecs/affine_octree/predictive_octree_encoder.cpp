@@ -24,7 +24,7 @@ bool PredictiveOctreeEncoder::encode(const PFrameInput& in, std::vector<uint8_t>
   contexts_.beginFrame();
   // Pass 1: choose the tree by estimated cost (the search reorders the partition freely).
   plan_.clear();
-  search(w, partition_.reset(*in.reference));
+  search(w, partition_.reset(*in.reference, in.max_depth));
   if (w.overflow) return false;
   // Pass 2: code the chosen tree exactly as the decoder will walk it.
   const Cell root = partition_.restart();
@@ -68,11 +68,10 @@ double PredictiveOctreeEncoder::search(Walk& w, const Cell& cell) {
 double PredictiveOctreeEncoder::evaluateLeaf(Walk& w, const Cell& cell, Node& node, LeafCost& out) {
   const uint32_t n = cell.end - cell.begin;
   const uint32_t* idx = partition_.vertices(cell);
-  const std::vector<double>& u = *w.in.reference;
-  const std::vector<double>& q = *w.in.target;
-  const LeafModel m = leafModel(w.in, cell, idx);
+  points_.gather(w.in, idx, n);
+  const LeafModel m = leafModel(points_, n, w.in.before != nullptr);
   CentredAffine fit;
-  fitCentred(u, q, idx, n, m.frame, m.prior.L, fit);
+  fitCentred(points_.reference.data(), points_.target.data(), n, m.frame, m.prior.L, fit);
   const double st = w.step * kTranslationStep;
   const double sl = w.step * kLinearStep / m.frame.radius;
   const bool linear = n >= kMinLinearVertices;
@@ -93,15 +92,15 @@ double PredictiveOctreeEncoder::evaluateLeaf(Walk& w, const Cell& cell, Node& no
   bool all_zero = true;
   for (uint32_t i = 0; i < n; ++i) {
     double p[3];
-    const size_t v = 3 * size_t(idx[i]);
-    predictVertex(w.in, m, a, idx[i], p);
+    const double* t = points_.targetPoint(i);
+    predictVertex(points_, m, a, i, p);
     for (int ax = 0; ax < 3; ++ax) {
-      const double k = std::nearbyint((q[v + ax] - p[ax]) / w.step);
+      const double k = std::nearbyint((t[ax] - p[ax]) / w.step);
       if (std::fabs(k) > double(kMaxCodedMagnitude)) w.overflow = true;
       const int64_t r = w.overflow ? 0 : int64_t(k);
       all_zero = all_zero && r == 0;
       residual_bits += intCost(pm.ints, kCtxResidual + contexts_.context(idx[i], ax), r);
-      const double e = q[v + ax] - p[ax] - double(r) * w.step;
+      const double e = t[ax] - p[ax] - double(r) * w.step;
       distortion += e * e;
     }
   }
@@ -131,23 +130,22 @@ void PredictiveOctreeEncoder::codeCell(Walk& w, const Cell& cell) {
 void PredictiveOctreeEncoder::codeLeaf(Walk& w, const Cell& cell, const Node& node) {
   const uint32_t n = cell.end - cell.begin;
   const uint32_t* idx = partition_.vertices(cell);
-  const std::vector<double>& q = *w.in.target;
   RangeEncoder& rc = *w.rc;
   PredictiveModels& pm = *models_;
   ++w.stats->leaves;
   for (int r = 0; r < 3; ++r) encodeInt(rc, pm.ints, kCtxTranslation, node.coded[r]);
   if (n >= kMinLinearVertices)
     for (int k = 0; k < 9; ++k) encodeInt(rc, pm.ints, kCtxLinear, node.coded[3 + k]);
-  const LeafModel m = leafModel(w.in, cell, idx);
+  points_.gather(w.in, idx, n);
+  const LeafModel m = leafModel(points_, n, w.in.before != nullptr);
   const CentredAffine a = codedAffine(m, node.coded, w.step);
   residual_.resize(3 * size_t(n));
   bool all_zero = true;
   for (uint32_t i = 0; i < n; ++i) {
-    const size_t v = 3 * size_t(idx[i]);
-    double* out = &(*w.recon)[v];
-    predictVertex(w.in, m, a, idx[i], out);
+    double* out = &(*w.recon)[3 * size_t(idx[i])];
+    predictVertex(points_, m, a, i, out);
     for (int ax = 0; ax < 3; ++ax) {
-      const int64_t r = int64_t(std::nearbyint((q[v + ax] - out[ax]) / w.step));
+      const int64_t r = int64_t(std::nearbyint((points_.targetPoint(i)[ax] - out[ax]) / w.step));
       residual_[3 * size_t(i) + ax] = r;
       out[ax] += double(r) * w.step;
       all_zero = all_zero && r == 0;

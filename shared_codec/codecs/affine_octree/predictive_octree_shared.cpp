@@ -1,20 +1,31 @@
 #include <cmath>
 
+#include "codecs/affine_octree/cell_kernels.h"
 #include "codecs/affine_octree/predictive_octree.h"
 
 namespace animc {
 
 double residualStep(double max_error) { return 2.0 * max_error / std::sqrt(3.0) * 0.999; }
 
-LeafModel leafModel(const PFrameInput& in, const Cell& cell, const uint32_t* idx) {
-  const size_t n = cell.end - cell.begin;
+void CellPoints::gather(const PFrameInput& in, const uint32_t* idx, size_t n) {
+  const size_t size = kPointStride * n;
+  if (reference.size() < size) {  // the three grow together
+    reference.resize(size);
+    before.resize(size);
+    target.resize(size);
+  }
+  reference_frame = gatherPoints(in.reference->data(), idx, n, reference.data());
+  if (in.before) before_frame = gatherPoints(in.before->data(), idx, n, before.data());
+  if (in.target) copyPoints(in.target->data(), idx, n, target.data());
+}
+
+LeafModel leafModel(const CellPoints& points, size_t n, bool has_before) {
   LeafModel m;
-  m.frame = cellFrame(*in.reference, idx, n);
-  if (in.before) {
+  m.frame = points.reference_frame;
+  if (has_before) {
     // The cell's own motion from f-2 to f-1, assumed to continue.
     static const double kZero[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
-    const CellFrame before = cellFrame(*in.before, idx, n);
-    fitCentred(*in.before, *in.reference, idx, n, before, kZero, m.prior);
+    fitCentred(points.before.data(), points.reference.data(), n, points.before_frame, kZero, m.prior);
   }
   return m;
 }

@@ -25,16 +25,26 @@ class ResidualContexts {
   // The frame just coded becomes the history.
   void beginFrame() { before_.swap(now_); }
 
-  int context(uint32_t v, int axis) const {
-    const int previous = before_[3 * size_t(v) + axis];
-    return previous == 0 ? 0 : (previous == 1 || previous == -1 ? 1 : 2);
-  }
+  int context(uint32_t v, int axis) const { return before_[3 * size_t(v) + axis]; }
   void set(uint32_t v, const int64_t r[3]) {
-    for (int a = 0; a < 3; ++a) now_[3 * size_t(v) + a] = int8_t(r[a] > 100 ? 100 : (r[a] < -100 ? -100 : r[a]));
+    for (int a = 0; a < 3; ++a) now_[3 * size_t(v) + a] = contextOf(r[a]);
+  }
+  // The same by coordinate index (3·v + axis), for loops that already have it.
+  int contextAt(size_t coordinate) const { return before_[coordinate]; }
+  void setAt(size_t coordinate, int64_t r) { now_[coordinate] = contextOf(r); }
+  // A leaf without residuals: its vertices had none.
+  void setZero(const uint32_t* vertices, size_t n) {
+    for (size_t i = 0; i < n; ++i)
+      for (int a = 0; a < 3; ++a) now_[3 * size_t(vertices[i]) + a] = 0;
   }
 
  private:
-  std::vector<int8_t> now_, before_;
+  // 0: the residual was zero, 1: it was ±1, 2: it was larger.
+  static uint16_t contextOf(int64_t r) { return r == 0 ? 0 : (r == 1 || r == -1 ? 1 : 2); }
+
+  // The context each residual gives the next frame, stored rather than the residual itself;
+  // 16-bit because char-typed stores would alias the range coder's state.
+  std::vector<uint16_t> now_, before_;
 };
 
 }  // namespace animc

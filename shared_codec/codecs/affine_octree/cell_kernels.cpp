@@ -1,0 +1,211 @@
+#include "codecs/affine_octree/cell_kernels.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "codecs/affine_octree/simd_math.h"
+
+namespace animc {
+namespace {
+
+CellFrame frameOf(const double sum[3], const double lo[3], const double hi[3], size_t n) {
+  CellFrame f;
+  for (int a = 0; a < 3; ++a) f.centroid[a] = sum[a] / double(n);
+  const double dx = hi[0] - lo[0], dy = hi[1] - lo[1], dz = hi[2] - lo[2];
+  f.radius = std::max(0.5 * std::sqrt(dx * dx + dy * dy + dz * dz), 1e-9);
+  return f;
+}
+
+// ---- Portable versions: x and y through a Pair, z alone. ----
+
+CellFrame gatherPointsPortable(const double* frame, const uint32_t* idx, size_t n, double* out) {
+  const double* first = &frame[3 * size_t(idx[0])];
+  Pair sum_xy = splat(0), lo_xy = loadPair(first), hi_xy = lo_xy;
+  double sum_z = 0, lo_z = first[2], hi_z = first[2];
+  for (size_t i = 0; i < n; ++i) {
+    const double* p = &frame[3 * size_t(idx[i])];
+    const Pair xy = loadPair(p);
+    const double z = p[2];
+    storePair(&out[kPointStride * i], xy);
+    storePair(&out[kPointStride * i + 2], Pair{z, 0.0});
+    sum_xy += xy;
+    sum_z += z;
+    lo_xy = minPair(lo_xy, xy);
+    hi_xy = maxPair(hi_xy, xy);
+    lo_z = std::min(lo_z, z);
+    hi_z = std::max(hi_z, z);
+  }
+  const double sum[3] = {sum_xy[0], sum_xy[1], sum_z};
+  const double lo[3] = {lo_xy[0], lo_xy[1], lo_z}, hi[3] = {hi_xy[0], hi_xy[1], hi_z};
+  return frameOf(sum, lo, hi, n);
+}
+
+void copyPointsPortable(const double* frame, const uint32_t* idx, size_t n, double* out) {
+  for (size_t i = 0; i < n; ++i) {
+    const double* p = &frame[3 * size_t(idx[i])];
+    storePair(&out[kPointStride * i], loadPair(p));
+    storePair(&out[kPointStride * i + 2], Pair{p[2], 0.0});
+  }
+}
+
+// Two passes rather than one: 21 running sums in one loop do not fit the 16 registers, and
+// a sum spilled to memory makes every iteration wait for the previous one's store. Names
+// give the matrix entries each lane sums.
+void sumMotionAndSpread(const double* u, const double* q, size_t n, const double c[3], FitSums& s) {
+  const Pair c_xy = loadPair(c);
+  Pair m_xy = splat(0), d_xy = splat(0), cov_00_01 = splat(0), cov_02_12 = splat(0);
+  double m_z = 0, d_z = 0, cov_11 = 0, cov_22 = 0;
+  for (size_t i = 0; i < n; ++i) {
+    const double* p = &u[kPointStride * i];
+    const Pair u_xy = loadPair(p);
+    const Pair dxy = u_xy - c_xy;
+    const double dz = p[2] - c[2];
+    m_xy += loadPair(&q[kPointStride * i]) - u_xy;
+    m_z += q[kPointStride * i + 2] - p[2];
+    d_xy += dxy;
+    d_z += dz;
+    cov_00_01 += splat(dxy[0]) * dxy;
+    cov_11 += dxy[1] * dxy[1];
+    cov_02_12 += dxy * splat(dz);
+    cov_22 += dz * dz;
+  }
+  s.m[0] = m_xy[0], s.m[1] = m_xy[1], s.m[2] = m_z;
+  s.d[0] = d_xy[0], s.d[1] = d_xy[1], s.d[2] = d_z;
+  const double cov[9] = {cov_00_01[0], cov_00_01[1], cov_02_12[0], cov_00_01[1], cov_11,
+                         cov_02_12[1], cov_02_12[0], cov_02_12[1], cov_22};
+  std::copy(cov, cov + 9, s.cov);
+}
+
+void sumCross(const double* u, const double* q, size_t n, const double c[3], FitSums& s) {
+  const Pair c_xy = loadPair(c);
+  Pair x_00_01 = splat(0), x_10_11 = splat(0), x_20_21 = splat(0), x_02_12 = splat(0);
+  double x_22 = 0;
+  for (size_t i = 0; i < n; ++i) {
+    const double* p = &u[kPointStride * i];
+    const Pair u_xy = loadPair(p);
+    const Pair dxy = u_xy - c_xy;
+    const double dz = p[2] - c[2];
+    const Pair mxy = loadPair(&q[kPointStride * i]) - u_xy;
+    const double mz = q[kPointStride * i + 2] - p[2];
+    x_00_01 += splat(mxy[0]) * dxy;
+    x_10_11 += splat(mxy[1]) * dxy;
+    x_20_21 += splat(mz) * dxy;
+    x_02_12 += mxy * splat(dz);
+    x_22 += mz * dz;
+  }
+  const double cross[9] = {x_00_01[0], x_00_01[1], x_02_12[0], x_10_11[0], x_10_11[1],
+                           x_02_12[1], x_20_21[0], x_20_21[1], x_22};
+  std::copy(cross, cross + 9, s.cross);
+}
+
+FitSums fitSumsPortable(const double* u, const double* q, size_t n, const double c[3]) {
+  FitSums s;
+  sumMotionAndSpread(u, q, n, c, s);
+  sumCross(u, q, n, c, s);
+  return s;
+}
+
+void predictPointsPortable(const double* u, size_t n, const double c[3], const CentredAffine& a,
+                           const uint32_t* idx, double* recon) {
+  for (size_t i = 0; i < n; ++i) applyCentred(a, c, &u[kPointStride * i], &recon[3 * size_t(idx[i])]);
+}
+
+#if ANIMC_AVX2_PATH
+// ---- AVX2 versions: a whole point per Quad (lane 3 unused). ----
+
+ANIMC_TARGET_AVX2 Quad loadPoint3(const double* p) { return Quad{p[0], p[1], p[2], 0.0}; }
+ANIMC_TARGET_AVX2 Quad loadPoint(const double* p) { return *reinterpret_cast<const UnalignedQuad*>(p); }
+ANIMC_TARGET_AVX2 void storePoint(double* p, Quad v) { *reinterpret_cast<UnalignedQuad*>(p) = v; }
+ANIMC_TARGET_AVX2 Quad splat4(double x) { return Quad{x, x, x, x}; }
+
+ANIMC_TARGET_AVX2 CellFrame gatherPointsAvx2(const double* frame, const uint32_t* idx, size_t n, double* out) {
+  Quad sum = splat4(0), lo = loadPoint3(&frame[3 * size_t(idx[0])]), hi = lo;
+  for (size_t i = 0; i < n; ++i) {
+    const Quad p = loadPoint3(&frame[3 * size_t(idx[i])]);
+    storePoint(&out[kPointStride * i], p);
+    sum += p;
+    lo = p < lo ? p : lo;  // std::min(lo, p) lane by lane
+    hi = hi < p ? p : hi;  // std::max(hi, p)
+  }
+  const double s[3] = {sum[0], sum[1], sum[2]}, l[3] = {lo[0], lo[1], lo[2]}, h[3] = {hi[0], hi[1], hi[2]};
+  return frameOf(s, l, h, n);
+}
+
+ANIMC_TARGET_AVX2 void copyPointsAvx2(const double* frame, const uint32_t* idx, size_t n, double* out) {
+  for (size_t i = 0; i < n; ++i) storePoint(&out[kPointStride * i], loadPoint3(&frame[3 * size_t(idx[i])]));
+}
+
+// One pass: the 21 sums fit in seven Quads. Σ d·dᵀ comes from d·d (the diagonal) and d·d'
+// with d' = (d1, d2, d0) (the three products off it); Σ m·dᵀ from m·d, m·d' and m·d''
+// with d'' = (d2, d0, d1). Each entry is the same product the scalar formula sums.
+ANIMC_TARGET_AVX2 FitSums fitSumsAvx2(const double* u, const double* q, size_t n, const double c[3]) {
+  const Quad c4 = {c[0], c[1], c[2], 0.0};
+  Quad m = splat4(0), d = m, dd = m, dd1 = m, md = m, md1 = m, md2 = m;
+  for (size_t i = 0; i < n; ++i) {
+    const Quad ui = loadPoint(&u[kPointStride * i]);
+    const Quad di = ui - c4;
+    const Quad mi = loadPoint(&q[kPointStride * i]) - ui;
+    const Quad di1 = __builtin_shufflevector(di, di, 1, 2, 0, 3);
+    const Quad di2 = __builtin_shufflevector(di, di, 2, 0, 1, 3);
+    m += mi;
+    d += di;
+    dd += di * di;
+    dd1 += di * di1;
+    md += mi * di;
+    md1 += mi * di1;
+    md2 += mi * di2;
+  }
+  return FitSums{{m[0], m[1], m[2]},
+                 {d[0], d[1], d[2]},
+                 {dd[0], dd1[0], dd1[2], dd1[0], dd[1], dd1[1], dd1[2], dd1[1], dd[2]},
+                 {md[0], md1[0], md2[0], md2[1], md[1], md1[1], md1[2], md2[2], md[2]}};
+}
+
+ANIMC_TARGET_AVX2 void predictPointsAvx2(const double* u, size_t n, const double c[3], const CentredAffine& a,
+                                         const uint32_t* idx, double* recon) {
+  const Quad c4 = {c[0], c[1], c[2], 0.0}, t4 = {a.t[0], a.t[1], a.t[2], 0.0};
+  const Quad l0 = {a.L[0], a.L[3], a.L[6], 0.0}, l1 = {a.L[1], a.L[4], a.L[7], 0.0},
+             l2 = {a.L[2], a.L[5], a.L[8], 0.0};
+  for (size_t i = 0; i < n; ++i) {
+    const Quad ui = loadPoint(&u[kPointStride * i]);
+    const Quad di = ui - c4;
+    const Quad p = (ui + t4) + ((l0 * splat4(di[0]) + l1 * splat4(di[1])) + l2 * splat4(di[2]));
+    double* out = &recon[3 * size_t(idx[i])];  // three lanes only: the next vertex follows
+    storePair(out, Pair{p[0], p[1]});
+    out[2] = p[2];
+  }
+}
+#endif
+
+}  // namespace
+
+CellFrame gatherPoints(const double* frame, const uint32_t* idx, size_t n, double* out) {
+#if ANIMC_AVX2_PATH
+  if (cpuHasAvx2()) return gatherPointsAvx2(frame, idx, n, out);
+#endif
+  return gatherPointsPortable(frame, idx, n, out);
+}
+
+void copyPoints(const double* frame, const uint32_t* idx, size_t n, double* out) {
+#if ANIMC_AVX2_PATH
+  if (cpuHasAvx2()) return copyPointsAvx2(frame, idx, n, out);
+#endif
+  copyPointsPortable(frame, idx, n, out);
+}
+
+FitSums fitSums(const double* u, const double* q, size_t n, const double c[3]) {
+#if ANIMC_AVX2_PATH
+  if (cpuHasAvx2()) return fitSumsAvx2(u, q, n, c);
+#endif
+  return fitSumsPortable(u, q, n, c);
+}
+
+void predictPoints(const double* u, size_t n, const double c[3], const CentredAffine& a,
+                   const uint32_t* idx, double* recon) {
+#if ANIMC_AVX2_PATH
+  if (cpuHasAvx2()) return predictPointsAvx2(u, n, c, a, idx, recon);
+#endif
+  predictPointsPortable(u, n, c, a, idx, recon);
+}
+
+}  // namespace animc

@@ -1,0 +1,35 @@
+// The per-vertex loops of a leaf: copying its points out of the frames, summing its affine
+// fit, predicting its vertices. Each comes in a portable version (Pair) and an AVX2 version
+// (Quad) chosen at run time; both compute every value with the same IEEE operations in the
+// same order (simd_math.h), so encoder and decoder agree whichever CPU each runs on.
+#pragma once
+#include <cstddef>
+#include <cstdint>
+
+#include "codecs/affine_octree/affine_fit.h"
+
+namespace animc {
+
+// Gathered points lie kPointStride doubles apart (x, y, z, then a zero), so that a Quad loads
+// and stores a whole point.
+constexpr size_t kPointStride = 4;
+
+// Copies the points idx[0..n) (n >= 1) of an xyz-interleaved frame to out
+// (n·kPointStride doubles) and returns their centroid and radius.
+CellFrame gatherPoints(const double* frame, const uint32_t* idx, size_t n, double* out);
+// The same without measuring them.
+void copyPoints(const double* frame, const uint32_t* idx, size_t n, double* out);
+
+// Over n gathered points, d = u − c and m = q − u: Σ m, Σ d, Σ d·dᵀ and Σ m·dᵀ (row-major),
+// each summed in point order.
+struct FitSums {
+  double m[3], d[3];
+  double cov[9], cross[9];
+};
+FitSums fitSums(const double* u, const double* q, size_t n, const double c[3]);
+
+// applyCentred() of every gathered point, written to recon at the point's vertex idx[i].
+void predictPoints(const double* u, size_t n, const double c[3], const CentredAffine& a,
+                   const uint32_t* idx, double* recon);
+
+}  // namespace animc

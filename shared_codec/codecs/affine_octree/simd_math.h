@@ -1,0 +1,48 @@
+// Small fixed-width vectors for the per-vertex loops (GCC/Clang vector extensions).
+//  - Pair: two doubles (a point's x and y; z goes alone), the SIMD width every x86-64 and
+//    ARM64 CPU has.
+//  - Quad: four doubles (x, y, z and an unused lane), for the AVX2 versions of the hottest
+//    loops, chosen at run time on x86-64 CPUs that have AVX2 (cell_kernels.cpp).
+// Every operation is the IEEE operation of each lane, so results are bit-identical to the
+// scalar formulas they replace (no reassociation, no fused multiply-add: the library is built
+// with -ffp-contract=off), whichever version runs.
+#pragma once
+
+namespace animc {
+
+typedef double Pair __attribute__((vector_size(16)));
+// The same with the alignment of a double, to load and store pairs anywhere in a double array.
+// (Not memcpy: GCC treats a copied block as possibly aliasing anything, which forces
+// reloads of unrelated pointers in the loops around it.)
+typedef double UnalignedPair __attribute__((vector_size(16), aligned(8)));
+
+inline Pair loadPair(const double* p) { return *reinterpret_cast<const UnalignedPair*>(p); }
+inline void storePair(double* p, Pair v) { *reinterpret_cast<UnalignedPair*>(p) = v; }
+inline Pair splat(double x) { return Pair{x, x}; }
+// Lane-wise std::min / std::max (first argument kept on ties and unordered values).
+inline Pair minPair(Pair a, Pair b) { return b < a ? b : a; }
+inline Pair maxPair(Pair a, Pair b) { return a < b ? b : a; }
+
+}  // namespace animc
+
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__)) && !defined(ANIMC_NO_AVX2)
+#define ANIMC_AVX2_PATH 1
+// For the functions that make up the AVX2 versions; everything they inline follows. Every
+// CPU with AVX2 also has BMI2 (shifts by a variable amount in one micro-operation).
+#define ANIMC_TARGET_AVX2 __attribute__((target("avx2,bmi2")))
+
+namespace animc {
+
+typedef double Quad __attribute__((vector_size(32)));
+typedef double UnalignedQuad __attribute__((vector_size(32), aligned(8)));
+
+// Whether this CPU runs the AVX2 versions (checked once).
+inline bool cpuHasAvx2() {
+  static const bool has = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("bmi2");
+  return has;
+}
+
+}  // namespace animc
+#else
+#define ANIMC_AVX2_PATH 0
+#endif
