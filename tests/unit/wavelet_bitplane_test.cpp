@@ -191,39 +191,6 @@ TEST(WaveletBitplane, AllZeroCostsOneByte) {
   EXPECT_EQ(bytes.size(), 1u);
 }
 
-// The bitplane walk decodes with its own branch-free restatement of RangeDecoder: both must
-// give the same bits, models, end state and overrun verdict, on real streams (skewed and
-// near-random bits, a few models), on truncated ones and on garbage.
-TEST(WaveletBitplane, BranchlessRangeDecoderMatchesRangeDecoder) {
-  std::mt19937 rng(7);
-  for (int trial = 0; trial < 40; ++trial) {
-    std::vector<uint8_t> bytes;
-    const size_t decisions = 1 + rng() % 5000;
-    {
-      RangeEncoder enc(bytes);
-      BitModel models[4];
-      for (size_t i = 0; i < decisions; ++i) {
-        const int m = int(rng() % 4);
-        enc.encode(models[m], int(rng() % 100 < uint32_t(m == 0 ? 50 : 10 + 25 * m)));
-      }
-      enc.finish();
-    }
-    if (trial % 4 == 1) bytes.resize(bytes.size() / 2);  // truncated
-    if (trial % 4 == 2)
-      for (uint8_t& b : bytes) b = uint8_t(rng());  // garbage
-    RangeDecoder reference(bytes.data(), bytes.size());
-    BranchlessRangeDecoder fast(bytes.data(), bytes.size());
-    BitModel ref_models[4], fast_models[4];
-    for (size_t i = 0; i < decisions + 16; ++i) {
-      const int m = int(i * 7 % 4);
-      ASSERT_EQ(reference.decode(ref_models[m]), fast.decode(fast_models[m])) << "trial " << trial << " bit " << i;
-      ASSERT_EQ(ref_models[m].p0, fast_models[m].p0);
-      ASSERT_EQ(ref_models[m].seen, fast_models[m].seen);
-    }
-    EXPECT_EQ(reference.overran(), fast.overran()) << "trial " << trial;
-  }
-}
-
 TEST(WaveletBitplane, GarbageNeverCrashes) {
   const Coefficients c = makeCoefficients(60, 6);
   std::mt19937 rng(7);

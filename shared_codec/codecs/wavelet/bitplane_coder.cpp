@@ -42,11 +42,12 @@ struct EncoderIo {
 };
 
 // Holds the decoder by value: the walk copies it into a local for each plane, where its
-// state can live in registers.
+// state can live in registers. decodeData, not decode: most bits of the low planes
+// (refinements) are close to random, and a branch on them mispredicts every other decision.
 struct DecoderIo {
   static constexpr bool kEncodes = false;
-  BranchlessRangeDecoder rc;
-  int code(BitModel& m, int) { return rc.decode(m); }
+  RangeDecoder rc;
+  int code(BitModel& m, int) { return rc.decodeData(m); }
 };
 
 // Local owner when the caller passes no workspace.
@@ -171,7 +172,7 @@ Status decodeBitplanes(ByteReader& in, const BitplaneLayout& layout,
     stop = blocks;
   }
   const size_t available = std::min<uint64_t>(in.remaining(), range_bytes);
-  DecoderIo io{BranchlessRangeDecoder(in.cursor(), available)};
+  DecoderIo io{RangeDecoder(in.cursor(), available)};
   ws.models.reset();
   for (int i = 0; i < planes; ++i) {
     const int p = top - 1 - i;

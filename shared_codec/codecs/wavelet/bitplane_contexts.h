@@ -25,56 +25,6 @@ inline int temporalContext(uint8_t previous_bits, int plane) {
 
 inline int bitLength(uint32_t v) { return v == 0 ? 0 : 32 - __builtin_clz(v); }
 
-// The range decoder of entropy/range_coder.h (RangeDecoder), restated decision for decision
-// with the same arithmetic, but applying the decoded bit through masks. The compiler turns
-// RangeDecoder::decode's selects into a branch on the bit, and most bits of the low planes
-// (refinements) are close to random, so that branch mispredicted about every other decision
-// and cost more than the decision itself. wavelet_bitplane_test checks that both decoders
-// agree bit for bit.
-class BranchlessRangeDecoder {
- public:
-  BranchlessRangeDecoder(const uint8_t* data, size_t size) : p_(data), end_(data + size) {
-    for (int i = 0; i < 4; ++i) code_ = (code_ << 8) | nextByte();
-  }
-
-  int decode(BitModel& m) {
-    const uint32_t bound = (range_ >> kProbBits) * m.p0;
-    const uint32_t bit = code_ >= bound;
-    const uint32_t ones = 0u - bit;
-    code_ -= bound & ones;
-    range_ = bound ^ ((bound ^ (range_ - bound)) & ones);
-    // BitModel::update for both values, then the mask picks one (its own select branched).
-    BitModel after_zero = m, after_one = m;
-    after_zero.update(0);
-    after_one.update(1);
-    m.seen = after_zero.seen;
-    m.p0 = uint16_t(after_zero.p0 ^ ((after_zero.p0 ^ after_one.p0) & ones));
-    normalize();
-    return int(bit);
-  }
-  // As RangeDecoder::overran().
-  bool overran() const { return overrun_ > 4 || code_ >= range_; }
-
- private:
-  void normalize() {
-    while (range_ < (1u << 24)) {
-      range_ <<= 8;
-      code_ = (code_ << 8) | nextByte();
-    }
-  }
-  uint8_t nextByte() {
-    if (p_ < end_) return *p_++;
-    ++overrun_;
-    return 0;
-  }
-
-  const uint8_t* p_;
-  const uint8_t* end_;
-  uint32_t code_ = 0;
-  uint32_t range_ = 0xFFFFFFFFu;
-  uint32_t overrun_ = 0;
-};
-
 // Every model of one frame (reset at the start of each frame, so a frame decodes on its
 // own given the temporal context). Significance odds change sharply with the plane and the
 // class, and rise with significant siblings, parents and last frame's magnitude.
