@@ -111,19 +111,19 @@ class WaveletDecoder final : public FrameDecoder {
   Status decodeFrame(ByteReader payload, std::vector<float>& xyz, bool* intra) override {
     ANIMC_ASSIGN_OR_RETURN(uint8_t type, payload.u8("Frame_Type"));
     // Progressive decoding cuts detail frames only: a parametric frame is needed whole.
-    cut_ = type != uint8_t(WaveletFrameType::kParametric) && control_.max_payload_bytes > 0 &&
-           payload.remaining() + 1 > control_.max_payload_bytes;
-    if (cut_)
+    const bool cut = type != uint8_t(WaveletFrameType::kParametric) && control_.max_payload_bytes > 0 &&
+                     payload.remaining() + 1 > control_.max_payload_bytes;
+    if (cut)
       payload = ByteReader(payload.cursor(), size_t(std::max<uint64_t>(control_.max_payload_bytes, 1) - 1), payload.offset());
     if (type == uint8_t(WaveletFrameType::kParametric)) {
       std::vector<double> recon;
       ANIMC_RETURN_IF_ERROR(static_coder_.decode(payload, recon));
       model_.setParametric(recon);
     } else if (type == uint8_t(WaveletFrameType::kDetailIntra)) {
-      ANIMC_RETURN_IF_ERROR(decodeDetails(payload, Prediction::intra()));
+      ANIMC_RETURN_IF_ERROR(decodeDetails(payload, Prediction::intra(), cut));
     } else if (type == uint8_t(WaveletFrameType::kDetailPredicted)) {
       ANIMC_ASSIGN_OR_RETURN(uint8_t selectors, payload.u8("Prediction_Selectors"));
-      ANIMC_RETURN_IF_ERROR(decodeDetails(payload, unpackSelectors(selectors)));
+      ANIMC_RETURN_IF_ERROR(decodeDetails(payload, unpackSelectors(selectors), cut));
     } else {
       return corrupt("unknown wavelet frame type " + std::to_string(type));
     }
@@ -132,7 +132,8 @@ class WaveletDecoder final : public FrameDecoder {
   }
 
  private:
-  Status decodeDetails(ByteReader& payload, const Prediction& prediction) {
+  // cut: the payload was shortened by control_.max_payload_bytes.
+  Status decodeDetails(ByteReader& payload, const Prediction& prediction, bool cut) {
     if (!model_.canPredict(prediction)) return corrupt("detail frame without the frames it refers to");
     BitplaneDecodeSettings settings;
     settings.step = model_.step();
@@ -141,7 +142,7 @@ class WaveletDecoder final : public FrameDecoder {
     Status s = decodeBitplanes(payload, model_.layout(), settings, decoded_, nullptr, &model_.nextHistory(),
                                model_.workspace());
     // A cut inside the block's header leaves no complete plane: the frame is its prediction.
-    if (cut_ && s.code() == StatusCode::kTruncated) {
+    if (cut && s.code() == StatusCode::kTruncated) {
       decoded_.assign(model_.coefficientCount(), 0.0);
       s = Status();
     }
@@ -162,7 +163,6 @@ class WaveletDecoder final : public FrameDecoder {
   }
 
   WaveletDecodeControl control_;
-  bool cut_ = false;  // the current payload was shortened by control_.max_payload_bytes
   Topology topology_;
   IFrameCoder static_coder_;
   WaveletFrameModel model_;
