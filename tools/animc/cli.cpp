@@ -60,7 +60,8 @@ Result<long long> Args::integer(const std::string& name, long long fallback) con
 namespace {
 
 const std::set<std::string> kOctreeOptions = {"profile", "max-error", "bits", "max-depth"};
-const std::set<std::string> kWaveletOptions = {"step", "bpv", "target-kg", "parametric-bits", "i-frames-only"};
+const std::set<std::string> kWaveletValueOptions = {"step", "bpv", "target-kg", "parametric-bits"};
+const std::set<std::string> kWaveletSwitches = {"i-frames-only"};
 
 // An option of the other codec is a mistake, not something to ignore.
 Status rejectForeignOptions(const Args& args, const std::set<std::string>& foreign, const char* codec) {
@@ -100,20 +101,21 @@ Status readWaveletOptions(const Args& args, WaveletOptions& o) {
 std::set<std::string> encodeOptionNames() {
   std::set<std::string> names = {"codec", "iframe-interval"};
   names.insert(kOctreeOptions.begin(), kOctreeOptions.end());
-  names.insert(kWaveletOptions.begin(), kWaveletOptions.end());
+  names.insert(kWaveletValueOptions.begin(), kWaveletValueOptions.end());
   return names;
 }
 
 }  // namespace
 
 const std::set<std::string> kEncodeOptions = encodeOptionNames();
-const std::set<std::string> kEncodeSwitches = {"i-frames-only"};
+const std::set<std::string> kEncodeSwitches = kWaveletSwitches;
 
 Result<EncodeSettings> encodeSettingsFrom(const Args& args) {
   EncodeSettings s;
   const std::string codec = args.get("codec", "affine-octree");
   if (codec == "affine-octree") {
-    ANIMC_RETURN_IF_ERROR(rejectForeignOptions(args, kWaveletOptions, "affine-octree"));
+    ANIMC_RETURN_IF_ERROR(rejectForeignOptions(args, kWaveletValueOptions, "affine-octree"));
+    ANIMC_RETURN_IF_ERROR(rejectForeignOptions(args, kWaveletSwitches, "affine-octree"));
     ANIMC_RETURN_IF_ERROR(readOctreeOptions(args, s.octree));
   } else if (codec == "wavelet") {
     s.codec = CodecId::kWavelet;
