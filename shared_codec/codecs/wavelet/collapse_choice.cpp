@@ -10,24 +10,50 @@ using Vec3 = Eigen::Vector3d;
 
 Vec3 at(const std::vector<double>& xyz, uint32_t v) { return Vec3(xyz[3 * size_t(v)], xyz[3 * size_t(v) + 1], xyz[3 * size_t(v) + 2]); }
 
-// Triangles (v, ring[i], ring[i+1]) of v: k of them around a closed ring, k - 1 in an open fan.
-size_t fanTriangleCount(const std::vector<uint32_t>& ring, bool closed) {
-  return closed ? ring.size() : ring.size() - 1;
-}
+// v's triangles (v, ring[i], ring[i+1]): k of them around a closed ring, k - 1 in an open
+// fan. Their normals (twice their area long) are shared by every target's checks and cost.
+struct Fan {
+  const std::vector<uint32_t>& ring;
+  bool closed;
+  Vec3 pv;
+  std::vector<Vec3> normal;
+  std::vector<double> twice_area;
+
+  Fan(const std::vector<double>& xyz, uint32_t v, const std::vector<uint32_t>& r, bool is_closed)
+      : ring(r), closed(is_closed), pv(at(xyz, v)) {
+    const size_t k = ring.size();
+    for (size_t i = 0; i < triangleCount(); ++i) {
+      normal.push_back((at(xyz, ring[i]) - pv).cross(at(xyz, ring[(i + 1) % k]) - pv));
+      twice_area.push_back(normal.back().norm());
+    }
+  }
+  size_t triangleCount() const { return closed ? ring.size() : ring.size() - 1; }
+  // Whether ring[i] is u = ring[at_u] or next to it along the fan.
+  bool flanks(size_t i, size_t at_u) const {
+    const size_t k = ring.size();
+    return i == at_u || (closed || at_u + 1 < k ? i == (at_u + 1) % k : false) ||
+           (closed || at_u > 0 ? i == (at_u + k - 1) % k : false);
+  }
+};
 
 // The collapse keeps every surviving triangle of v non-degenerate, turned by less than
-// acos(min_cos), and distinct from the triangles u already has.
-bool keepsTrianglesSound(const LevelMesh& mesh, const std::vector<double>& xyz, uint32_t v, uint32_t u,
-                         const std::vector<uint32_t>& ring, bool closed, double min_cos) {
+// acos(min_cos), and distinct from the triangles u already has. Called once the link
+// condition holds: u's triangle {u, a, b} would make a and b neighbours of u, so it can
+// exist only when both flank u.
+bool keepsTrianglesSound(const LevelMesh& mesh, const std::vector<double>& xyz, const Fan& fan, size_t at_u,
+                         double min_cos) {
+  const std::vector<uint32_t>& ring = fan.ring;
   const size_t k = ring.size();
-  const Vec3 pv = at(xyz, v), pu = at(xyz, u);
-  for (size_t i = 0; i < fanTriangleCount(ring, closed); ++i) {
+  const uint32_t u = ring[at_u];
+  const Vec3 pu = at(xyz, u);
+  for (size_t i = 0; i < fan.triangleCount(); ++i) {
     const uint32_t a = ring[i], b = ring[(i + 1) % k];
     if (a == u || b == u) continue;  // this triangle disappears
-    if (mesh.hasTriangle(u, a, b)) return false;
+    if (fan.flanks(i, at_u) && fan.flanks((i + 1) % k, at_u) && mesh.hasTriangle(u, a, b)) return false;
     const Vec3 pa = at(xyz, a), pb = at(xyz, b);
-    const Vec3 before = (pa - pv).cross(pb - pv), after = (pa - pu).cross(pb - pu);
-    const double nb = before.norm(), na = after.norm();
+    const Vec3& before = fan.normal[i];
+    const Vec3 after = (pa - pu).cross(pb - pu);
+    const double nb = fan.twice_area[i], na = after.norm();
     const double scale = (pa - pu).squaredNorm() + (pb - pu).squaredNorm();
     if (!(na > 1e-12 * scale) || !(nb > 0)) return false;
     if (before.dot(after) < min_cos * nb * na) return false;
@@ -37,30 +63,23 @@ bool keepsTrianglesSound(const LevelMesh& mesh, const std::vector<double>& xyz, 
 
 // Link condition: v and u = ring[at_u] share exactly the neighbours flanking the edge (v, u)
 // (two inside, one on a boundary edge, where the fan does not wrap around).
-bool linkConditionHolds(const LevelMesh& mesh, const std::vector<uint32_t>& ring, size_t at_u, bool closed) {
-  const size_t k = ring.size();
-  const uint32_t u = ring[at_u];
-  for (size_t i = 0; i < k; ++i) {
-    const bool flanks = i == at_u || (closed || at_u + 1 < k ? i == (at_u + 1) % k : false) ||
-                        (closed || at_u > 0 ? i == (at_u + k - 1) % k : false);
-    if (!flanks && mesh.adjacent(u, ring[i])) return false;
-  }
+bool linkConditionHolds(const LevelMesh& mesh, const Fan& fan, size_t at_u) {
+  const uint32_t u = fan.ring[at_u];
+  for (size_t i = 0; i < fan.ring.size(); ++i)
+    if (!fan.flanks(i, at_u) && mesh.adjacent(u, fan.ring[i])) return false;
   return true;
 }
 
 // Memoryless quadric: squared distances of u's position to the planes of v's current
 // triangles, area weighted, plus a small length term so that flat regions still prefer
 // short edges.
-double collapseCost(const std::vector<double>& xyz, uint32_t v, uint32_t u, const std::vector<uint32_t>& ring,
-                    bool closed) {
-  const size_t k = ring.size();
-  const Vec3 pv = at(xyz, v), d = at(xyz, u) - pv;
+double collapseCost(const std::vector<double>& xyz, const Fan& fan, uint32_t u) {
+  const Vec3 d = at(xyz, u) - fan.pv;
   double quadric = 0, area = 0;
-  for (size_t i = 0; i < fanTriangleCount(ring, closed); ++i) {
-    const Vec3 n = (at(xyz, ring[i]) - pv).cross(at(xyz, ring[(i + 1) % k]) - pv);
-    const double twice_area = n.norm();
+  for (size_t i = 0; i < fan.triangleCount(); ++i) {
+    const double twice_area = fan.twice_area[i];
     if (twice_area <= 0) continue;
-    const double distance = n.dot(d) / twice_area;
+    const double distance = fan.normal[i].dot(d) / twice_area;
     quadric += 0.5 * twice_area * distance * distance;
     area += 0.5 * twice_area;
   }
@@ -78,43 +97,38 @@ double boundaryCost(const std::vector<double>& xyz, uint32_t v, uint32_t a, uint
   return off.squaredNorm() * length2;
 }
 
-void keepBetter(CollapseChoice& best, uint32_t u, double cost, bool fits) {
-  const bool better = best.target == kNoVertex || (fits && !best.fits_length) ||
-                      (fits == best.fits_length && cost < best.cost);
-  if (better) best = CollapseChoice{u, cost, fits};
-}
-
 }  // namespace
 
-CollapseChoice chooseCollapse(const LevelMesh& mesh, const std::vector<double>& xyz, uint32_t v,
-                              const std::vector<uint32_t>& ring, double max_length,
-                              double min_normal_cosine) {
-  CollapseChoice best;
-  const Vec3 pv = at(xyz, v);
+void interiorCollapseOptions(const LevelMesh& mesh, const std::vector<double>& xyz, uint32_t v,
+                             const std::vector<uint32_t>& ring, double min_normal_cosine,
+                             std::vector<CollapseOption>& out) {
+  const Fan fan(xyz, v, ring, true);
   for (size_t i = 0; i < ring.size(); ++i) {
     const uint32_t u = ring[i];
-    if (!linkConditionHolds(mesh, ring, i, true)) continue;
-    if (!keepsTrianglesSound(mesh, xyz, v, u, ring, true, min_normal_cosine)) continue;
-    keepBetter(best, u, collapseCost(xyz, v, u, ring, true), (at(xyz, u) - pv).norm() <= max_length);
+    if (!linkConditionHolds(mesh, fan, i) || !keepsTrianglesSound(mesh, xyz, fan, i, min_normal_cosine)) continue;
+    out.push_back({u, collapseCost(xyz, fan, u), (at(xyz, u) - fan.pv).norm()});
   }
-  return best;
 }
 
-CollapseChoice chooseBoundaryCollapse(const LevelMesh& mesh, const std::vector<double>& xyz, uint32_t v,
-                                      const std::vector<uint32_t>& fan, double max_length,
-                                      double min_normal_cosine) {
-  CollapseChoice best;
+void boundaryCollapseOptions(const LevelMesh& mesh, const std::vector<double>& xyz, uint32_t v,
+                             const std::vector<uint32_t>& ring, double min_normal_cosine,
+                             std::vector<CollapseOption>& out) {
   // An ear (one triangle) stays: its ring is a single edge, which spans no local frame, and
   // removing it turns an inner edge into boundary.
-  if (fan.size() < 3) return best;
-  const Vec3 pv = at(xyz, v);
-  const double curve = boundaryCost(xyz, v, fan.front(), fan.back());
-  for (size_t i : {size_t(0), fan.size() - 1}) {
-    const uint32_t u = fan[i];
-    if (!linkConditionHolds(mesh, fan, i, false)) continue;
-    if (!keepsTrianglesSound(mesh, xyz, v, u, fan, false, min_normal_cosine)) continue;
-    keepBetter(best, u, collapseCost(xyz, v, u, fan, false) + curve, (at(xyz, u) - pv).norm() <= max_length);
+  if (ring.size() < 3) return;
+  const Fan fan(xyz, v, ring, false);
+  const double curve = boundaryCost(xyz, v, ring.front(), ring.back());
+  for (size_t i : {size_t(0), ring.size() - 1}) {
+    const uint32_t u = ring[i];
+    if (!linkConditionHolds(mesh, fan, i) || !keepsTrianglesSound(mesh, xyz, fan, i, min_normal_cosine)) continue;
+    out.push_back({u, collapseCost(xyz, fan, u) + curve, (at(xyz, u) - fan.pv).norm()});
   }
+}
+
+const CollapseOption* cheapestWithin(const std::vector<CollapseOption>& options, double max_length) {
+  const CollapseOption* best = nullptr;
+  for (const CollapseOption& o : options)
+    if (o.length <= max_length && (!best || o.cost < best->cost)) best = &o;
   return best;
 }
 

@@ -10,25 +10,31 @@
 
 namespace animc {
 
-struct CollapseChoice {
+// One valid target of a vertex's collapse, with its cost and the length of the edge (the
+// level's length bound is applied by the caller, so options stay valid from level to level
+// while the vertex's neighbourhood does not change).
+struct CollapseOption {
   uint32_t target = kNoVertex;
   double cost = 0;
-  bool fits_length = false;  // the edge is within the level's length bound
+  double length = 0;
 };
 
-// ring: v's ordered ring (LevelMesh::orderedRing). Returns target == kNoVertex when no
-// neighbour is a valid target. Among valid targets, those within max_length win, then cost.
-CollapseChoice chooseCollapse(const LevelMesh& mesh, const std::vector<double>& xyz, uint32_t v,
-                              const std::vector<uint32_t>& ring, double max_length,
-                              double min_normal_cosine);
+// ring: v's ordered ring (LevelMesh::orderedRing). Appends to `out` every neighbour that is
+// a valid target, in ring order.
+void interiorCollapseOptions(const LevelMesh& mesh, const std::vector<double>& xyz, uint32_t v,
+                             const std::vector<uint32_t>& ring, double min_normal_cosine,
+                             std::vector<CollapseOption>& out);
 
 // The same for a boundary vertex v with open fan `fan` (LevelMesh::openFan): it may only
 // collapse along a boundary edge, onto fan.front() or fan.back(), so that the boundary stays
 // a curve and v can be predicted from its two boundary neighbours; v needs >= 2 triangles.
 // The cost adds the squared distance of v to the chord between them (what the boundary curve
 // loses).
-CollapseChoice chooseBoundaryCollapse(const LevelMesh& mesh, const std::vector<double>& xyz, uint32_t v,
-                                      const std::vector<uint32_t>& fan, double max_length,
-                                      double min_normal_cosine);
+void boundaryCollapseOptions(const LevelMesh& mesh, const std::vector<double>& xyz, uint32_t v,
+                             const std::vector<uint32_t>& fan, double min_normal_cosine,
+                             std::vector<CollapseOption>& out);
+
+// The cheapest option within max_length (the first of equal ones); null when none fits.
+const CollapseOption* cheapestWithin(const std::vector<CollapseOption>& options, double max_length);
 
 }  // namespace animc

@@ -48,9 +48,12 @@ bool walkSteps(const Steps& steps, uint32_t start, std::vector<uint32_t>& ring) 
   return true;
 }
 
-bool allDistinct(std::vector<uint32_t> vertices) {
-  std::sort(vertices.begin(), vertices.end());
-  return std::adjacent_find(vertices.begin(), vertices.end()) == vertices.end();
+// Quadratic, without a copy: rings are short.
+bool allDistinct(const std::vector<uint32_t>& vertices) {
+  for (size_t i = 0; i < vertices.size(); ++i)
+    for (size_t j = i + 1; j < vertices.size(); ++j)
+      if (vertices[i] == vertices[j]) return false;
+  return true;
 }
 
 }  // namespace
@@ -69,7 +72,7 @@ bool LevelMesh::fanSteps(uint32_t v, std::vector<std::pair<uint32_t, uint32_t>>&
 
 bool LevelMesh::orderedRing(uint32_t v, std::vector<uint32_t>& ring) const {
   // A closed fan is one cycle through all the steps.
-  Steps steps;
+  Steps& steps = steps_;
   if (!fanSteps(v, steps) || steps.size() < 3) return false;
   if (!walkSteps(steps, steps[0].first, ring) || ring.back() != ring.front()) return false;
   ring.pop_back();
@@ -78,7 +81,7 @@ bool LevelMesh::orderedRing(uint32_t v, std::vector<uint32_t>& ring) const {
 
 bool LevelMesh::openFan(uint32_t v, std::vector<uint32_t>& ring) const {
   // An open fan is one chain through all the steps, from the one spoke no step enters.
-  Steps steps;
+  Steps& steps = steps_;
   if (!fanSteps(v, steps) || steps.empty()) return false;
   uint32_t start = kNoVertex;
   for (const auto& s : steps) {

@@ -53,6 +53,8 @@ class LevelMesh {
   std::vector<uint8_t> alive_;
   std::vector<uint32_t> first_;
   std::vector<uint32_t> incident_;
+  // Scratch of the ring queries, reused so that they do not allocate (one thread per mesh).
+  mutable std::vector<std::pair<uint32_t, uint32_t>> steps_;
 };
 
 }  // namespace animc

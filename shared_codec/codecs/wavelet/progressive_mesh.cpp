@@ -90,28 +90,63 @@ bool ringOf(const LevelMesh& mesh, uint32_t v, CollapseKind kind, std::vector<ui
   return kind == CollapseKind::kBoundary ? mesh.openFan(v, ring) : mesh.orderedRing(v, ring);
 }
 
-// Every removable vertex's best collapse; any_valid tells whether relaxing the length bound
-// could still find work.
+// Each vertex's collapse options on the current level. They depend on the vertex's
+// triangles and on its neighbours' (link condition, duplicate triangles), so they are
+// recomputed only for vertices within two edges of a collapse: most levels change few.
+class CollapseOptionCache {
+ public:
+  struct Entry {
+    bool stale = true;
+    CollapseKind kind = CollapseKind::kInterior;
+    std::vector<CollapseOption> options;  // empty: v cannot be removed
+  };
+
+  explicit CollapseOptionCache(uint32_t vertex_count) : entries_(vertex_count) {}
+
+  const Entry& at(const LevelMesh& mesh, const std::vector<double>& xyz, uint32_t v, const HierarchySettings& settings) {
+    Entry& e = entries_[v];
+    if (!e.stale) return e;
+    e.stale = false;
+    e.options.clear();
+    e.kind = CollapseKind::kInterior;
+    if (mesh.orderedRing(v, ring_)) {
+      interiorCollapseOptions(mesh, xyz, v, ring_, settings.min_normal_cosine, e.options);
+    } else if (settings.collapse_boundaries && mesh.openFan(v, ring_)) {
+      e.kind = CollapseKind::kBoundary;
+      boundaryCollapseOptions(mesh, xyz, v, ring_, settings.min_normal_cosine, e.options);
+    }
+    return e;
+  }
+
+  // Before w's collapse is applied: every vertex within two edges of w.
+  void markStale(const LevelMesh& mesh, uint32_t w) {
+    for (const uint32_t* t = mesh.trianglesBegin(w); t != mesh.trianglesEnd(w); ++t)
+      for (uint32_t x : mesh.triangle(*t))
+        for (const uint32_t* t2 = mesh.trianglesBegin(x); t2 != mesh.trianglesEnd(x); ++t2)
+          for (uint32_t y : mesh.triangle(*t2)) entries_[y].stale = true;
+    entries_[w].stale = true;
+  }
+
+ private:
+  std::vector<Entry> entries_;
+  std::vector<uint32_t> ring_;
+};
+
+// Every removable vertex's best collapse within the length bound; any_valid tells whether
+// relaxing the bound could still find work.
 std::vector<Candidate> levelCandidates(const LevelMesh& mesh, const std::vector<double>& xyz,
                                        const std::vector<uint8_t>& removed, const BoundaryLoops& loops,
-                                       double max_length,
-                                       const HierarchySettings& settings, bool& any_valid) {
+                                       double max_length, const HierarchySettings& settings,
+                                       CollapseOptionCache& cache, bool& any_valid) {
   std::vector<Candidate> out;
-  std::vector<uint32_t> ring;
   any_valid = false;
   for (uint32_t v = 0; v < removed.size(); ++v) {
     if (removed[v]) continue;
-    CollapseChoice c;
-    CollapseKind kind = CollapseKind::kInterior;
-    if (mesh.orderedRing(v, ring)) {
-      c = chooseCollapse(mesh, xyz, v, ring, max_length, settings.min_normal_cosine);
-    } else if (settings.collapse_boundaries && loops.canLose(v) && mesh.openFan(v, ring)) {
-      kind = CollapseKind::kBoundary;
-      c = chooseBoundaryCollapse(mesh, xyz, v, ring, max_length, settings.min_normal_cosine);
-    }
-    if (c.target == kNoVertex) continue;
+    const CollapseOptionCache::Entry& e = cache.at(mesh, xyz, v, settings);
+    if (e.options.empty() || (e.kind == CollapseKind::kBoundary && !loops.canLose(v))) continue;
     any_valid = true;
-    if (c.fits_length) out.push_back({c.cost, v, c.target, kind});
+    if (const CollapseOption* best = cheapestWithin(e.options, max_length))
+      out.push_back({best->cost, v, best->target, e.kind});
   }
   // Cost, then vertex index: a total order, so both sides pick the same batch.
   std::sort(out.begin(), out.end(), [](const Candidate& a, const Candidate& b) {
@@ -173,7 +208,7 @@ int weldSeams(LevelMesh& mesh, const std::vector<double>& xyz, std::vector<uint8
 // (stencils reach at most one step beyond the ring: flaps, and on a boundary the next
 // boundary vertices, which a disjoint ring cannot remove).
 int applyBatch(LevelMesh& mesh, const std::vector<Candidate>& candidates, int level, BoundaryLoops& loops,
-               std::vector<uint8_t>& removed, ProgressiveMesh& pm) {
+               std::vector<uint8_t>& removed, CollapseOptionCache& cache, ProgressiveMesh& pm) {
   std::vector<uint8_t> marked(removed.size(), 0);
   std::vector<uint32_t> ring;
   int applied = 0;
@@ -189,6 +224,8 @@ int applyBatch(LevelMesh& mesh, const std::vector<Candidate>& candidates, int le
     ++applied;
   }
   // Apply after choosing, so every record above saw the level as it started.
+  for (size_t i = pm.collapses.size() - size_t(applied); i < pm.collapses.size(); ++i)
+    cache.markStale(mesh, pm.collapses[i].vertex);
   for (size_t i = pm.collapses.size() - size_t(applied); i < pm.collapses.size(); ++i)
     mesh.collapse(pm.collapses[i].vertex, pm.collapses[i].target);
   return applied;
@@ -208,12 +245,13 @@ ProgressiveMesh buildProgressiveMesh(const Topology& topology, const std::vector
     mesh.rebuildIncidence();
   }
   BoundaryLoops loops(mesh, topology.vertex_count);
+  CollapseOptionCache cache(topology.vertex_count);
   for (int level = 0; level < settings.max_levels; ++level, max_length *= settings.length_growth) {
     bool any_valid = false;
     const std::vector<Candidate> candidates =
-        levelCandidates(mesh, parametric_xyz, removed, loops, max_length, settings, any_valid);
+        levelCandidates(mesh, parametric_xyz, removed, loops, max_length, settings, cache, any_valid);
     if (!any_valid) break;
-    if (applyBatch(mesh, candidates, pm.level_count, loops, removed, pm) == 0) continue;
+    if (applyBatch(mesh, candidates, pm.level_count, loops, removed, cache, pm) == 0) continue;
     ++pm.level_count;
     mesh.rebuildIncidence();
   }
