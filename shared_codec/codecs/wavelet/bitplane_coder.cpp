@@ -39,6 +39,10 @@ struct EncoderIo {
     rc->encode(m, bit);
     return bit;
   }
+  int raw(int bit) {
+    rc->encodeRaw(uint32_t(bit), 1);
+    return bit;
+  }
 };
 
 // Holds the decoder by value: the walk copies it into a local for each plane, where its
@@ -48,6 +52,7 @@ struct DecoderIo {
   static constexpr bool kEncodes = false;
   RangeDecoder rc;
   int code(BitModel& m, int) { return rc.decodeData(m); }
+  int raw(int) { return int(rc.decodeRaw(1)); }
 };
 
 // Local owner when the caller passes no workspace.

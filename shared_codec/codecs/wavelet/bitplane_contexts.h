@@ -34,7 +34,7 @@ struct BitplaneContexts {
   BitModel fresh[kBitplaneClasses][3][3][kTemporalContexts];  // component, significant ones before it
   BitModel component[kPlaneSlots][kBitplaneClasses][kTemporalContexts][2];  // 2+ siblings significant
   BitModel sign[kBitplaneClasses][3];    // last frame's sign: none / + / -
-  BitModel refine[kBitplaneClasses][3];  // known magnitude 1, 2-3, 4+
+  BitModel refine[kBitplaneClasses];     // first refinement bit (known magnitude 1)
 
   void reset() {
     BitModel* first = &block[0][0][0];
@@ -275,8 +275,8 @@ struct PlaneWalk {
 
   // The common case of the low planes: all three components known, three refinement bits.
   void codeRefinements(size_t v) {
-    BitModel* models = m.refine[classes[v]];
-    for (size_t j = 3 * v; j < 3 * v + 3; ++j) refine(models, j);
+    BitModel& model = m.refine[classes[v]];
+    for (size_t j = 3 * v; j < 3 * v + 3; ++j) refine(model, j);
   }
 
   void codeSignificantVertex(size_t v) {
@@ -297,9 +297,13 @@ struct PlaneWalk {
     mask[v] = vertex_mask;
   }
 
-  void refine(BitModel* models, size_t j) {
-    const uint32_t k = known[j];  // contexts: known magnitude 1, 2-3, 4+
-    known[j] = (k << 1) | uint32_t(io.code(models[(k > 1) + (k > 3)], magnitudeBit(j)));
+  // Only the first refinement bit after significance is skewed (residuals are roughly
+  // Laplacian); the later ones are close to random and go raw, as in the paper: adaptive
+  // models for them cost 0.0-0.2 % more bits (docs/wavelet.md) and a slower decision.
+  void refine(BitModel& first, size_t j) {
+    const uint32_t k = known[j];
+    const int bit = k == 1 ? io.code(first, magnitudeBit(j)) : io.raw(magnitudeBit(j));
+    known[j] = (k << 1) | uint32_t(bit);
   }
 
   void becomeSignificant(size_t j, int cls) {
