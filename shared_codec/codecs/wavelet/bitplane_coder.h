@@ -4,7 +4,8 @@
 // block not yet significant codes one flag (does any of its coefficients become significant
 // here?), a vertex not yet significant one flag, then its components; coefficients already
 // significant code their refinement bit. Every decision goes through the adaptive binary
-// range coder; significance contexts combine the plane, the vertex's class, the parent's
+// range coder, except refinement bits after a coefficient's first one, which are raw bits of
+// the same coder (no model); significance contexts combine the plane, the vertex's class, the parent's
 // state and, for P-frames, what the same coefficient did in the previous frame (temporal
 // context). The stream can stop after any block of any plane: the decoder then knows each
 // magnitude to the planes it received and reconstructs inside the remaining interval,

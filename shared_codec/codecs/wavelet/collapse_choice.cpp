@@ -97,17 +97,22 @@ double boundaryCost(const std::vector<double>& xyz, uint32_t v, uint32_t a, uint
   return off.squaredNorm() * length2;
 }
 
+// Appends u = fan.ring[at_u] to out when the collapse onto it is valid, at its cost plus
+// extra_cost.
+void addIfValid(const LevelMesh& mesh, const std::vector<double>& xyz, const Fan& fan, size_t at_u,
+                double min_cos, double extra_cost, std::vector<CollapseOption>& out) {
+  if (!linkConditionHolds(mesh, fan, at_u) || !keepsTrianglesSound(mesh, xyz, fan, at_u, min_cos)) return;
+  const uint32_t u = fan.ring[at_u];
+  out.push_back({u, collapseCost(xyz, fan, u) + extra_cost, (at(xyz, u) - fan.pv).norm()});
+}
+
 }  // namespace
 
 void interiorCollapseOptions(const LevelMesh& mesh, const std::vector<double>& xyz, uint32_t v,
                              const std::vector<uint32_t>& ring, double min_normal_cosine,
                              std::vector<CollapseOption>& out) {
   const Fan fan(xyz, v, ring, true);
-  for (size_t i = 0; i < ring.size(); ++i) {
-    const uint32_t u = ring[i];
-    if (!linkConditionHolds(mesh, fan, i) || !keepsTrianglesSound(mesh, xyz, fan, i, min_normal_cosine)) continue;
-    out.push_back({u, collapseCost(xyz, fan, u), (at(xyz, u) - fan.pv).norm()});
-  }
+  for (size_t i = 0; i < ring.size(); ++i) addIfValid(mesh, xyz, fan, i, min_normal_cosine, 0.0, out);
 }
 
 void boundaryCollapseOptions(const LevelMesh& mesh, const std::vector<double>& xyz, uint32_t v,
@@ -118,11 +123,7 @@ void boundaryCollapseOptions(const LevelMesh& mesh, const std::vector<double>& x
   if (ring.size() < 3) return;
   const Fan fan(xyz, v, ring, false);
   const double curve = boundaryCost(xyz, v, ring.front(), ring.back());
-  for (size_t i : {size_t(0), ring.size() - 1}) {
-    const uint32_t u = ring[i];
-    if (!linkConditionHolds(mesh, fan, i) || !keepsTrianglesSound(mesh, xyz, fan, i, min_normal_cosine)) continue;
-    out.push_back({u, collapseCost(xyz, fan, u) + curve, (at(xyz, u) - fan.pv).norm()});
-  }
+  for (size_t i : {size_t(0), ring.size() - 1}) addIfValid(mesh, xyz, fan, i, min_normal_cosine, curve, out);
 }
 
 const CollapseOption* cheapestWithin(const std::vector<CollapseOption>& options, double max_length) {
