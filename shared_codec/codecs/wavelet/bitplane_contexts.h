@@ -299,7 +299,7 @@ struct PlaneWalk {
 
   // Only the first refinement bit after significance is skewed (residuals are roughly
   // Laplacian); the later ones are close to random and go raw, as in the paper: adaptive
-  // models for them cost 0.0-0.2 % more bits (docs/wavelet.md) and a slower decision.
+  // models for them cost up to 0.4 % more bits (docs/wavelet.md) and a slower decision.
   void refine(BitModel& first, size_t j) {
     const uint32_t k = known[j];
     const int bit = k == 1 ? io.code(first, magnitudeBit(j)) : io.raw(magnitudeBit(j));
