@@ -94,7 +94,8 @@ std::string describeSettings(const EncodeSettings& s) {
       std::snprintf(rate, sizeof rate, "target KG %g %%", w.target_kg);
     std::snprintf(line, sizeof line, "codec: wavelet, %s, step %g of the diagonal, parametric bits %d, %s, "
                   "iframe interval %u\n", rate, w.step, w.parametric_bits,
-                  w.temporal_prediction ? "P-frames" : "I-frames only", s.iframe_interval);
+                  !w.temporal_prediction ? "I-frames only" : w.progressive_p_frames ? "progressive P-frames" : "P-frames",
+                  s.iframe_interval);
     return line;
   }
   std::snprintf(line, sizeof line, "codec: %s, profile %s, max error %g of the root cube, bits %d, "
@@ -168,13 +169,13 @@ Result<std::unique_ptr<AmsSource>> AmsSource::open(const std::string& path, cons
   if (!st.ok()) return st.withContext(path);
   const bool partial = progressive.max_bitplanes > 0 || progressive.max_payload_bytes > 0;
   if (s->settings_.codec == CodecId::kWavelet) {
-    // A P-frame decoded from part of its payload leaves the decoder's reference and its
-    // coding contexts different from the encoder's: every later frame of the group would
-    // decode wrongly. Only files whose frames stand alone decode progressively.
-    if (partial && s->settings_.wavelet.temporal_prediction)
-      return invalidArgument(path + ": progressive decoding (fewer bitplanes or bytes) needs a file whose frames "
-                             "decode on their own (animc encode --codec wavelet --i-frames-only); this one "
-                             "predicts each frame from the previous one (P-frames)");
+    // A P-frame decoded from part of its payload leaves the decoder's coding contexts
+    // different from the encoder's unless the file was coded without them: every later frame
+    // of the group would decode wrongly.
+    if (partial && !s->settings_.wavelet.cuttable())
+      return invalidArgument(path + ": progressive decoding (fewer bitplanes or bytes) needs a file encoded with "
+                             "animc encode --codec wavelet --progressive-p-frames or --i-frames-only; this one's "
+                             "P-frames use the previous frame's coding contexts");
     s->decoder_ = makeWaveletDecoder(s->settings_.wavelet, s->reader_->topology(), progressive);
   } else if (partial) {
     return invalidArgument(path + ": progressive decoding (fewer bitplanes or bytes) needs a wavelet-coded "

@@ -148,6 +148,14 @@ for part in full 4 bytes; do
 done
 json_check 'd["frames"] == e["frames"] == 50 and d["kg_error"] > 10 * e["kg_error"]' "$TMP/w_cmp_4.out" "$TMP/w_cmp_full.out"
 json_check 'd["frames"] == 50 and d["kg_error"] > e["kg_error"]' "$TMP/w_cmp_bytes.out" "$TMP/w_cmp_full.out"
+# ... and of a file with progressive P-frames: cut frames drift, but still decode.
+run w_prog "$ANIMC" encode "$PC2" --mesh "$MESH" -o "$TMP/wp.ams" --codec wavelet --step 1e-4 --progressive-p-frames --json
+json_check 'd["temporal_prediction"] == True and d["progressive_p_frames"] == True' "$TMP/w_prog.out"
+run w_prog_info "$ANIMC" info "$TMP/wp.ams"
+grep -q "progressive P-frames" "$TMP/w_prog_info.out" || check_failed "animc info does not say the P-frames are progressive"
+run w_prog_dec "$ANIMC" decode "$TMP/wp.ams" -o "$TMP/wp_4.pc2" --bitplanes 4
+run w_prog_cmp "$ANIMC" compare "$PC2" "$TMP/wp_4.pc2" --mesh "$MESH" --json
+json_check 'd["frames"] == 50 and d["kg_error"] > e["kg_error"]' "$TMP/w_prog_cmp.out" "$TMP/w_prog.out"
 
 # --- errors: exit != 0, nothing on stdout, one "animc: " line on stderr, no output ---------
 ERRDIR=$TMP/errors
@@ -214,6 +222,8 @@ expect_error wavelet_target_too_large "$ERRDIR/x.ams" "$ANIMC" encode "$PC2" --m
 expect_error wavelet_bpv_negative "$ERRDIR/x.ams" "$ANIMC" encode "$PC2" --mesh "$MESH" -o "$ERRDIR/x.ams" --codec wavelet --bpv -1
 expect_error progressive_octree "$ERRDIR/x.pc2" "$ANIMC" decode "$AMS" -o "$ERRDIR/x.pc2" --bitplanes 3
 expect_error progressive_p_frames "$ERRDIR/x.pc2" "$ANIMC" decode "$W_AMS" -o "$ERRDIR/x.pc2" --bitplanes 4
+expect_error progressive_i_frames_only "$ERRDIR/x.ams" "$ANIMC" encode "$PC2" --mesh "$MESH" -o "$ERRDIR/x.ams" \
+  --codec wavelet --i-frames-only --progressive-p-frames
 expect_error negative_bitplanes "$ERRDIR/x.pc2" "$ANIMC" decode "$W_AMS" -o "$ERRDIR/x.pc2" --bitplanes -2
 
 if ((FAILURES > 0)); then

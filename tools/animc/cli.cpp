@@ -61,7 +61,7 @@ namespace {
 
 const std::set<std::string> kOctreeOptions = {"profile", "max-error", "bits", "max-depth"};
 const std::set<std::string> kWaveletValueOptions = {"step", "bpv", "target-kg", "parametric-bits"};
-const std::set<std::string> kWaveletSwitches = {"i-frames-only"};
+const std::set<std::string> kWaveletSwitches = {"i-frames-only", "progressive-p-frames"};
 
 // An option of the other codec is a mistake, not something to ignore.
 Status rejectForeignOptions(const Args& args, const std::set<std::string>& foreign, const char* codec) {
@@ -95,6 +95,7 @@ Status readWaveletOptions(const Args& args, WaveletOptions& o) {
                            std::to_string(kMaxParametricBits) + "]");
   o.parametric_bits = int(bits);
   o.temporal_prediction = !args.has("i-frames-only");
+  o.progressive_p_frames = args.has("progressive-p-frames");
   return Status();
 }
 

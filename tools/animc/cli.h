@@ -31,7 +31,8 @@ class Args {
 // --codec --iframe-interval, the Affine-Octree's --profile --max-error --bits --max-depth and
 // the wavelet's --step --bpv --target-kg --parametric-bits (options of the codec not chosen are errors).
 extern const std::set<std::string> kEncodeOptions;
-// The wavelet's --i-frames-only (no temporal prediction: every frame decodes on its own).
+// The wavelet's --i-frames-only (no temporal prediction: every frame decodes on its own) and
+// --progressive-p-frames (P-frames a decoder may cut).
 extern const std::set<std::string> kEncodeSwitches;
 Result<EncodeSettings> encodeSettingsFrom(const Args& args);
 

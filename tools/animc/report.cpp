@@ -11,6 +11,7 @@ void addSettings(JsonObject& o, const EncodeSettings& s) {
     o.add("target_kg_setting", s.wavelet.target_kg);
     o.add("parametric_bits", s.wavelet.parametric_bits);
     o.add("temporal_prediction", s.wavelet.temporal_prediction);
+    o.add("progressive_p_frames", s.wavelet.progressive_p_frames);
   } else {
     o.add("profile", profileName(s.octree.profile));
     o.add("max_error_setting", s.octree.max_error);

@@ -60,9 +60,10 @@ class WaveletFrameModel {
   BitplaneLayout layout() const { return BitplaneLayout{classes_.data(), parents_.data(), classes_.size()}; }
   size_t coefficientCount() const { return 3 * classes_.size(); }
   // Temporal contexts of a frame: the previous frame's decoded residual for predicted
-  // frames; none for I-frames, which must decode on their own.
+  // frames; none for I-frames, which must decode on their own, nor for P-frames a decoder
+  // may cut (its history would then differ from the encoder's).
   const BitplaneHistory* contextFor(const Prediction& prediction) const {
-    return prediction.isIntra() ? nullptr : &context_;
+    return prediction.isIntra() || options_.progressive_p_frames ? nullptr : &context_;
   }
   // Where the coder leaves this frame's history; accept() makes it the next context.
   BitplaneHistory& nextHistory() { return next_context_; }

@@ -13,6 +13,8 @@ Status WaveletOptions::validate() const {
                            " outside [1e-9, 1] (a fraction of the parametric mesh's diagonal)");
   if (parametric_bits < kMinParametricBits || parametric_bits > kMaxParametricBits)
     return invalidArgument("parametric bits " + std::to_string(parametric_bits) + " outside [4, 28]");
+  if (progressive_p_frames && !temporal_prediction)
+    return invalidArgument("progressive P-frames need P-frames (--progressive-p-frames excludes --i-frames-only)");
   if (!(target_kg == 0 || (target_kg > 0 && target_kg <= kMaxTargetKg)))
     return invalidArgument("target KG error " + std::to_string(target_kg) + " % outside (0, 100] (0 = off)");
   return Status();
@@ -22,7 +24,8 @@ void WaveletOptions::write(ByteWriter& w) const {
   w.f64(bits_per_vertex);
   w.f64(step);
   w.u8(uint8_t(parametric_bits));
-  w.u8(uint8_t((temporal_prediction ? 1 : 0) | (truncatable ? 2 : 0) | (local_frames ? 4 : 0)));
+  w.u8(uint8_t((temporal_prediction ? 1 : 0) | (truncatable ? 2 : 0) | (local_frames ? 4 : 0) |
+               (progressive_p_frames ? 8 : 0)));
   w.f64(target_kg);
 }
 
@@ -32,11 +35,12 @@ Result<WaveletOptions> WaveletOptions::read(ByteReader& r) {
   ANIMC_ASSIGN_OR_RETURN(o.step, r.f64("Wavelet_Step"));
   ANIMC_ASSIGN_OR_RETURN(uint8_t bits, r.u8("Parametric_Bits"));
   ANIMC_ASSIGN_OR_RETURN(uint8_t flags, r.u8("Wavelet_Flags"));
-  if (flags & ~7u) return corrupt("codec parameters: reserved wavelet flag bits set");
+  if (flags & ~15u) return corrupt("codec parameters: reserved wavelet flag bits set");
   o.parametric_bits = bits;
   o.temporal_prediction = flags & 1;
   o.truncatable = flags & 2;
   o.local_frames = flags & 4;
+  o.progressive_p_frames = flags & 8;
   ANIMC_ASSIGN_OR_RETURN(o.target_kg, r.f64("Target_KG"));
   if (r.remaining() != 0) return corrupt("codec parameters: " + std::to_string(r.remaining()) + " unread bytes");
   Status s = o.validate();

@@ -21,6 +21,11 @@ struct WaveletOptions {
   int parametric_bits = 14;
   // false: every detail frame is an I-frame (the paper's "I-frames only" figures).
   bool temporal_prediction = true;
+  // P-frames coded without temporal contexts (the last frame's bitplane history), so that a
+  // decoder may cut them (progressive decoding): a cut P-frame then leaves the decoder's
+  // reference off the encoder's, and that error carries through the later P-frames of the
+  // group (drift) until the next parametric frame. Costs 0.6-5 % more bits (docs/wavelet.md).
+  bool progressive_p_frames = false;
   // Details in the local frame of their coarser ring (the paper) rather than world axes.
   // Off by default: on chickenCrossing the frames' rotation by quantisation errors of the
   // coarser levels multiplies the error 15-25x at the same step (docs/wavelet.md).
@@ -36,6 +41,9 @@ struct WaveletOptions {
   // Write the per-bitplane byte checkpoints that let a payload cut at any byte decode to its
   // last complete bitplane (about 1.5 bytes per bitplane per frame).
   bool truncatable = true;
+
+  // Whether a decoder may cut this stream's detail frames (WaveletDecodeControl).
+  bool cuttable() const { return !temporal_prediction || progressive_p_frames; }
 
   Status validate() const;
   void write(ByteWriter& w) const;
