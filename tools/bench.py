@@ -16,7 +16,8 @@ For each sequence folder NAME/ (NAME.ply + NAME.pc2.xz) of --data (default
 4. the wavelet codec (tools/bench_wavelet.py): quality steps and the paper's 1/2/4/8 bpv
    fixed rates on every sequence, against the Affine-Octree sweep at equal KG error, with the
    rate-distortion plot docs/img/rate_distortion.png (tools/rd_plot.py, gnuplot), and the
-   parametric archive size against the paper's Cow;
+   parametric archive size against the paper's Cow, and the cost and cuts of progressive
+   P-frames (tools/bench_progressive.py);
 5. unless --no-plugin: encoding through the MeshLab filter against animc encode
    (tools/bench_plugin.py; needs the staged MeshLab of `cmake --install build --prefix build/stage`).
 Progress goes to stderr; the Markdown report to --out (default docs/benchmarks.md)."""

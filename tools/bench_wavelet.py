@@ -9,6 +9,7 @@ import subprocess
 import tempfile
 
 from bench_common import failed_cell, log, loglog_interp, num, run_bench, table
+from bench_progressive import progressive_section
 from rd_plot import draw_rd_plot
 
 # Quality mode (no rate limit): the finest quantisation step, fraction of the diagonal.
@@ -142,4 +143,5 @@ def wavelet_section(animc, sequences, runs, docs_dir):
               'Cow\'s parametric mesh (2 904 vertices; coder of [KADS02]).', '']
     lines += static_table(static_rows) + ['']
     failures += sum(s is None for _n, s in static_rows)
-    return lines, failures
+    progressive_lines, progressive_failures = progressive_section(animc, sequences)
+    return lines + progressive_lines, failures + progressive_failures
