@@ -65,8 +65,9 @@ class WaveletFrameModel {
   const BitplaneHistory* contextFor(const Prediction& prediction) const {
     return prediction.isIntra() || options_.progressive_p_frames ? nullptr : &context_;
   }
-  // Where the coder leaves this frame's history; accept() makes it the next context.
-  BitplaneHistory& nextHistory() { return next_context_; }
+  // Where the coder leaves this frame's history; accept() makes it the next context. None
+  // when no frame reads it (progressive P-frames), which spares the coder that pass.
+  BitplaneHistory* nextHistory() { return options_.progressive_p_frames ? nullptr : &next_context_; }
   BitplaneWorkspace* workspace() const { return workspace_.get(); }
   double step() const { return step_; }
 

@@ -53,7 +53,7 @@ class WaveletEncoder final : public FrameEncoder {
     if (options_.bits_per_vertex > 0)
       settings.byte_budget = uint64_t(std::max(2.0, options_.bits_per_vertex * topology_.vertex_count / 8 - 1));
     if (options_.target_kg > 0 && !cutForTarget(prediction, settings)) std::fill(residual_.begin(), residual_.end(), 0.0);
-    encodeBitplanes(residual_.data(), model_.layout(), settings, out, decoded_, &model_.nextHistory(),
+    encodeBitplanes(residual_.data(), model_.layout(), settings, out, decoded_, model_.nextHistory(),
                     model_.workspace());
     model_.accept(decoded_, prediction);
   }
@@ -139,7 +139,7 @@ class WaveletDecoder final : public FrameDecoder {
     settings.step = model_.step();
     settings.max_planes = control_.max_bitplanes;
     settings.context = model_.contextFor(prediction);
-    Status s = decodeBitplanes(payload, model_.layout(), settings, decoded_, nullptr, &model_.nextHistory(),
+    Status s = decodeBitplanes(payload, model_.layout(), settings, decoded_, nullptr, model_.nextHistory(),
                                model_.workspace());
     // A cut inside the block's header leaves no complete plane: the frame is its prediction.
     if (cut && s.code() == StatusCode::kTruncated) {
