@@ -69,6 +69,11 @@ def mib(n_bytes):
     return f'{n_bytes / 2**20:.1f} MiB'
 
 
+def step_label(step):
+    """The row label of a wavelet quality-mode point (--step)."""
+    return f'step {step:g}'
+
+
 def table(header, rows):
     """Markdown table lines."""
     lines = ['| ' + ' | '.join(header) + ' |', '|' + '---|' * len(header)]

@@ -8,7 +8,7 @@ import os
 import subprocess
 import tempfile
 
-from bench_common import log, num, table
+from bench_common import log, num, step_label, table
 
 COST_STEPS = [1e-2, 1e-3, 1e-4]
 CUT_STEP = 1e-4
@@ -43,16 +43,17 @@ def cut_kg(animc, seq, ams, cut_bytes, work):
     return r and r['kg_error']
 
 
-def cost_rows(animc, seq, work):
+def cost_rows(animc, seq, plain_points, work):
+    """plain_points: {label: animc bench result} of the same steps without the option."""
     rows, failures = [], 0
     ams = os.path.join(work, 'cost.ams')
     for step in COST_STEPS:
-        log(f'{seq["name"]}: wavelet step {step:g} with and without --progressive-p-frames')
-        plain = encode(animc, seq, ams, ['--step', repr(step)])
+        log(f'{seq["name"]}: wavelet step {step:g} with --progressive-p-frames')
+        plain = plain_points.get(step_label(step), {'error': 'not measured'})
         progressive = encode(animc, seq, ams, ['--step', repr(step), '--progressive-p-frames'])
-        if plain is None or progressive is None:
+        if 'error' in plain or progressive is None:
             rows.append([seq['name'], f'{step:g}', 'failed', '', '', ''])
-            failures += 1
+            failures += progressive is None
             continue
         rows.append([seq['name'], f'{step:g}', num(plain['bpvf'], 3), num(progressive['bpvf'], 3),
                      f'{100 * (progressive["bpvf"] / plain["bpvf"] - 1):+.1f} %', num(progressive['kg_error'], 4)])
@@ -65,40 +66,38 @@ def cut_rows(animc, seq, work):
     files = [('P, one group', ['--progressive-p-frames']),
              (f'P, groups of {GROUP}', ['--progressive-p-frames', '--iframe-interval', str(GROUP)]),
              ('I-frames only', ['--i-frames-only'])]
-    paths, failures = [], 0
+    paths, failures, vertices = [], 0, None
     for i, (label, args) in enumerate(files):
         path = os.path.join(work, f'cut{i}.ams')
         log(f'{seq["name"]}: wavelet step {CUT_STEP:g} {label}')
-        ok = encode(animc, seq, path, ['--step', repr(CUT_STEP)] + args) is not None
-        failures += not ok
-        paths.append(path if ok else None)
+        report = encode(animc, seq, path, ['--step', repr(CUT_STEP)] + args)
+        failures += report is None
+        paths.append(path if report else None)
+        vertices = vertices or (report and report['vertices'])
     rows = []
-    for cut in CUT_BYTES:
+    for cut in CUT_BYTES if vertices else []:
         kgs = [cut_kg(animc, seq, p, cut, work) if p else None for p in paths]
-        bpv = 8.0 * cut / seq_vertices(animc, paths)
+        bpv = 8.0 * cut / vertices
         closed = encode(animc, seq, os.path.join(work, 'bpv.ams'), ['--step', repr(CUT_STEP), '--bpv', f'{bpv:.4f}'])
         failures += sum(k is None for k in kgs) + (closed is None)
         rows.append([str(cut), num(bpv, 2)] + [num(k, 3) for k in kgs] + [num(closed and closed['kg_error'], 3)])
     return rows, [label for label, _a in files], failures
 
 
-def seq_vertices(animc, paths):
-    info = animc_json([animc, 'info', next(p for p in paths if p), '--json'])
-    return info['vertices']
-
-
-def progressive_section(animc, sequences):
-    """Markdown lines; the number of failed measurements."""
+def progressive_section(animc, sequences, step_points):
+    """Markdown lines; the number of failed measurements. step_points: {sequence name:
+    {label: animc bench result}} of the quality-mode points without the option."""
     lines = ['### Progressive P-frames', '',
              '`animc encode --codec wavelet --progressive-p-frames` codes P-frames without the previous '
              'frame\'s bitplane history as context, so that `animc decode --bitplanes K` / `--max-bytes N` '
              'may cut them; a cut frame\'s error then drifts through the later P-frames of its group '
-             '(docs/wavelet.md, "Progressive decoding"). Cost in rate: `animc encode --json` at each step, '
-             'without and with the option (KG is the same: whole frames decode identically).', '']
+             '(docs/wavelet.md, "Progressive decoding"). Cost in rate: the bpvf of the quality-mode points above '
+             '(`animc bench --step S`) against `animc encode --json --step S --progressive-p-frames` (KG is the '
+             'same: whole frames decode identically).', '']
     rows, failures = [], 0
     with tempfile.TemporaryDirectory(prefix='animc-progressive-') as work:
         for seq in sequences:
-            r, f = cost_rows(animc, seq, work)
+            r, f = cost_rows(animc, seq, step_points.get(seq['name'], {}), work)
             rows += r
             failures += f
         lines += table(['sequence', 'step', 'bpvf', 'bpvf, progressive P-frames', 'cost', 'KG %'], rows) + ['']

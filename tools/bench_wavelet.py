@@ -8,7 +8,7 @@ import os
 import subprocess
 import tempfile
 
-from bench_common import failed_cell, log, loglog_interp, num, run_bench, table
+from bench_common import failed_cell, log, loglog_interp, num, run_bench, step_label, table
 from bench_progressive import progressive_section
 from rd_plot import draw_rd_plot
 
@@ -27,7 +27,7 @@ PLOT = 'img/rate_distortion.png'
 def wavelet_points(animc, seq, runs):
     """[(label, mode, result)] of the wavelet codec on one sequence; mode is 'step',
     'target' or 'fixed'."""
-    settings = ([(f'step {v:g}', 'step', ['--step', repr(v)]) for v in STEPS] +
+    settings = ([(step_label(v), 'step', ['--step', repr(v)]) for v in STEPS] +
                 [(f'target KG {v:g} %', 'target', ['--target-kg', repr(v)]) for v in TARGETS_KG] +
                 [(f'{v} bpv', 'fixed', ['--bpv', str(v)]) for v in FIXED_RATES])
     points = []
@@ -124,8 +124,10 @@ def wavelet_section(animc, sequences, runs, docs_dir):
     failures = 0
     series = {}
     static_rows = []
+    step_points = {}  # sequence name -> {label: result} of the quality-mode points
     for seq in sequences:
         points = wavelet_points(animc, seq, runs)
+        step_points[seq['name']] = {label: r for label, mode, r in points if mode == 'step'}
         failures += sum('error' in r for _l, _m, r in points)
         lines += [f'### {seq["name"]}', ''] + rd_table(seq, points) + ['']
         series[seq['name']] = plot_series(seq, points)
@@ -143,5 +145,5 @@ def wavelet_section(animc, sequences, runs, docs_dir):
               'Cow\'s parametric mesh (2 904 vertices; coder of [KADS02]).', '']
     lines += static_table(static_rows) + ['']
     failures += sum(s is None for _n, s in static_rows)
-    progressive_lines, progressive_failures = progressive_section(animc, sequences)
+    progressive_lines, progressive_failures = progressive_section(animc, sequences, step_points)
     return lines + progressive_lines, failures + progressive_failures
