@@ -109,7 +109,8 @@ Result<QList<MeshModel*>> importAms(const std::string& path, const AmsImport& ra
                            std::to_string(frames - 1));
   if (md == nullptr && (first_layer == nullptr || last > range.first_frame))
     return invalidArgument("no document to add the frames to as layers");
-  ANIMC_RETURN_IF_ERROR(source->seek(range.first_frame));
+  // open() leaves the source at frame 0; a seek would read and check its group again.
+  if (range.first_frame > 0) ANIMC_RETURN_IF_ERROR(source->seek(range.first_frame));
   QList<MeshModel*> added;
   auto undo = [&](const Status& s) {
     for (MeshModel* m : added) md->delMesh(m);
@@ -126,8 +127,9 @@ Result<QList<MeshModel*>> importAms(const std::string& path, const AmsImport& ra
     if (layer == nullptr) {
       layer = md->addNewMesh("", frameLabel(frame), false);
       added << layer;
+    } else {
+      layer->setLabel(frameLabel(frame));
     }
-    layer->setLabel(frameLabel(frame));
     fillMesh(*layer, source->topology(), xyz.data());
     layers << layer;
     const int percent = int(100 * (frame - range.first_frame + 1) / (last - range.first_frame + 1));

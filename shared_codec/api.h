@@ -56,8 +56,9 @@ Result<EncodeReport> encodeSequence(FrameSource& source, const EncodeSettings& s
 // decoding only the frame group that holds the frame asked for.
 class AmsSource final : public FrameSource {
  public:
-  // progressive: decode fewer bitplanes or bytes of each frame (wavelet files coded without
-  // temporal prediction only; asking it of any other file is an error).
+  // Starts at frame 0. progressive: decode fewer bitplanes or bytes of each frame (wavelet
+  // files whose detail frames a decoder may cut, WaveletOptions::cuttable(); asking it of any
+  // other file is an error).
   static Result<std::unique_ptr<AmsSource>> open(const std::string& path,
                                                  const DecoderLimits& limits = {},
                                                  const WaveletDecodeControl& progressive = {});
