@@ -131,16 +131,10 @@ class AffineOctreeDecoder final : public FrameDecoder {
       return corrupt("unknown frame type " + std::to_string(type));
     }
     if (intra) *intra = type == kIntraFrame;
-    return output(xyz);
+    return decodedFrameToFloats(state_.current, xyz);
   }
 
  private:
-  Status output(std::vector<float>& xyz) const {
-    if (toFloats(state_.current, xyz)) return Status();
-    for (size_t i = 0;; ++i)
-      if (!(std::fabs(state_.current[i]) <= 1e30))  // false for NaN and infinities too
-        return corrupt("decoded vertex " + std::to_string(i / 3) + " is out of range");
-  }
 
   Status decodeInter(ByteReader payload) {
     const RootCube cube = state_.prepare();

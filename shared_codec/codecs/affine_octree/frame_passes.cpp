@@ -4,6 +4,8 @@
 // xyz-interleaved frames: blocks of four vertices, twelve doubles, three Quads whose lanes
 // cycle through x, y, z); both compute each value with the same IEEE operations.
 #include <algorithm>
+#include <cmath>
+#include <string>
 
 #include "codecs/affine_octree/octree_shared.h"
 #include "codecs/affine_octree/simd_math.h"
@@ -197,12 +199,18 @@ void normalize(const RootCube& cube, const std::vector<double>& xyz, std::vector
   normalizePortable(cube, xyz.data(), xyz.size(), out.data());
 }
 
-bool toFloats(const std::vector<double>& frame, std::vector<float>& out) {
+Status decodedFrameToFloats(const std::vector<double>& frame, std::vector<float>& out) {
   out.resize(frame.size());
 #if ANIMC_AVX2_PATH
-  if (cpuHasAvx2()) return toFloatsAvx2(frame.data(), frame.size(), out.data());
+  const bool in_range = cpuHasAvx2() ? toFloatsAvx2(frame.data(), frame.size(), out.data())
+                                     : toFloatsPortable(frame.data(), frame.size(), out.data());
+#else
+  const bool in_range = toFloatsPortable(frame.data(), frame.size(), out.data());
 #endif
-  return toFloatsPortable(frame.data(), frame.size(), out.data());
+  if (in_range) return Status();
+  for (size_t i = 0;; ++i)
+    if (!(std::fabs(frame[i]) <= kMaxCoordinate))  // false for NaN and infinities too
+      return corrupt("decoded vertex " + std::to_string(i / 3) + " is out of range");
 }
 
 RootCube denormalize(const RootCube& cube, const std::vector<double>& unit, std::vector<double>& out) {

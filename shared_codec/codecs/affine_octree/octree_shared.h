@@ -4,6 +4,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/status.h"
+
 namespace animc {
 
 // The root cube of the paper: tight bounding cube of the reference frame, side S.
@@ -18,9 +20,10 @@ void normalize(const RootCube& cube, const std::vector<double>& xyz, std::vector
 // out = cube.min + cube.side · unit, returning the bounding cube of out (what boundingCube(out)
 // returns) found in the same pass.
 RootCube denormalize(const RootCube& cube, const std::vector<double>& unit, std::vector<double>& out);
-// The frame as floats; false if a coordinate is NaN, infinite or beyond ±1e30, which no valid
-// stream decodes to.
-bool toFloats(const std::vector<double>& frame, std::vector<float>& out);
+// A decoded frame as floats, what both codecs' decoders return; kCorrupt naming the first
+// vertex with a coordinate that is NaN, infinite or beyond ±1e30, which no valid stream
+// decodes to.
+Status decodedFrameToFloats(const std::vector<double>& frame, std::vector<float>& out);
 
 // A cell: its depth and the range [begin, end) of the partition's vertex order holding its
 // vertices. (Its corner and side follow from the path to it; nothing needs them.)

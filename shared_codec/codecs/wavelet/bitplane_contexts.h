@@ -18,11 +18,6 @@ constexpr int kPlaneSlots = 32;
 // 0 = was zero, 1 = was below 2^p, 2 = became significant at p, 3 = was above.
 constexpr int kTemporalContexts = 4;
 
-inline int temporalContext(uint8_t previous_bits, int plane) {
-  if (previous_bits == 0) return 0;
-  return previous_bits <= plane ? 1 : previous_bits == plane + 1 ? 2 : 3;
-}
-
 inline int bitLength(uint32_t v) { return v == 0 ? 0 : 32 - __builtin_clz(v); }
 
 // Every model of one frame (reset at the start of each frame, so a frame decodes on its
@@ -226,7 +221,8 @@ struct PlaneWalk {
   const uint32_t* const magnitude;
   const uint8_t *const input_negative, *const vertex_bits, *const block_bits;
 
-  // temporalContext() without branches: the three comparisons add up to the same value.
+  // The temporal context of a coefficient (or vertex, block) whose last-frame bit length was
+  // `previous`, without branches: each comparison adds one.
   int temporal(uint8_t previous) const { return (previous != 0) + (previous > p) + (previous > p + 1); }
   int magnitudeBit(size_t j) const { return Io::kEncodes ? int((magnitude[j] >> p) & 1) : 0; }
   int newlySignificant(const uint8_t* bits, size_t i) const { return Io::kEncodes ? bits[i] == p + 1 : 0; }

@@ -60,14 +60,14 @@ class WaveletFrameModel {
   BitplaneLayout layout() const { return BitplaneLayout{classes_.data(), parents_.data(), classes_.size()}; }
   size_t coefficientCount() const { return 3 * classes_.size(); }
   // Temporal contexts of a frame: the previous frame's decoded residual for predicted
-  // frames; none for I-frames, which must decode on their own, nor for P-frames a decoder
-  // may cut (its history would then differ from the encoder's).
+  // frames; none for I-frames, which must decode on their own, nor in files whose frames a
+  // decoder may cut (its history would then differ from the encoder's).
   const BitplaneHistory* contextFor(const Prediction& prediction) const {
-    return prediction.isIntra() || options_.progressive_p_frames ? nullptr : &context_;
+    return prediction.isIntra() || options_.cuttable() ? nullptr : &context_;
   }
   // Where the coder leaves this frame's history; accept() makes it the next context. None
-  // when no frame reads it (progressive P-frames), which spares the coder that pass.
-  BitplaneHistory* nextHistory() { return options_.progressive_p_frames ? nullptr : &next_context_; }
+  // when no frame reads it (cuttable files), which spares the coder that pass.
+  BitplaneHistory* nextHistory() { return options_.cuttable() ? nullptr : &next_context_; }
   BitplaneWorkspace* workspace() const { return workspace_.get(); }
   double step() const { return step_; }
 

@@ -13,12 +13,10 @@ namespace animc {
 struct LocalFrame {
   Eigen::Vector3d normal{0, 0, 1}, tangent{1, 0, 0}, bitangent{0, 1, 0};
 
-  // Detail d in world coordinates -> (normal, tangent, bitangent) components, and back.
+  // Detail d in world coordinates -> (normal, tangent, bitangent) components (back:
+  // toWorld() in wavelet_transform.cpp).
   Eigen::Vector3d toLocal(const Eigen::Vector3d& d) const {
     return Eigen::Vector3d(normal.dot(d), tangent.dot(d), bitangent.dot(d));
-  }
-  Eigen::Vector3d toWorld(const Eigen::Vector3d& c) const {
-    return c[0] * normal + c[1] * tangent + c[2] * bitangent;
   }
 };
 

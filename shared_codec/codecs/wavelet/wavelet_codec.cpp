@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "codecs/affine_octree/iframe_coder.h"
+#include "codecs/affine_octree/octree_shared.h"
 #include "codecs/wavelet/bitplane_coder.h"
 #include "codecs/wavelet/frame_model.h"
 #include "codecs/wavelet/rate_control.h"
@@ -128,7 +129,7 @@ class WaveletDecoder final : public FrameDecoder {
       return corrupt("unknown wavelet frame type " + std::to_string(type));
     }
     if (intra) *intra = type == uint8_t(WaveletFrameType::kParametric);
-    return output(xyz);
+    return decodedFrameToFloats(model_.reconstruction(), xyz);
   }
 
  private:
@@ -148,17 +149,6 @@ class WaveletDecoder final : public FrameDecoder {
     }
     ANIMC_RETURN_IF_ERROR(s);
     model_.accept(decoded_, prediction);
-    return Status();
-  }
-
-  Status output(std::vector<float>& xyz) const {
-    const std::vector<double>& r = model_.reconstruction();
-    xyz.resize(r.size());
-    for (size_t i = 0; i < r.size(); ++i) {
-      if (!std::isfinite(r[i]) || std::fabs(r[i]) > 1e30)
-        return corrupt("decoded vertex " + std::to_string(i / 3) + " is out of range");
-      xyz[i] = float(r[i]);
-    }
     return Status();
   }
 
