@@ -66,18 +66,17 @@ def cut_rows(animc, seq, work):
     files = [('P, one group', ['--progressive-p-frames']),
              (f'P, groups of {GROUP}', ['--progressive-p-frames', '--iframe-interval', str(GROUP)]),
              ('I-frames only', ['--i-frames-only'])]
-    paths, failures, vertices = [], 0, None
+    paths, failures = [], 0
     for i, (label, args) in enumerate(files):
         path = os.path.join(work, f'cut{i}.ams')
         log(f'{seq["name"]}: wavelet step {CUT_STEP:g} {label}')
-        report = encode(animc, seq, path, ['--step', repr(CUT_STEP)] + args)
-        failures += report is None
-        paths.append(path if report else None)
-        vertices = vertices or (report and report['vertices'])
+        ok = encode(animc, seq, path, ['--step', repr(CUT_STEP)] + args) is not None
+        failures += not ok
+        paths.append(path if ok else None)
     rows = []
-    for cut in CUT_BYTES if vertices else []:
+    for cut in CUT_BYTES:
         kgs = [cut_kg(animc, seq, p, cut, work) if p else None for p in paths]
-        bpv = 8.0 * cut / vertices
+        bpv = 8.0 * cut / seq['vertices']
         closed = encode(animc, seq, os.path.join(work, 'bpv.ams'), ['--step', repr(CUT_STEP), '--bpv', f'{bpv:.4f}'])
         failures += sum(k is None for k in kgs) + (closed is None)
         rows.append([str(cut), num(bpv, 2)] + [num(k, 3) for k in kgs] + [num(closed and closed['kg_error'], 3)])

@@ -17,8 +17,9 @@ inline std::string tempPath(const std::string& name) {
   return ::testing::TempDir() + "/animc_" + std::to_string(getpid()) + "_" + name;
 }
 
-inline std::vector<std::vector<float>> decodeAll(const std::string& path) {
-  auto ams = AmsSource::open(path);
+// Every frame of the file; progressive: what to leave out of each (wavelet files).
+inline std::vector<std::vector<float>> decodeAll(const std::string& path, const WaveletDecodeControl& progressive = {}) {
+  auto ams = AmsSource::open(path, DecoderLimits(), progressive);
   EXPECT_TRUE(ams.ok()) << ams.status().message();
   std::vector<std::vector<float>> frames;
   if (!ams.ok()) return frames;

@@ -62,20 +62,6 @@ Encoded encodeTo(MemorySequence& seq, const EncodeSettings& settings, const std:
   return e;
 }
 
-std::vector<std::vector<float>> decodeProgressive(const std::string& path, const WaveletDecodeControl& c) {
-  auto ams = AmsSource::open(path, DecoderLimits(), c);
-  EXPECT_TRUE(ams.ok()) << ams.status().message();
-  std::vector<std::vector<float>> frames;
-  std::vector<float> xyz;
-  while (ams.ok()) {
-    auto more = ams.value()->next(xyz);
-    EXPECT_TRUE(more.ok()) << more.status().message();
-    if (!more.ok() || !more.value()) break;
-    frames.push_back(xyz);
-  }
-  return frames;
-}
-
 // Every shared sequence, quality mode and fixed rate: the file decodes to exactly what the
 // encoder predicted (closed loop), the error is small in quality mode and each frame keeps
 // to its budget in fixed-rate mode.
@@ -143,7 +129,7 @@ TEST(WaveletSequence, ErrorFallsAsMoreOfTheStreamIsDecoded) {
     for (int planes : {2, 4, 6, 8, 10, 12, 14}) {
       WaveletDecodeControl c;
       c.max_bitplanes = planes;
-      const auto decoded = decodeProgressive(path, c);
+      const auto decoded = decodeAll(path, c);
       ASSERT_EQ(decoded.size(), seq.frames().size());
       const double kg = kgError(seq, decoded);
       EXPECT_LT(kg, previous_kg) << name << ", " << planes << " bitplanes";
@@ -154,7 +140,7 @@ TEST(WaveletSequence, ErrorFallsAsMoreOfTheStreamIsDecoded) {
     for (uint64_t bytes : {40, 100, 300, 1000, 3000}) {
       WaveletDecodeControl c;
       c.max_payload_bytes = bytes;
-      const double kg = kgError(seq, decodeProgressive(path, c));
+      const double kg = kgError(seq, decodeAll(path, c));
       EXPECT_LE(kg, previous_kg) << name << ", " << bytes << " bytes per frame";
       EXPECT_GE(kg, full_kg) << name << ", " << bytes << " bytes per frame";
       previous_kg = kg;
@@ -175,7 +161,7 @@ TEST(WaveletSequence, ATruncatedStreamDecodesToACoarserValidSequence) {
   for (const WaveletDecodeControl c : {WaveletDecodeControl{1, 0}, WaveletDecodeControl{0, 2},
                                         WaveletDecodeControl{0, 60}, WaveletDecodeControl{3, 200}}) {
     SCOPED_TRACE("planes " + std::to_string(c.max_bitplanes) + ", bytes " + std::to_string(c.max_payload_bytes));
-    const auto decoded = decodeProgressive(path, c);
+    const auto decoded = decodeAll(path, c);
     ASSERT_EQ(decoded.size(), seq.frames().size());
     EXPECT_TRUE(allFinite(decoded));
     EXPECT_GT(kgError(seq, decoded), full_kg);
@@ -219,7 +205,7 @@ TEST(WaveletSequence, ProgressivePFramesDecodeCutAndDriftStopsAtParametricFrames
     SCOPED_TRACE(std::to_string(planes) + " bitplanes");
     WaveletDecodeControl c;
     c.max_bitplanes = planes;
-    const auto decoded = decodeProgressive(path, c);
+    const auto decoded = decodeAll(path, c);
     ASSERT_EQ(decoded.size(), 40u);
     EXPECT_TRUE(allFinite(decoded));
     const double kg = kgError(seq, decoded);
@@ -229,7 +215,7 @@ TEST(WaveletSequence, ProgressivePFramesDecodeCutAndDriftStopsAtParametricFrames
     for (size_t f : {10, 20, 30}) EXPECT_EQ(decoded[f], full[f]) << "parametric frame " << f;
     EXPECT_NE(decoded[19], full[19]) << "the P-frame before a parametric frame was not cut";
   }
-  const auto cut_bytes = decodeProgressive(path, WaveletDecodeControl{0, 60});
+  const auto cut_bytes = decodeAll(path, WaveletDecodeControl{0, 60});
   ASSERT_EQ(cut_bytes.size(), 40u);
   EXPECT_TRUE(allFinite(cut_bytes));
   EXPECT_GT(kgError(seq, cut_bytes), full_kg);
