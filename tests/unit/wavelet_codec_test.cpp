@@ -6,7 +6,6 @@
 #include <random>
 
 #include "codecs/wavelet/wavelet_codec.h"
-#include "metrics/sequence_metrics.h"
 #include "test_sequences.h"
 #include "wavelet_test_support.h"
 
@@ -14,6 +13,7 @@ namespace animc {
 namespace {
 
 using testing_support::gridSequence;
+using testing_support::kgError;
 using testing_support::rmsError;
 using testing_support::sharedSequence;
 
@@ -50,12 +50,6 @@ std::vector<std::vector<float>> decodeAll(const MemorySequence& seq, const Wavel
     frames.push_back(std::move(xyz));
   }
   return frames;
-}
-
-double kgError(const MemorySequence& seq, const std::vector<std::vector<float>>& decoded) {
-  MetricsAccumulator m(seq.topology().vertex_count);
-  for (size_t f = 0; f < decoded.size(); ++f) m.addFrame(seq.frames()[f].data(), decoded[f].data());
-  return m.finish().kg_error;
 }
 
 size_t totalBytes(const Coded& c) {

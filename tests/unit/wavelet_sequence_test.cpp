@@ -16,6 +16,7 @@ namespace animc {
 namespace {
 
 using testing_support::decodeAll;
+using testing_support::kgError;
 using testing_support::sharedSequence;
 using testing_support::tempPath;
 
@@ -28,14 +29,6 @@ EncodeSettings waveletSettings(double step, double bits_per_vertex, bool p_frame
   s.wavelet.bits_per_vertex = bits_per_vertex;
   s.wavelet.temporal_prediction = p_frames;
   return s;
-}
-
-double kgError(const MemorySequence& original, const std::vector<std::vector<float>>& decoded) {
-  EXPECT_EQ(decoded.size(), original.frames().size());
-  MetricsAccumulator m(original.topology().vertex_count);
-  for (size_t f = 0; f < decoded.size() && f < original.frames().size(); ++f)
-    m.addFrame(original.frames()[f].data(), decoded[f].data());
-  return m.finish().kg_error;
 }
 
 bool allFinite(const std::vector<std::vector<float>>& frames) {
