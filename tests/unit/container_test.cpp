@@ -2,7 +2,6 @@
 // small valid file must be refused with a Status (never a crash, a hang or a silent success),
 // with messages that say what is wrong, and the DecoderLimits must be honoured.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cstdio>
 #include <fstream>
@@ -11,6 +10,7 @@
 #include <vector>
 
 #include "api.h"
+#include "codec_test_support.h"
 #include "container/crc32.h"
 #include "io/byte_writer.h"
 #include "test_sequences.h"
@@ -20,10 +20,7 @@ namespace {
 
 using Bytes = std::vector<uint8_t>;
 using testing_support::gridSequence;
-
-std::string tempPath(const std::string& name) {
-  return ::testing::TempDir() + "/animc_container_" + std::to_string(getpid()) + "_" + name;
-}
+using testing_support::tempPath;
 
 Bytes readBytes(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
