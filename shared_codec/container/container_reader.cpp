@@ -1,6 +1,5 @@
 #include "container/container_reader.h"
 
-#include <lzma.h>
 
 #include <algorithm>
 #include <cmath>
@@ -17,11 +16,6 @@ constexpr uint64_t kMaxHeadBytes = 1 << 16;
 constexpr uint64_t kGroupFieldBytes = 12;  // First_Frame u64 + Frame_Count u32
 
 std::string at(uint64_t offset) { return " at byte " + std::to_string(offset); }
-
-// The CRC-32 of container/crc32.h (same polynomial, same pre- and post-inversion), computed by
-// liblzma, which the library links anyway: it processes several bytes per step where
-// crc32Update() takes one, and every frame group is checked in full before decoding.
-uint32_t groupCrc32(uint32_t crc, const uint8_t* data, size_t size) { return lzma_crc32(data, size, crc); }
 
 }  // namespace
 
@@ -211,7 +205,7 @@ Status ContainerReader::beginGroup(size_t g) {
   for (uint64_t pos = frames_begin; pos < frames_end;) {
     const size_t n = size_t(std::min<uint64_t>(block.size(), frames_end - pos));
     ANIMC_RETURN_IF_ERROR(readAt(pos, block.data(), n, "GRUP"));
-    crc = groupCrc32(crc, block.data(), n);
+    crc = crc32Update(crc, block.data(), n);
     pos += n;
   }
   uint8_t stored[4];
