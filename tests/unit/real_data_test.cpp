@@ -2,13 +2,13 @@
 #include <gtest/gtest.h>
 
 #include "codec_test_support.h"
-#include "core/memory_sequence.h"
-#include "seqio/sequence_io.h"
+#include "test_sequences.h"
 
 namespace animc {
 namespace {
 
 using testing_support::decodeAll;
+using testing_support::sharedSequence;
 using testing_support::tempPath;
 using testing_support::worstRelativeError;
 
@@ -21,20 +21,17 @@ struct RealCase {
 class RealDataRoundTrip : public ::testing::TestWithParam<RealCase> {};
 
 TEST_P(RealDataRoundTrip, EveryDecodedVertexIsWithinMaxError) {
-  const std::string dir = std::string(ANIMC_SHARED_DATA) + "/" + GetParam().sequence + "/";
-  auto source = openSequence(dir + GetParam().sequence + ".pc2.xz", dir + GetParam().sequence + ".ply");
-  ASSERT_TRUE(source.ok()) << source.status().message();
-  auto seq = readAll(*source.value());
-  ASSERT_TRUE(seq.ok()) << seq.status().message();
+  MemorySequence seq = sharedSequence(GetParam().sequence, 0);
+  ASSERT_FALSE(HasFailure());  // the whole sequence was read
   EncodeSettings settings;
   settings.octree.profile = GetParam().profile;
   settings.octree.max_error = GetParam().max_error;
   const std::string path = tempPath(std::string(GetParam().sequence) + ".ams");
-  auto report = encodeSequence(seq.value(), settings, path);
+  auto report = encodeSequence(seq, settings, path);
   ASSERT_TRUE(report.ok()) << report.status().message();
   const auto decoded = decodeAll(path);
-  ASSERT_EQ(decoded.size(), seq.value().frames().size());
-  EXPECT_LE(worstRelativeError(seq.value().frames(), decoded), GetParam().max_error);
+  ASSERT_EQ(decoded.size(), seq.frames().size());
+  EXPECT_LE(worstRelativeError(seq.frames(), decoded), GetParam().max_error);
   // Far smaller than the raw floats, or something is badly wrong.
   EXPECT_LT(report.value().file_bytes * 5, 12ull * report.value().vertices * report.value().frames);
   std::remove(path.c_str());

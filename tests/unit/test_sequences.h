@@ -1,11 +1,14 @@
-// Small synthetic animations for the unit tests: a bumpy grid that deforms smoothly, moves
-// rigidly, or both. Real data comes from ANIMC_SHARED_DATA in the tests that need it.
+// Animations for the unit tests: a small synthetic bumpy grid that deforms smoothly, moves
+// rigidly, or both; and the real sequences of ../shared/data (ANIMC_SHARED_DATA).
 #pragma once
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <string>
 #include <vector>
 
 #include "core/memory_sequence.h"
+#include "seqio/sequence_io.h"
 
 namespace animc::testing_support {
 
@@ -44,6 +47,23 @@ inline MemorySequence gridSequence(int nx, int ny, int frames, double deform, do
   std::vector<std::vector<float>> all;
   for (int f = 0; f < frames; ++f) all.push_back(gridFrame(nx, ny, f, deform, rigid));
   return MemorySequence(gridTopology(nx, ny), std::move(all), 25.0, "grid");
+}
+
+// The first `frames` frames of ../shared/data/<name> (all of them when frames <= 0).
+inline MemorySequence sharedSequence(const std::string& name, int frames) {
+  const std::string dir = std::string(ANIMC_SHARED_DATA) + "/" + name + "/";
+  auto source = openSequence(dir + name + ".pc2.xz", dir + name + ".ply");
+  EXPECT_TRUE(source.ok()) << source.status().message();
+  if (!source.ok()) return MemorySequence(Topology(), {});
+  std::vector<std::vector<float>> all;
+  std::vector<float> xyz;
+  while (frames <= 0 || int(all.size()) < frames) {
+    auto more = source.value()->next(xyz);
+    EXPECT_TRUE(more.ok()) << more.status().message();
+    if (!more.ok() || !more.value()) break;
+    all.push_back(xyz);
+  }
+  return MemorySequence(source.value()->topology(), std::move(all), 25.0, name);
 }
 
 }  // namespace animc::testing_support

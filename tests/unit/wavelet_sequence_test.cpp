@@ -10,6 +10,7 @@
 
 #include "codec_test_support.h"
 #include "metrics/sequence_metrics.h"
+#include "test_sequences.h"
 #include "wavelet_test_support.h"
 
 namespace animc {

@@ -1,33 +1,14 @@
-// Helpers of the wavelet codec tests: the first frames of a shared sequence, frame errors.
+// Helpers of the wavelet codec tests: frame and sequence errors.
 #pragma once
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <string>
 #include <vector>
 
 #include "core/memory_sequence.h"
 #include "metrics/sequence_metrics.h"
-#include "seqio/sequence_io.h"
 
 namespace animc::testing_support {
-
-// The first `frames` frames of ../shared/data/<name> (all of them when frames <= 0).
-inline MemorySequence sharedSequence(const std::string& name, int frames) {
-  const std::string dir = std::string(ANIMC_SHARED_DATA) + "/" + name + "/";
-  auto source = openSequence(dir + name + ".pc2.xz", dir + name + ".ply");
-  EXPECT_TRUE(source.ok()) << source.status().message();
-  if (!source.ok()) return MemorySequence(Topology(), {});
-  std::vector<std::vector<float>> all;
-  std::vector<float> xyz;
-  while (frames <= 0 || int(all.size()) < frames) {
-    auto more = source.value()->next(xyz);
-    EXPECT_TRUE(more.ok()) << more.status().message();
-    if (!more.ok() || !more.value()) break;
-    all.push_back(xyz);
-  }
-  return MemorySequence(source.value()->topology(), std::move(all), 25.0, name);
-}
 
 inline std::vector<double> toDouble(const std::vector<float>& v) { return std::vector<double>(v.begin(), v.end()); }
 
