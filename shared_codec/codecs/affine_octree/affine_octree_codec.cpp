@@ -31,13 +31,13 @@ struct LoopState {
   std::vector<double> current, before;
   bool has_current = false, has_before = false;
   std::vector<double> u, u0, recon_unit;
-  // The bounding cube of `current` when advance() found it on the way, saving prepare() a pass.
+  // The bounding cube of `current`, found by advance() on the way (so known exactly when
+  // has_before is), saving prepare() a pass.
   RootCube current_cube;
-  bool current_cube_known = false;
 
   // Normalises the references into the root cube of `current`.
   RootCube prepare() {
-    const RootCube cube = current_cube_known ? current_cube : boundingCube(current);
+    const RootCube cube = has_before ? current_cube : boundingCube(current);
     normalize(cube, current, u);
     if (has_before) normalize(cube, before, u0);
     return cube;
@@ -46,12 +46,10 @@ struct LoopState {
     before.swap(current);
     has_before = true;
     current_cube = denormalize(cube, recon_unit, current);
-    current_cube_known = true;
   }
   void restart() {
     has_current = true;
     has_before = false;
-    current_cube_known = false;
   }
 };
 

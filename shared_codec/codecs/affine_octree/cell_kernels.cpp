@@ -19,9 +19,9 @@ CellFrame frameOf(const double sum[3], const double lo[3], const double hi[3], s
 // ---- Portable versions: x and y through a Pair, z alone. ----
 
 CellFrame gatherPointsPortable(const double* frame, const uint32_t* idx, size_t n, double* out) {
-  const double* first = &frame[3 * size_t(idx[0])];
-  Pair sum_xy = splat(0), lo_xy = loadPair(first), hi_xy = lo_xy;
-  double sum_z = 0, lo_z = first[2], hi_z = first[2];
+  PointBox box(&frame[3 * size_t(idx[0])]);
+  Pair sum_xy = splat(0);
+  double sum_z = 0;
   for (size_t i = 0; i < n; ++i) {
     const double* p = &frame[3 * size_t(idx[i])];
     const Pair xy = loadPair(p);
@@ -30,13 +30,10 @@ CellFrame gatherPointsPortable(const double* frame, const uint32_t* idx, size_t 
     storePair(&out[kPointStride * i + 2], Pair{z, 0.0});
     sum_xy += xy;
     sum_z += z;
-    lo_xy = minPair(lo_xy, xy);
-    hi_xy = maxPair(hi_xy, xy);
-    lo_z = std::min(lo_z, z);
-    hi_z = std::max(hi_z, z);
+    box.add(xy, z);
   }
   const double sum[3] = {sum_xy[0], sum_xy[1], sum_z};
-  const double lo[3] = {lo_xy[0], lo_xy[1], lo_z}, hi[3] = {hi_xy[0], hi_xy[1], hi_z};
+  const double lo[3] = {box.lo_xy[0], box.lo_xy[1], box.lo_z}, hi[3] = {box.hi_xy[0], box.hi_xy[1], box.hi_z};
   return frameOf(sum, lo, hi, n);
 }
 
@@ -114,15 +111,13 @@ void predictPointsPortable(const double* u, size_t n, const double c[3], const C
 // ---- AVX2 versions: a whole point per Quad (lane 3 unused). ----
 
 ANIMC_TARGET_AVX2 Quad loadPoint3(const double* p) { return Quad{p[0], p[1], p[2], 0.0}; }
-ANIMC_TARGET_AVX2 Quad loadPoint(const double* p) { return *reinterpret_cast<const UnalignedQuad*>(p); }
-ANIMC_TARGET_AVX2 void storePoint(double* p, Quad v) { *reinterpret_cast<UnalignedQuad*>(p) = v; }
 ANIMC_TARGET_AVX2 Quad splat4(double x) { return Quad{x, x, x, x}; }
 
 ANIMC_TARGET_AVX2 CellFrame gatherPointsAvx2(const double* frame, const uint32_t* idx, size_t n, double* out) {
   Quad sum = splat4(0), lo = loadPoint3(&frame[3 * size_t(idx[0])]), hi = lo;
   for (size_t i = 0; i < n; ++i) {
     const Quad p = loadPoint3(&frame[3 * size_t(idx[i])]);
-    storePoint(&out[kPointStride * i], p);
+    storeQuad(&out[kPointStride * i], p);
     sum += p;
     lo = p < lo ? p : lo;  // std::min(lo, p) lane by lane
     hi = hi < p ? p : hi;  // std::max(hi, p)
@@ -132,7 +127,7 @@ ANIMC_TARGET_AVX2 CellFrame gatherPointsAvx2(const double* frame, const uint32_t
 }
 
 ANIMC_TARGET_AVX2 void copyPointsAvx2(const double* frame, const uint32_t* idx, size_t n, double* out) {
-  for (size_t i = 0; i < n; ++i) storePoint(&out[kPointStride * i], loadPoint3(&frame[3 * size_t(idx[i])]));
+  for (size_t i = 0; i < n; ++i) storeQuad(&out[kPointStride * i], loadPoint3(&frame[3 * size_t(idx[i])]));
 }
 
 // One pass: the 21 sums fit in seven Quads. Σ d·dᵀ comes from d·d (the diagonal) and d·d'
@@ -142,9 +137,9 @@ ANIMC_TARGET_AVX2 FitSums fitSumsAvx2(const double* u, const double* q, size_t n
   const Quad c4 = {c[0], c[1], c[2], 0.0};
   Quad m = splat4(0), d = m, dd = m, dd1 = m, md = m, md1 = m, md2 = m;
   for (size_t i = 0; i < n; ++i) {
-    const Quad ui = loadPoint(&u[kPointStride * i]);
+    const Quad ui = loadQuad(&u[kPointStride * i]);
     const Quad di = ui - c4;
-    const Quad mi = loadPoint(&q[kPointStride * i]) - ui;
+    const Quad mi = loadQuad(&q[kPointStride * i]) - ui;
     const Quad di1 = __builtin_shufflevector(di, di, 1, 2, 0, 3);
     const Quad di2 = __builtin_shufflevector(di, di, 2, 0, 1, 3);
     m += mi;
@@ -167,7 +162,7 @@ ANIMC_TARGET_AVX2 void predictPointsAvx2(const double* u, size_t n, const double
   const Quad l0 = {a.L[0], a.L[3], a.L[6], 0.0}, l1 = {a.L[1], a.L[4], a.L[7], 0.0},
              l2 = {a.L[2], a.L[5], a.L[8], 0.0};
   for (size_t i = 0; i < n; ++i) {
-    const Quad ui = loadPoint(&u[kPointStride * i]);
+    const Quad ui = loadQuad(&u[kPointStride * i]);
     const Quad di = ui - c4;
     const Quad p = (ui + t4) + ((l0 * splat4(di[0]) + l1 * splat4(di[1])) + l2 * splat4(di[2]));
     double* out = &recon[3 * size_t(idx[i])];  // three lanes only: the next vertex follows

@@ -27,17 +27,9 @@ RootCube cubeOfBox(const double min[3], const double max[3]) {
 }
 
 // Running bounding box of points, x and y in one Pair.
-struct BoxBuilder {
-  Pair lo_xy, hi_xy;
-  double lo_z, hi_z;
-  explicit BoxBuilder(const double* first)
-      : lo_xy(loadPair(first)), hi_xy(lo_xy), lo_z(first[2]), hi_z(first[2]) {}
-  void add(Pair xy, double z) {
-    lo_xy = minPair(lo_xy, xy);
-    hi_xy = maxPair(hi_xy, xy);
-    lo_z = std::min(lo_z, z);
-    hi_z = std::max(hi_z, z);
-  }
+struct BoxBuilder : PointBox {
+  using PointBox::add;
+  using PointBox::PointBox;
   void add(const double* p) { add(loadPair(p), p[2]); }
   RootCube cube() const {
     const double min[3] = {lo_xy[0], lo_xy[1], lo_z}, max[3] = {hi_xy[0], hi_xy[1], hi_z};
@@ -105,9 +97,6 @@ RootCube denormalizePortable(const RootCube& cube, const double* unit, size_t si
 #if ANIMC_AVX2_PATH
 constexpr size_t kBlock = 12;  // four vertices
 
-ANIMC_TARGET_AVX2 Quad load4(const double* p) { return *reinterpret_cast<const UnalignedQuad*>(p); }
-ANIMC_TARGET_AVX2 void store4(double* p, Quad v) { *reinterpret_cast<UnalignedQuad*>(p) = v; }
-
 // The three Quads of a block repeat a per-axis value v as (x y z x) (y z x y) (z x y z).
 struct BlockPattern {
   Quad q[3];
@@ -122,7 +111,7 @@ ANIMC_TARGET_AVX2 bool toFloatsAvx2(const double* frame, size_t size, float* out
   QuadMask in_range = {-1, -1, -1, -1};
   size_t i = 0;
   for (; i + 4 <= size; i += 4) {
-    const Quad x = load4(&frame[i]);
+    const Quad x = loadQuad(&frame[i]);
     in_range &= (x >= -kMaxCoordinate) & (x <= kMaxCoordinate);
     *reinterpret_cast<FloatQuad*>(&out[i]) = __builtin_convertvector(x, FloatQuad);
   }
@@ -140,7 +129,7 @@ ANIMC_TARGET_AVX2 void normalizeAvx2(const RootCube& cube, const double* xyz, si
   const BlockPattern min(cube.min);
   size_t i = 0;
   for (; i + kBlock <= size; i += kBlock)
-    for (int k = 0; k < 3; ++k) store4(&out[i + 4 * k], (load4(&xyz[i + 4 * k]) - min.q[k]) * scale);
+    for (int k = 0; k < 3; ++k) storeQuad(&out[i + 4 * k], (loadQuad(&xyz[i + 4 * k]) - min.q[k]) * scale);
   normalizePortable(cube, xyz + i, size - i, out + i);
 }
 
@@ -160,14 +149,14 @@ ANIMC_TARGET_AVX2 RootCube denormalizeAvx2(const RootCube& cube, const double* u
   const Quad side = {cube.side, cube.side, cube.side, cube.side};
   Quad lo[3], hi[3];
   for (int k = 0; k < 3; ++k) {
-    lo[k] = hi[k] = min.q[k] + side * load4(&unit[4 * k]);
-    store4(&out[4 * k], lo[k]);
+    lo[k] = hi[k] = min.q[k] + side * loadQuad(&unit[4 * k]);
+    storeQuad(&out[4 * k], lo[k]);
   }
   size_t i = kBlock;
   for (; i + kBlock <= size; i += kBlock)
     for (int k = 0; k < 3; ++k) {
-      const Quad p = min.q[k] + side * load4(&unit[i + 4 * k]);
-      store4(&out[i + 4 * k], p);
+      const Quad p = min.q[k] + side * loadQuad(&unit[i + 4 * k]);
+      storeQuad(&out[i + 4 * k], p);
       // Min and max are exact and, without NaN or -0.0 (neither comes out of a valid stream:
       // decoded frames are min + side · unit with min never -0.0), indifferent to the order
       // they see values in, so each lane keeps its own and they fold per axis at the end.

@@ -82,7 +82,7 @@ ANIMC_TARGET_AVX2 void mortonKeysAvx2(const double* unit, size_t n, bool deep, u
   for (; v + 4 <= n; v += 4) {
     uint32_t g[12];
     for (int k = 0; k < 3; ++k) {
-      const Quad scaled = *reinterpret_cast<const UnalignedQuad*>(&unit[3 * v + 4 * k]) * scale;
+      const Quad scaled = loadQuad(&unit[3 * v + 4 * k]) * scale;
       const Quad above_zero = zero < scaled ? scaled : zero;  // NaN too
       const Quad clamped = above_zero < top ? above_zero : top;
       const Int4 grid = __builtin_convertvector(clamped, Int4);  // truncation = floor here
@@ -96,28 +96,28 @@ ANIMC_TARGET_AVX2 void mortonKeysAvx2(const double* unit, size_t n, bool deep, u
 
 }  // namespace
 
-Cell OctreePartition::reset(const std::vector<double>& unit_xyz, int levels) {
-  const size_t n = unit_xyz.size() / 3;
+Cell OctreePartition::reset(const std::vector<double>& unit_xyz, int levels, bool restartable) {
+  const uint32_t n = uint32_t(unit_xyz.size() / 3);
   const bool deep = levels > kSpreadBits;
-  vertex_key_.resize(n);
-#if ANIMC_AVX2_PATH
-  if (cpuHasAvx2()) {
-    mortonKeysAvx2(unit_xyz.data(), n, deep, vertex_key_.data());
-    return restart();
-  }
-#endif
-  mortonKeysPortable(unit_xyz.data(), n, deep, vertex_key_.data());
-  return restart();
-}
-
-Cell OctreePartition::restart() {
-  const uint32_t n = uint32_t(vertex_key_.size());
   for (int b = 0; b < 2; ++b) {
     key_[b].resize(n);
     order_[b].resize(n);
   }
   for (uint32_t i = 0; i < n; ++i) order_[0][i] = i;
-  std::memcpy(key_[0].data(), vertex_key_.data(), n * sizeof(uint64_t));
+#if ANIMC_AVX2_PATH
+  if (cpuHasAvx2()) mortonKeysAvx2(unit_xyz.data(), n, deep, key_[0].data());
+  else
+#endif
+    mortonKeysPortable(unit_xyz.data(), n, deep, key_[0].data());
+  if (restartable) root_key_ = key_[0];
+  else root_key_.clear();
+  return Cell{0, n, 0};
+}
+
+Cell OctreePartition::restart() {
+  const uint32_t n = uint32_t(root_key_.size());
+  for (uint32_t i = 0; i < n; ++i) order_[0][i] = i;
+  std::memcpy(key_[0].data(), root_key_.data(), n * sizeof(uint64_t));
   return Cell{0, n, 0};
 }
 

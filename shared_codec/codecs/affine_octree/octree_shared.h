@@ -43,9 +43,10 @@ class OctreePartition {
   static constexpr int kGridBits = 16;  // >= the deepest allowed octree level
 
   // Takes a new reference frame and returns the root cell holding all its vertices. Cells
-  // split down to depth `levels` at most (the tree's depth limit).
-  Cell reset(const std::vector<double>& unit_xyz, int levels);
-  // Back to the root with the same reference (the encoder's second pass).
+  // split down to depth `levels` at most (the tree's depth limit). `restartable` keeps a copy
+  // of the root's keys for restart(); decoders walk the tree once and need none.
+  Cell reset(const std::vector<double>& unit_xyz, int levels, bool restartable = false);
+  // Back to the root of the last restartable reset (the encoder's second pass).
   Cell restart();
   // Reorders the cell's vertices by child octant (bit 0 = x upper half, bit 1 = y, bit 2 = z)
   // and fills the 8 children; children may be empty.
@@ -56,7 +57,7 @@ class OctreePartition {
   void countOctants(const Cell& cell, uint32_t count[8]);
   void scatter(const Cell& cell, const uint32_t start[8]);
 
-  std::vector<uint64_t> vertex_key_;  // by vertex index
+  std::vector<uint64_t> root_key_;  // by vertex index: the root's keys, when restartable
   // The vertices in partition order, each with its key. A cell at depth d holds its range of
   // buffer d % 2 and its children are written to the other buffer: the parent's copy is
   // dead once split, so nothing is copied back.

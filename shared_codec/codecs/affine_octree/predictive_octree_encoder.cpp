@@ -24,7 +24,7 @@ bool PredictiveOctreeEncoder::encode(const PFrameInput& in, std::vector<uint8_t>
   contexts_.beginFrame();
   // Pass 1: choose the tree by estimated cost (the search reorders the partition freely).
   plan_.clear();
-  search(w, partition_.reset(*in.reference, in.max_depth));
+  search(w, partition_.reset(*in.reference, in.max_depth, /*restartable=*/true));
   if (w.overflow) return false;
   // Pass 2: code the chosen tree exactly as the decoder will walk it.
   const Cell root = partition_.restart();
@@ -139,11 +139,11 @@ void PredictiveOctreeEncoder::codeLeaf(Walk& w, const Cell& cell, const Node& no
   points_.gather(w.in, idx, n);
   const LeafModel m = leafModel(points_, n, w.in.before != nullptr);
   const CentredAffine a = codedAffine(m, node.coded, w.step);
+  predictPoints(points_.reference.data(), n, m.frame.centroid, a, idx, w.recon->data());
   residual_.resize(3 * size_t(n));
   bool all_zero = true;
   for (uint32_t i = 0; i < n; ++i) {
     double* out = &(*w.recon)[3 * size_t(idx[i])];
-    predictVertex(points_, m, a, i, out);
     for (int ax = 0; ax < 3; ++ax) {
       const int64_t r = int64_t(std::nearbyint((points_.targetPoint(i)[ax] - out[ax]) / w.step));
       residual_[3 * size_t(i) + ax] = r;

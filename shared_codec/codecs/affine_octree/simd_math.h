@@ -7,6 +7,7 @@
 // scalar formulas they replace (no reassociation, no fused multiply-add: the library is built
 // with -ffp-contract=off), whichever version runs.
 #pragma once
+#include <algorithm>
 
 namespace animc {
 
@@ -23,6 +24,19 @@ inline Pair splat(double x) { return Pair{x, x}; }
 inline Pair minPair(Pair a, Pair b) { return b < a ? b : a; }
 inline Pair maxPair(Pair a, Pair b) { return a < b ? b : a; }
 
+// The running bounding box of points, x and y through a Pair, z alone.
+struct PointBox {
+  Pair lo_xy, hi_xy;
+  double lo_z, hi_z;
+  explicit PointBox(const double* first) : lo_xy(loadPair(first)), hi_xy(lo_xy), lo_z(first[2]), hi_z(first[2]) {}
+  void add(Pair xy, double z) {
+    lo_xy = minPair(lo_xy, xy);
+    hi_xy = maxPair(hi_xy, xy);
+    lo_z = std::min(lo_z, z);
+    hi_z = std::max(hi_z, z);
+  }
+};
+
 }  // namespace animc
 
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__)) && !defined(ANIMC_NO_AVX2)
@@ -35,6 +49,10 @@ namespace animc {
 
 typedef double Quad __attribute__((vector_size(32)));
 typedef double UnalignedQuad __attribute__((vector_size(32), aligned(8)));
+
+// Four consecutive doubles anywhere in a double array (as loadPair and storePair).
+ANIMC_TARGET_AVX2 inline Quad loadQuad(const double* p) { return *reinterpret_cast<const UnalignedQuad*>(p); }
+ANIMC_TARGET_AVX2 inline void storeQuad(double* p, Quad v) { *reinterpret_cast<UnalignedQuad*>(p) = v; }
 
 // Whether this CPU runs the AVX2 versions (checked once).
 inline bool cpuHasAvx2() {
