@@ -22,11 +22,6 @@ Prediction unpackSelectors(uint8_t byte) {
   return p;
 }
 
-double largestSide(const std::vector<double>& xyz) {
-  const std::array<double, 3> e = boxExtent(xyz);
-  return std::max({e[0], e[1], e[2]});
-}
-
 class WaveletEncoder final : public FrameEncoder {
  public:
   WaveletEncoder(const WaveletOptions& options, const Topology& topology)
@@ -85,10 +80,11 @@ class WaveletEncoder final : public FrameEncoder {
     stats.intra = true;
     const size_t start = out.size();
     std::vector<double> recon;
+    const double largest_side = boundingCube(x_).side;
     for (int bits = options_.parametric_bits;; ++bits) {
       out.resize(start);
       out.push_back(uint8_t(WaveletFrameType::kParametric));
-      static_coder_.encode(x_, parametricStep(bits, largestSide(x_)), out, recon);
+      static_coder_.encode(x_, parametricStep(bits, largest_side), out, recon);
       if (options_.target_kg <= 0 || bits >= kMaxParametricBits || floatOutputError(original_, recon) <= error_bound_) break;
     }
     model_.setParametric(recon);

@@ -108,12 +108,11 @@ void WaveletTransform::forward(const double* xyz, std::vector<double>& coefficie
 void WaveletTransform::inverse(const std::vector<double>& coefficients, std::vector<double>& xyz) const {
   xyz = coefficients;  // base vertices are their own coefficients
   double* const out = xyz.data();
-  const LocalFrame world;
   for (size_t i = pm_.collapses.size(); i-- > 0;) {
     const Collapse& c = pm_.collapses[i];
     double p[3], detail[3];
     predictCollapse(i, out, p);
-    toWorld(local_frames_ ? frameOf(c, out) : world, &coefficients[3 * size_t(c.vertex)], detail);
+    toWorld(frameOf(c, out), &coefficients[3 * size_t(c.vertex)], detail);
     for (int a = 0; a < 3; ++a) out[3 * size_t(c.vertex) + a] = p[a] + detail[a];
   }
 }
