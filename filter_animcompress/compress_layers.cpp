@@ -13,13 +13,24 @@
 namespace animc::meshlab {
 namespace {
 
-// What the encoder observer builds while it runs: the metrics, and the layers it added.
+// What the encoder observer builds while it runs: the metrics, the layers it added, and the
+// errors of the original layers when they are the ones to colour. It leaves the originals
+// alone: the encode may still fail on a later frame, and then they must stay as they were.
 struct CompressOutput {
   explicit CompressOutput(uint32_t vertices) : metrics(vertices) {}
   MetricsAccumulator metrics;
   QList<MeshModel*> decoded_layers;
+  std::vector<std::vector<Scalarm>> original_errors;  // one per frame
   std::vector<float> reconstruction;
 };
+
+// After a successful encode: every shown layer gets its errors as quality and colours on the
+// scale of the whole animation.
+void colourByError(const CompressOutput& out, const QList<MeshModel*>& originals, float scale_max) {
+  for (size_t i = 0; i < out.original_errors.size(); ++i) storeQuality(*originals[int(i)], out.original_errors[i]);
+  for (MeshModel* shown : out.decoded_layers.isEmpty() ? originals : out.decoded_layers)
+    colourByQuality(*shown, scale_max);
+}
 
 }  // namespace
 
@@ -59,13 +70,14 @@ std::string compressLayers(MeshDocument& md, const RichParameterList& par, vcg::
   auto observe = [&](int64_t frame, const float* original, const std::vector<double>& decoded) {
     out.reconstruction.assign(decoded.begin(), decoded.end());
     out.metrics.addFrame(original, out.reconstruction.data());
-    MeshModel* shown = layers[int(frame)];
     if (add_decoded) {
-      shown = md.addNewMesh("", "decoded " + layers[int(frame)]->label(), false);
-      fillMesh(*shown, topology, out.reconstruction.data());
-      out.decoded_layers << shown;
+      MeshModel* decoded = md.addNewMesh("", "decoded " + layers[int(frame)]->label(), false);
+      fillMesh(*decoded, topology, out.reconstruction.data());
+      out.decoded_layers << decoded;
+      if (colour) storeVertexError(*decoded, original, out.reconstruction.data());
+    } else if (colour) {
+      out.original_errors.push_back(vertexErrors(original, out.reconstruction.data(), topology.vertex_count));
     }
-    if (colour) storeVertexError(*shown, original, out.reconstruction.data());
   };
   Result<EncodeReport> report =
       encodeSequence(*source.value(), settings.value(), path, progressFrom(cb), observe);
@@ -75,8 +87,7 @@ std::string compressLayers(MeshDocument& md, const RichParameterList& par, vcg::
   }
 
   const SequenceMetrics m = out.metrics.finish();
-  if (colour)
-    for (MeshModel* shown : add_decoded ? out.decoded_layers : layers) colourByQuality(*shown, float(m.max_error));
+  if (colour) colourByError(out, layers, float(m.max_error));
   const EncodeReport& r = report.value();
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   log("Compressed " + std::to_string(r.frames) + " frames of " + std::to_string(r.vertices) +

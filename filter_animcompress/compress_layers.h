@@ -12,7 +12,8 @@ namespace animc::meshlab {
 
 void addCompressParameters(const MeshDocument& md, RichParameterList& par);
 
-// Returns an empty string on success, else why nothing was written and nothing was added.
+// Returns an empty string on success, else why nothing was written, added or changed (the
+// layers' quality and colours included).
 std::string compressLayers(MeshDocument& md, const RichParameterList& par, vcg::CallBackPos* cb,
                            const LogFn& log);
 

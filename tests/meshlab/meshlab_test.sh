@@ -195,6 +195,27 @@ PYEOF
     "${FRAMES[0]}" "$TMP/infinite.ply"
   bad_case nan "layer 1 ('nan.ply')" "${FRAMES[0]}" "$TMP/nan.ply"
   bad_case no_faces "empty mesh (0 triangles)" "$TMP/points.ply" "$TMP/points.ply"
+  failed_compress_leaves_originals
+}
+
+# Compress Animation Layers colouring the originals (no reconstructed layers) fails on a NaN
+# in the last layer, after every earlier frame went through the encoder: no layer may carry
+# quality or colour from it. meshlabserver exits on a failed filter without saving anything,
+# so a small host (compress_failure_host.cpp, built beside the plugins) runs the staged plugin
+# and lists the layers after the failure.
+failed_compress_leaves_originals() {
+  local host=${ANIMC_FAILURE_HOST:-$(dirname "$ANIMC_STAGE")/tests/meshlab/compress_failure_host}
+  local plugin=$ANIMC_STAGE/lib/x86_64-linux-gnu/meshlab/plugins/libfilter_animcompress.so
+  local name=failed_compress last=$((N - 1))
+  RC=0
+  "$host" "$plugin" "$TMP/failed.ams" "${FRAMES[@]}" >"$name.log" 2>&1 || RC=$?
+  ((RC == 0)) || die "$name: the host exited with $RC (1: the filter succeeded)"$'\n'"$(tail -15 "$name.log")"
+  expect_log "$name" "layer $last ('frame_000$last.ply') (frame $last): vertex 0 has a NaN"
+  expect_log "$name" "layers: $N"
+  [[ ! -e failed.ams ]] || check_failed "$name: an .ams was written"
+  local touched
+  touched=$(grep '^layer ' "$name.log" | grep -v ': quality no, colour no, non-zero quality 0$' || true)
+  [[ -z $touched ]] || check_failed "$name: the failed filter left quality or colour on the originals:"$'\n'"$touched"
 }
 
 case_bad_ams() {

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "api.h"
+#include "codec_test_support.h"
 #include "container/crc32.h"
 #include "test_sequences.h"
 
@@ -21,17 +22,9 @@ const std::string kExpected = kGoldenDir + "expected_crc32.txt";
 
 // CRC-32 of every decoded frame's float bytes, in order.
 uint32_t decodedCrc(const std::string& path) {
-  auto ams = AmsSource::open(path);
-  EXPECT_TRUE(ams.ok()) << ams.status().message();
-  if (!ams.ok()) return 0;
   uint32_t crc = 0;
-  std::vector<float> xyz;
-  for (;;) {
-    auto more = ams.value()->next(xyz);
-    EXPECT_TRUE(more.ok()) << more.status().message();
-    if (!more.ok() || !more.value()) break;
+  for (const std::vector<float>& xyz : testing_support::decodeAll(path))
     crc = crc32Update(crc, reinterpret_cast<const uint8_t*>(xyz.data()), xyz.size() * sizeof(float));
-  }
   return crc;
 }
 
