@@ -14,6 +14,7 @@ namespace animc {
 namespace {
 
 using testing_support::decodeAll;
+using testing_support::expectSeeksMatch;
 using testing_support::gridSequence;
 using testing_support::tempPath;
 using testing_support::worstRelativeError;
@@ -95,13 +96,7 @@ TEST(AffineOctree, RandomAccessEqualsFullDecode) {
   auto ams = AmsSource::open(path);
   ASSERT_TRUE(ams.ok());
   EXPECT_EQ(ams.value()->info().sections.size(), 4u + 5u);  // HEAD CONN INDX END + 5 groups
-  for (int64_t k : {39, 0, 17, 8, 23, 7}) {
-    ASSERT_TRUE(ams.value()->seek(k).ok());
-    std::vector<float> xyz;
-    auto got = ams.value()->next(xyz);
-    ASSERT_TRUE(got.ok() && got.value());
-    EXPECT_EQ(xyz, full[size_t(k)]) << "frame " << k;
-  }
+  ASSERT_NO_FATAL_FAILURE(expectSeeksMatch(*ams.value(), full, {39, 0, 17, 8, 23, 7}));
   std::remove(path.c_str());
 }
 

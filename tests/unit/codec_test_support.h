@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <initializer_list>
 #include <string>
 #include <vector>
 
@@ -31,6 +33,19 @@ inline std::vector<std::vector<float>> decodeAll(const std::string& path, const 
     frames.push_back(xyz);
   }
   return frames;
+}
+
+// Random access: seeking to each frame k of the open file and reading one frame gives full[k]
+// (full: every frame of a whole decode). Fatal failures stop at the first bad seek or read.
+inline void expectSeeksMatch(AmsSource& ams, const std::vector<std::vector<float>>& full,
+                             std::initializer_list<int64_t> frames) {
+  std::vector<float> xyz;
+  for (int64_t k : frames) {
+    ASSERT_TRUE(ams.seek(k).ok());
+    auto got = ams.next(xyz);
+    ASSERT_TRUE(got.ok() && got.value());
+    EXPECT_EQ(xyz, full[size_t(k)]) << "frame " << k;
+  }
 }
 
 // Largest vertex error of frame f divided by the side of the root cube the codec used

@@ -17,6 +17,7 @@ namespace animc {
 namespace {
 
 using testing_support::decodeAll;
+using testing_support::expectSeeksMatch;
 using testing_support::kgError;
 using testing_support::sharedSequence;
 using testing_support::tempPath;
@@ -254,13 +255,7 @@ TEST(WaveletSequence, RandomAccessMatchesAFullDecode) {
   const auto full = decodeAll(path);
   auto ams = AmsSource::open(path);
   ASSERT_TRUE(ams.ok()) << ams.status().message();
-  std::vector<float> xyz;
-  for (int64_t k : {29, 0, 8, 13, 17, 24}) {
-    ASSERT_TRUE(ams.value()->seek(k).ok());
-    auto got = ams.value()->next(xyz);
-    ASSERT_TRUE(got.ok() && got.value());
-    EXPECT_EQ(xyz, full[size_t(k)]) << "frame " << k;
-  }
+  ASSERT_NO_FATAL_FAILURE(expectSeeksMatch(*ams.value(), full, {29, 0, 8, 13, 17, 24}));
   std::remove(path.c_str());
 }
 
