@@ -17,6 +17,7 @@ namespace animc {
 namespace {
 
 using testing_support::decodeAll;
+using testing_support::decodedMetrics;
 using testing_support::expectSeeksMatch;
 using testing_support::kgError;
 using testing_support::sharedSequence;
@@ -227,9 +228,7 @@ TEST(WaveletSequence, PFrameDriftStaysBoundedOverChickenCrossing) {
   EXPECT_EQ(e.report.intra_frames, 1u);
   const auto decoded = decodeAll(path);
   ASSERT_EQ(decoded.size(), 400u);
-  MetricsAccumulator m(seq.topology().vertex_count);
-  for (size_t f = 0; f < decoded.size(); ++f) m.addFrame(seq.frames()[f].data(), decoded[f].data());
-  const SequenceMetrics metrics = m.finish();
+  const SequenceMetrics metrics = decodedMetrics(seq, decoded);
   auto meanRms = [&](size_t first, size_t last) {
     double sum = 0;
     for (size_t f = first; f < last; ++f) sum += metrics.per_frame[f].rms;

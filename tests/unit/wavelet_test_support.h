@@ -20,14 +20,19 @@ double rmsError(const A& original, const B& decoded) {
   return std::sqrt(sum / double(original.size() / 3));
 }
 
-// The KG error (percent, the metrics library's) of decoded against the original's frames;
-// decoded must hold as many frames as the original.
-inline double kgError(const MemorySequence& original, const std::vector<std::vector<float>>& decoded) {
+// The metrics library's figures of decoded against the original's frames; decoded must hold
+// as many frames as the original.
+inline SequenceMetrics decodedMetrics(const MemorySequence& original, const std::vector<std::vector<float>>& decoded) {
   EXPECT_EQ(decoded.size(), original.frames().size());
   MetricsAccumulator m(original.topology().vertex_count);
   for (size_t f = 0; f < decoded.size() && f < original.frames().size(); ++f)
     m.addFrame(original.frames()[f].data(), decoded[f].data());
-  return m.finish().kg_error;
+  return m.finish();
+}
+
+// The KG error, percent.
+inline double kgError(const MemorySequence& original, const std::vector<std::vector<float>>& decoded) {
+  return decodedMetrics(original, decoded).kg_error;
 }
 
 inline double bboxDiagonal(const std::vector<float>& xyz) {
