@@ -30,18 +30,18 @@ Topology layerTopology(const CMeshO& cm) {
   return t;
 }
 
-void copyPositions(const CMeshO& cm, std::vector<float>& xyz) {
-  xyz.resize(3 * size_t(cm.vn));
+}  // namespace
+
+void layerPositions(const MeshModel& layer, std::vector<float>& xyz) {
+  xyz.resize(3 * size_t(layer.cm.vn));
   float* out = xyz.data();
-  for (const CVertexO& v : cm.vert) {
+  for (const CVertexO& v : layer.cm.vert) {
     if (v.IsD()) continue;
     *out++ = float(v.cP()[0]);
     *out++ = float(v.cP()[1]);
     *out++ = float(v.cP()[2]);
   }
 }
-
-}  // namespace
 
 QList<MeshModel*> frameLayers(const MeshDocument& md, bool visible_only) {
   QList<MeshModel*> layers;
@@ -72,7 +72,7 @@ Result<bool> LayerFrameSource::next(std::vector<float>& xyz) {
     const Status same = checkSameTopology(layerTopology(layer.cm), topology_, layerName(*layers_[0]));
     if (!same.ok()) return same.withContext(where());
   }
-  copyPositions(layer.cm, xyz);
+  layerPositions(layer, xyz);
   ++next_;
   return true;
 }

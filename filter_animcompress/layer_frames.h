@@ -21,6 +21,10 @@ QList<MeshModel*> frameLayers(const MeshDocument& md, bool visible_only);
 // differs from its position in a run of frames that starts later or skips hidden layers.
 std::string layerName(const MeshModel& layer);
 
+// A layer's live vertex positions (x y z per vertex, in vector order), its topology unchecked:
+// for layers a LayerFrameSource already went through.
+void layerPositions(const MeshModel& layer, std::vector<float>& xyz);
+
 // The layers as a sequence of frames. Every layer must have the first one's vertex count and
 // triangle list; next() fails with a message naming the first layer that does not.
 class LayerFrameSource final : public FrameSource {

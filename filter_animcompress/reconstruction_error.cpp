@@ -5,7 +5,7 @@
 
 #include "error_colouring.h"
 #include "layer_frames.h"
-#include "metrics/sequence_metrics.h"
+#include "metrics/compare_sequences.h"
 #include "seqio/mesh_checks.h"
 
 namespace animc::meshlab {
@@ -39,15 +39,46 @@ Result<LayerRuns> layerRuns(const MeshDocument& md, const RichParameterList& par
   return runs;
 }
 
-// Frame i of both runs, checked against the first original's topology.
-Status readPair(LayerFrameSource& originals, LayerFrameSource& reconstructions,
-                std::vector<float>& original, std::vector<float>& reconstructed) {
-  Result<bool> a = originals.next(original);
-  if (!a.ok()) return a.status();
-  Result<bool> b = reconstructions.next(reconstructed);
-  if (!b.ok()) return b.status();
-  if (!a.value() || !b.value()) return invalidArgument("ran out of layers");
-  return Status();
+// Both runs' figures; every layer is checked against the first original's topology on the
+// way, so a bad layer ends the filter before any layer was changed.
+Result<SequenceMetrics> measureRuns(const LayerRuns& runs, vcg::CallBackPos* cb) {
+  ANIMC_ASSIGN_OR_RETURN(std::unique_ptr<LayerFrameSource> originals, LayerFrameSource::create(runs.originals));
+  ANIMC_ASSIGN_OR_RETURN(std::unique_ptr<LayerFrameSource> reconstructions,
+                         LayerFrameSource::create(runs.reconstructions));
+  const Status same = checkSameTopology(reconstructions->topology(), originals->topology(),
+                                        layerName(*runs.originals[0]));
+  if (!same.ok()) return same.withContext(layerName(*runs.reconstructions[0]));
+  ProgressFn first_half;  // of the progress bar; colouring the layers is the second
+  if (cb != nullptr) first_half = [cb](int percent, const char* what) { return cb(percent / 2, what); };
+  return compareSequences(*originals, *reconstructions, first_half);
+}
+
+// Stores each reconstruction's per-vertex error as its quality and colours it on one scale.
+// measureRuns has checked every layer already.
+void colourRuns(const LayerRuns& runs, float scale, vcg::CallBackPos* cb) {
+  const int frames = runs.originals.size();
+  std::vector<float> original, reconstructed;
+  for (int i = 0; i < frames; ++i) {
+    layerPositions(*runs.originals[i], original);
+    layerPositions(*runs.reconstructions[i], reconstructed);
+    MeshModel& shown = *runs.reconstructions[i];
+    storeVertexError(shown, original.data(), reconstructed.data());
+    colourByQuality(shown, scale);
+    if (cb != nullptr) cb(50 + 50 * (i + 1) / frames, "colouring layers");
+  }
+}
+
+void logFigures(const LayerRuns& runs, const SequenceMetrics& m, float scale, const LogFn& log) {
+  char line[200];
+  for (int i = 0; i < runs.originals.size(); ++i) {
+    std::snprintf(line, sizeof line, "frame %d: '%s' vs '%s': rms %.6g, max %.6g", i,
+                  qUtf8Printable(runs.originals[i]->label()), qUtf8Printable(runs.reconstructions[i]->label()),
+                  m.per_frame[size_t(i)].rms, m.per_frame[size_t(i)].max);
+    log(line);
+  }
+  logLines(log, formatMetricsText(m));
+  std::snprintf(line, sizeof line, "colour scale: blue = 0, red = %.6g (mesh units)", double(scale));
+  log(line);
 }
 
 }  // namespace
@@ -71,47 +102,12 @@ std::string measureReconstructionError(MeshDocument& md, const RichParameterList
   Result<LayerRuns> runs = layerRuns(md, par);
   if (!runs.ok()) return runs.status().message();
   if (runs.value().originals.isEmpty()) return "no frames to compare";
-  auto originals = LayerFrameSource::create(runs.value().originals);
-  if (!originals.ok()) return originals.status().message();
-  auto reconstructions = LayerFrameSource::create(runs.value().reconstructions);
-  if (!reconstructions.ok()) return reconstructions.status().message();
-  const Status same = checkSameTopology(reconstructions.value()->topology(), originals.value()->topology(),
-                                        layerName(*runs.value().originals[0]));
-  if (!same.ok()) return same.withContext(layerName(*runs.value().reconstructions[0])).message();
-
   // Measure everything first, so a bad layer late in the run leaves every layer untouched.
-  const int frames = runs.value().originals.size();
-  MetricsAccumulator metrics(originals.value()->topology().vertex_count);
-  std::vector<float> original, reconstructed;
-  for (int i = 0; i < frames; ++i) {
-    const Status s = readPair(*originals.value(), *reconstructions.value(), original, reconstructed);
-    if (!s.ok()) return s.message();
-    metrics.addFrame(original.data(), reconstructed.data());
-    if (cb != nullptr) cb(50 * (i + 1) / frames, "measuring errors");
-  }
-  const SequenceMetrics m = metrics.finish();
-  const float scale = par.getFloat("ScaleMax") > 0 ? par.getFloat("ScaleMax") : float(m.max_error);
-  originals = LayerFrameSource::create(runs.value().originals);
-  reconstructions = LayerFrameSource::create(runs.value().reconstructions);
-  for (int i = 0; i < frames; ++i) {
-    (void)readPair(*originals.value(), *reconstructions.value(), original, reconstructed);
-    MeshModel& shown = *runs.value().reconstructions[i];
-    storeVertexError(shown, original.data(), reconstructed.data());
-    colourByQuality(shown, scale);
-    if (cb != nullptr) cb(50 + 50 * (i + 1) / frames, "colouring layers");
-  }
-
-  char line[200];
-  for (int i = 0; i < frames; ++i) {
-    std::snprintf(line, sizeof line, "frame %d: '%s' vs '%s': rms %.6g, max %.6g", i,
-                  qUtf8Printable(runs.value().originals[i]->label()),
-                  qUtf8Printable(runs.value().reconstructions[i]->label()), m.per_frame[size_t(i)].rms,
-                  m.per_frame[size_t(i)].max);
-    log(line);
-  }
-  logLines(log, formatMetricsText(m));
-  std::snprintf(line, sizeof line, "colour scale: blue = 0, red = %.6g (mesh units)", double(scale));
-  log(line);
+  Result<SequenceMetrics> m = measureRuns(runs.value(), cb);
+  if (!m.ok()) return m.status().message();
+  const float scale = par.getFloat("ScaleMax") > 0 ? par.getFloat("ScaleMax") : float(m.value().max_error);
+  colourRuns(runs.value(), scale, cb);
+  logFigures(runs.value(), m.value(), scale, log);
   return {};
 }
 

@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include "core/memory_sequence.h"
+#include "metrics/compare_sequences.h"
 #include "metrics/json_writer.h"
 #include "metrics/sequence_metrics.h"
 
@@ -207,6 +209,51 @@ TEST(MetricsAccumulator, KgDenominatorStableFarFromOrigin) {
   ASSERT_GT(base.kg_error, 0.0);
   EXPECT_NEAR(far.kg_error, base.kg_error, 1e-9 * base.kg_error);
   EXPECT_NEAR(far.psnr, base.psnr, 1e-9);
+}
+
+// A sequence of n-vertex frames (the topology is not looked at by the metrics).
+MemorySequence memorySequence(uint32_t n, std::vector<Frame> frames, const std::string& name) {
+  Topology t;
+  t.vertex_count = n;
+  return MemorySequence(t, std::move(frames), 25.0, name);
+}
+
+TEST(CompareSequences, SameFiguresAsTheAccumulator) {
+  const std::vector<Frame> original = wobble(20, 6, 0.0), decoded = wobble(20, 6, 0.01);
+  MemorySequence a = memorySequence(20, original, "a"), b = memorySequence(20, decoded, "b");
+  std::vector<int> percents;
+  auto m = compareSequences(a, b, [&](int percent, const char*) { percents.push_back(percent); return true; });
+  ASSERT_TRUE(m.ok()) << m.status().message();
+  const SequenceMetrics expected = measure(20, original, decoded);
+  EXPECT_EQ(m.value().frames, 6);
+  EXPECT_EQ(m.value().kg_error, expected.kg_error);
+  EXPECT_EQ(m.value().max_error, expected.max_error);
+  EXPECT_EQ(m.value().per_frame.back().rms, expected.per_frame.back().rms);
+  EXPECT_EQ(percents, (std::vector<int>{16, 33, 50, 66, 83, 100}));
+}
+
+TEST(CompareSequences, CountsMustAgree) {
+  MemorySequence a = memorySequence(20, wobble(20, 3, 0), "a"), b = memorySequence(21, wobble(21, 3, 0), "b");
+  auto vertices = compareSequences(a, b);
+  EXPECT_EQ(vertices.status().code(), StatusCode::kBadInput);
+  EXPECT_EQ(vertices.status().message(), "b frame 0: 21 vertices, the original has 20");
+  MemorySequence longer = memorySequence(20, wobble(20, 4, 0), "longer");
+  a.rewind();
+  EXPECT_EQ(compareSequences(a, longer).status().message(), "the original has fewer frames (3)");
+  a.rewind();
+  longer.rewind();
+  EXPECT_EQ(compareSequences(longer, a).status().message(), "the reconstruction has fewer frames (3)");
+}
+
+TEST(CompareSequences, ReadErrorsAndCancellationEndIt) {
+  std::vector<Frame> short_frame = wobble(20, 3, 0);
+  short_frame[1].resize(30);
+  MemorySequence a = memorySequence(20, wobble(20, 3, 0), "a"), bad = memorySequence(20, short_frame, "bad");
+  EXPECT_EQ(compareSequences(a, bad).status().message(), "bad frame 1: has 10 vertices, expected 20");
+  a.rewind();
+  MemorySequence b = memorySequence(20, wobble(20, 3, 0), "b");
+  auto stopped = compareSequences(a, b, [](int percent, const char*) { return percent < 50; });
+  EXPECT_EQ(stopped.status().code(), StatusCode::kCancelled);
 }
 
 TEST(MetricsSizeFigures, Arithmetic) {

@@ -9,6 +9,7 @@
 
 #include "cli.h"
 #include "core/memory_sequence.h"
+#include "metrics/compare_sequences.h"
 #include "report.h"
 #include "seqio/sequence_io.h"
 

@@ -12,7 +12,4 @@ void addSettings(JsonObject& o, const EncodeSettings& s);
 void addSizes(JsonObject& o, uint64_t file_bytes, uint64_t static_bytes, uint32_t vertices, int64_t frames);
 void addMetrics(JsonObject& o, const SequenceMetrics& m, bool per_frame);
 
-// Walks two sequences side by side (cmd_compare.cpp); vertex and frame counts must agree.
-Result<SequenceMetrics> compareSequences(FrameSource& original, FrameSource& reconstructed);
-
 }  // namespace animc::cli
