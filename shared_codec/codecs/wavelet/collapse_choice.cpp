@@ -1,5 +1,7 @@
 #include "codecs/wavelet/collapse_choice.h"
 
+#include <cstdint>
+
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
@@ -21,35 +23,44 @@ struct Fan {
 
   Fan(const std::vector<double>& xyz, uint32_t v, const std::vector<uint32_t>& r, bool is_closed)
       : ring(r), closed(is_closed), pv(at(xyz, v)) {
-    const size_t k = ring.size();
+    normal.reserve(triangleCount());
+    twice_area.reserve(triangleCount());
     for (size_t i = 0; i < triangleCount(); ++i) {
-      normal.push_back((at(xyz, ring[i]) - pv).cross(at(xyz, ring[(i + 1) % k]) - pv));
+      normal.push_back((at(xyz, ring[i]) - pv).cross(at(xyz, ring[next(i)]) - pv));
       twice_area.push_back(normal.back().norm());
     }
   }
   size_t triangleCount() const { return closed ? ring.size() : ring.size() - 1; }
-  // Whether ring[i] is u = ring[at_u] or next to it along the fan.
-  bool flanks(size_t i, size_t at_u) const {
-    const size_t k = ring.size();
-    return i == at_u || (closed || at_u + 1 < k ? i == (at_u + 1) % k : false) ||
-           (closed || at_u > 0 ? i == (at_u + k - 1) % k : false);
+  // The ring position after i (the fan's triangles are (v, ring[i], ring[next(i)])).
+  size_t next(size_t i) const { return i + 1 == ring.size() ? 0 : i + 1; }
+};
+
+// Whether ring[i] is u = ring[at_u] or next to it along the fan (no wrap-around in an open
+// one). Positions worked out once per target: the checks ask for every ring vertex.
+struct Flanks {
+  static constexpr size_t kNone = SIZE_MAX;
+  size_t at, before, after;
+  Flanks(const Fan& fan, size_t at_u) : at(at_u) {
+    const size_t k = fan.ring.size();
+    after = fan.closed || at_u + 1 < k ? fan.next(at_u) : kNone;
+    before = fan.closed || at_u > 0 ? (at_u == 0 ? k - 1 : at_u - 1) : kNone;
   }
+  bool operator()(size_t i) const { return i == at || i == after || i == before; }
 };
 
 // The collapse keeps every surviving triangle of v non-degenerate, turned by less than
 // acos(min_cos), and distinct from the triangles u already has. Called once the link
 // condition holds: u's triangle {u, a, b} would make a and b neighbours of u, so it can
 // exist only when both flank u.
-bool keepsTrianglesSound(const LevelMesh& mesh, const std::vector<double>& xyz, const Fan& fan, size_t at_u,
-                         double min_cos) {
+bool keepsTrianglesSound(const LevelMesh& mesh, const std::vector<double>& xyz, const Fan& fan,
+                         const Flanks& flanks, double min_cos) {
   const std::vector<uint32_t>& ring = fan.ring;
-  const size_t k = ring.size();
-  const uint32_t u = ring[at_u];
+  const uint32_t u = ring[flanks.at];
   const Vec3 pu = at(xyz, u);
   for (size_t i = 0; i < fan.triangleCount(); ++i) {
-    const uint32_t a = ring[i], b = ring[(i + 1) % k];
+    const uint32_t a = ring[i], b = ring[fan.next(i)];
     if (a == u || b == u) continue;  // this triangle disappears
-    if (fan.flanks(i, at_u) && fan.flanks((i + 1) % k, at_u) && mesh.hasTriangle(u, a, b)) return false;
+    if (flanks(i) && flanks(fan.next(i)) && mesh.hasTriangle(u, a, b)) return false;
     const Vec3 pa = at(xyz, a), pb = at(xyz, b);
     const Vec3& before = fan.normal[i];
     const Vec3 after = (pa - pu).cross(pb - pu);
@@ -63,10 +74,10 @@ bool keepsTrianglesSound(const LevelMesh& mesh, const std::vector<double>& xyz, 
 
 // Link condition: v and u = ring[at_u] share exactly the neighbours flanking the edge (v, u)
 // (two inside, one on a boundary edge, where the fan does not wrap around).
-bool linkConditionHolds(const LevelMesh& mesh, const Fan& fan, size_t at_u) {
-  const uint32_t u = fan.ring[at_u];
+bool linkConditionHolds(const LevelMesh& mesh, const Fan& fan, const Flanks& flanks) {
+  const uint32_t u = fan.ring[flanks.at];
   for (size_t i = 0; i < fan.ring.size(); ++i)
-    if (!fan.flanks(i, at_u) && mesh.adjacent(u, fan.ring[i])) return false;
+    if (!flanks(i) && mesh.adjacent(u, fan.ring[i])) return false;
   return true;
 }
 
@@ -101,7 +112,8 @@ double boundaryCost(const std::vector<double>& xyz, uint32_t v, uint32_t a, uint
 // extra_cost.
 void addIfValid(const LevelMesh& mesh, const std::vector<double>& xyz, const Fan& fan, size_t at_u,
                 double min_cos, double extra_cost, std::vector<CollapseOption>& out) {
-  if (!linkConditionHolds(mesh, fan, at_u) || !keepsTrianglesSound(mesh, xyz, fan, at_u, min_cos)) return;
+  const Flanks flanks(fan, at_u);
+  if (!linkConditionHolds(mesh, fan, flanks) || !keepsTrianglesSound(mesh, xyz, fan, flanks, min_cos)) return;
   const uint32_t u = fan.ring[at_u];
   out.push_back({u, collapseCost(xyz, fan, u) + extra_cost, (at(xyz, u) - fan.pv).norm()});
 }

@@ -85,11 +85,6 @@ struct BoundaryLoops {
   }
 };
 
-// v's one ring as a collapse sees it: its closed ring inside, its open fan on a boundary.
-bool ringOf(const LevelMesh& mesh, uint32_t v, CollapseKind kind, std::vector<uint32_t>& ring) {
-  return kind == CollapseKind::kBoundary ? mesh.openFan(v, ring) : mesh.orderedRing(v, ring);
-}
-
 // Each vertex's collapse options on the current level. They depend on the vertex's
 // triangles and on its neighbours' (link condition, duplicate triangles), so they are
 // recomputed only for vertices within two edges of a collapse. Early batches reach nearly
@@ -100,6 +95,7 @@ class CollapseOptionCache {
     bool stale = true;
     CollapseKind kind = CollapseKind::kInterior;
     std::vector<CollapseOption> options;  // empty: v cannot be removed
+    std::vector<uint32_t> ring;           // its closed ring, or open fan on a boundary
   };
 
   explicit CollapseOptionCache(uint32_t vertex_count) : entries_(vertex_count) {}
@@ -110,14 +106,17 @@ class CollapseOptionCache {
     e.stale = false;
     e.options.clear();
     e.kind = CollapseKind::kInterior;
-    if (mesh.orderedRing(v, ring_)) {
-      interiorCollapseOptions(mesh, xyz, v, ring_, settings.min_normal_cosine, e.options);
-    } else if (settings.collapse_boundaries && mesh.openFan(v, ring_)) {
+    if (mesh.orderedRing(v, e.ring)) {
+      interiorCollapseOptions(mesh, xyz, v, e.ring, settings.min_normal_cosine, e.options);
+    } else if (settings.collapse_boundaries && mesh.openFan(v, e.ring)) {
       e.kind = CollapseKind::kBoundary;
-      boundaryCollapseOptions(mesh, xyz, v, ring_, settings.min_normal_cosine, e.options);
+      boundaryCollapseOptions(mesh, xyz, v, e.ring, settings.min_normal_cosine, e.options);
     }
     return e;
   }
+  // The ring of a vertex whose fresh entry has options: unchanged until the level's collapses
+  // are applied (they mark every vertex whose ring they change stale).
+  const std::vector<uint32_t>& ring(uint32_t v) const { return entries_[v].ring; }
 
   // Before w's collapse is applied: every vertex within two edges of w (w among them).
   void markStale(const LevelMesh& mesh, uint32_t w) {
@@ -129,7 +128,6 @@ class CollapseOptionCache {
 
  private:
   std::vector<Entry> entries_;
-  std::vector<uint32_t> ring_;
 };
 
 // Every removable vertex's best collapse within the length bound; any_valid tells whether
@@ -210,11 +208,11 @@ int weldSeams(LevelMesh& mesh, const std::vector<double>& xyz, std::vector<uint8
 int applyBatch(LevelMesh& mesh, const std::vector<Candidate>& candidates, int level, BoundaryLoops& loops,
                std::vector<uint8_t>& removed, CollapseOptionCache& cache, ProgressiveMesh& pm) {
   std::vector<uint8_t> marked(removed.size(), 0);
-  std::vector<uint32_t> ring;
   int applied = 0;
   for (const Candidate& c : candidates) {
-    if (!ringOf(mesh, c.vertex, c.kind, ring)) continue;
-    bool free = !marked[c.vertex];
+    if (marked[c.vertex]) continue;
+    const std::vector<uint32_t>& ring = cache.ring(c.vertex);
+    bool free = true;
     for (uint32_t w : ring) free = free && !marked[w];
     if (!free || (c.kind == CollapseKind::kBoundary && !loops.take(c.vertex))) continue;
     marked[c.vertex] = 1;
