@@ -8,7 +8,7 @@
 #include "encode_parameters.h"
 #include "error_colouring.h"
 #include "layer_frames.h"
-#include "metrics/sequence_metrics.h"
+#include "metrics/encode_metrics.h"
 
 namespace animc::meshlab {
 namespace {
@@ -21,7 +21,6 @@ struct CompressOutput {
   MetricsAccumulator metrics;
   QList<MeshModel*> decoded_layers;
   std::vector<std::vector<Scalarm>> original_errors;  // one per frame
-  std::vector<float> reconstruction;
 };
 
 // After a successful encode: every shown layer gets its errors as quality and colours on the
@@ -67,20 +66,18 @@ std::string compressLayers(MeshDocument& md, const RichParameterList& par, vcg::
   const bool add_decoded = par.getBool("AddReconstructed");
   const bool colour = par.getBool("ColourByError");
   CompressOutput out(topology.vertex_count);
-  auto observe = [&](int64_t frame, const float* original, const std::vector<double>& decoded) {
-    out.reconstruction.assign(decoded.begin(), decoded.end());
-    out.metrics.addFrame(original, out.reconstruction.data());
+  auto show = [&](int64_t frame, const float* original, const float* reconstruction) {
     if (add_decoded) {
       MeshModel* decoded = md.addNewMesh("", "decoded " + layers[int(frame)]->label(), false);
-      fillMesh(*decoded, topology, out.reconstruction.data());
+      fillMesh(*decoded, topology, reconstruction);
       out.decoded_layers << decoded;
-      if (colour) storeVertexError(*decoded, original, out.reconstruction.data());
+      if (colour) storeVertexError(*decoded, original, reconstruction);
     } else if (colour) {
-      out.original_errors.push_back(vertexErrors(original, out.reconstruction.data(), topology.vertex_count));
+      out.original_errors.push_back(vertexErrors(original, reconstruction, topology.vertex_count));
     }
   };
-  Result<EncodeReport> report =
-      encodeSequence(*source.value(), settings.value(), path, progressFrom(cb), observe);
+  Result<EncodeReport> report = encodeSequence(*source.value(), settings.value(), path, progressFrom(cb),
+                                               measuringObserver(out.metrics, show));
   if (!report.ok()) {
     for (MeshModel* m : out.decoded_layers) md.delMesh(m);
     return report.status().message();

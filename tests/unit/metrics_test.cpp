@@ -6,8 +6,11 @@
 
 #include <gtest/gtest.h>
 
+#include "codec_test_support.h"
 #include "core/memory_sequence.h"
 #include "metrics/compare_sequences.h"
+#include "metrics/encode_metrics.h"
+#include "test_sequences.h"
 #include "metrics/json_writer.h"
 #include "metrics/sequence_metrics.h"
 
@@ -254,6 +257,33 @@ TEST(CompareSequences, ReadErrorsAndCancellationEndIt) {
   MemorySequence b = memorySequence(20, wobble(20, 3, 0), "b");
   auto stopped = compareSequences(a, b, [](int percent, const char*) { return percent < 50; });
   EXPECT_EQ(stopped.status().code(), StatusCode::kCancelled);
+}
+
+// The observer sees what a decoder of the file will output, so its figures are those of
+// comparing the original with the decoded file.
+TEST(MeasuringObserver, MeasuresWhatTheDecoderOutputs) {
+  MemorySequence original = testing_support::gridSequence(5, 4, 6, 1.0, 1.0);
+  const std::string path = testing_support::tempPath("measured.ams");
+  MetricsAccumulator metrics(20);  // the 5 x 4 grid's vertices
+  std::vector<Frame> shown;
+  auto keep = [&](int64_t frame, const float*, const float* reconstruction) {
+    EXPECT_EQ(frame, int64_t(shown.size()));
+    shown.emplace_back(reconstruction, reconstruction + 3 * 20);
+  };
+  ASSERT_TRUE(encodeSequence(original, EncodeSettings(), path, {}, measuringObserver(metrics, keep)).ok());
+  ASSERT_EQ(shown.size(), 6u);
+  EXPECT_EQ(shown, testing_support::decodeAll(path));
+  original.rewind();
+  auto ams = AmsSource::open(path);
+  ASSERT_TRUE(ams.ok()) << ams.status().message();
+  auto compared = compareSequences(original, *ams.value());
+  ASSERT_TRUE(compared.ok()) << compared.status().message();
+  const SequenceMetrics m = metrics.finish();
+  EXPECT_GT(m.max_error, 0.0);
+  EXPECT_EQ(m.kg_error, compared.value().kg_error);
+  EXPECT_EQ(m.max_error, compared.value().max_error);
+  EXPECT_EQ(m.psnr, compared.value().psnr);
+  std::remove(path.c_str());
 }
 
 TEST(MetricsSizeFigures, Arithmetic) {

@@ -1,6 +1,7 @@
 #include <cstdio>
 
 #include "cli.h"
+#include "metrics/encode_metrics.h"
 #include "report.h"
 #include "seqio/sequence_io.h"
 
@@ -21,13 +22,8 @@ int runEncode(const std::vector<std::string>& argv) {
   auto source = openSequence(args.positional()[0], args.get("mesh"));
   if (!source.ok()) return fail(source.status());
   MetricsAccumulator metrics(source.value()->topology().vertex_count);
-  std::vector<float> recon;
-  auto observe = [&](int64_t, const float* original, const std::vector<double>& reconstructed) {
-    recon.assign(reconstructed.begin(), reconstructed.end());
-    metrics.addFrame(original, recon.data());
-  };
   auto report = encodeSequence(*source.value(), settings.value(), args.get("output"),
-                               progressLine("encode", args.has("progress")), observe);
+                               progressLine("encode", args.has("progress")), measuringObserver(metrics));
   if (!report.ok()) return fail(report.status());
   endProgressLine();
   const EncodeReport& r = report.value();

@@ -1,0 +1,20 @@
+// An encode measured while it runs, from the reconstructions the encoder hands its observer,
+// so the file is never decoded again: `animc encode` and MeshLab's Compress filter.
+#pragma once
+#include <cstdint>
+#include <functional>
+
+#include "api.h"
+#include "metrics/sequence_metrics.h"
+
+namespace animc {
+
+// A frame with its reconstruction as the floats a decoder of the file writes.
+using FloatFrameObserver =
+    std::function<void(int64_t frame, const float* original, const float* reconstructed)>;
+
+// An observer for encodeSequence that adds every frame to `metrics` (which must outlive it),
+// then hands the frame to `then` when one is given.
+FrameObserver measuringObserver(MetricsAccumulator& metrics, FloatFrameObserver then = {});
+
+}  // namespace animc
