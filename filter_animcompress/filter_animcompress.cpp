@@ -1,6 +1,7 @@
 #include "filter_animcompress.h"
 
 #include "compress_layers.h"
+#include "frame_range_parameters.h"
 #include "layer_frames.h"
 #include "reconstruction_error.h"
 
@@ -70,8 +71,7 @@ void FilterAnimCompressPlugin::initParameterSet(QAction* a, MeshDocument& md, Ri
     case FP_IMPORT:
       par.addParam(RichOpenFile("AmsFile", "", QStringList() << "*.ams", "Compressed animation",
                                 "The .ams file to decode."));
-      par.addParam(RichInt("FirstFrame", 0, "First frame", "First frame to load (0 = the first)."));
-      par.addParam(RichInt("LastFrame", -1, "Last frame", "Last frame to load; -1 = the last frame of the file."));
+      addFrameRangeParameters(par);
       break;
   }
 }
@@ -97,10 +97,7 @@ bool FilterAnimCompressPlugin::importAnimation(MeshDocument& md, const RichParam
                                                vcg::CallBackPos* cb) {
   const std::string path = par.getOpenFileName("AmsFile").toStdString();
   if (path.empty()) return fail(actionList[FP_IMPORT], "no .ams file given");
-  AmsImport range;
-  range.first_frame = par.getInt("FirstFrame");
-  range.last_frame = par.getInt("LastFrame");
-  auto layers = importAms(path, range, &md, nullptr, progressFrom(cb));
+  auto layers = importAms(path, frameRangeFrom(par), &md, nullptr, progressFrom(cb));
   if (!layers.ok()) return fail(actionList[FP_IMPORT], layers.status().message());
   md.setCurrentMesh(layers.value()[0]->id());
   Log("Imported %d frames of %d vertices from %s", layers.value().size(), layers.value()[0]->cm.vn,

@@ -3,6 +3,7 @@
 #include <QFileInfo>
 
 #include "encode_parameters.h"
+#include "frame_range_parameters.h"
 #include "gui_rendering.h"
 #include "layer_frames.h"
 #include "metrics/sequence_metrics.h"
@@ -24,8 +25,7 @@ void IoAnimStreamPlugin::GetExportMaskCapability(QString&, int& capability, int&
 }
 
 void IoAnimStreamPlugin::initPreOpenParameter(const QString&, const QString&, RichParameterList& par) {
-  par.addParam(RichInt("FirstFrame", 0, "First frame", "First frame to load as a layer (0 = the first)."));
-  par.addParam(RichInt("LastFrame", -1, "Last frame", "Last frame to load; -1 = the last frame of the file."));
+  addFrameRangeParameters(par);
 }
 
 void IoAnimStreamPlugin::initSaveParameter(const QString&, MeshModel&, RichParameterList& par) {
@@ -38,9 +38,7 @@ void IoAnimStreamPlugin::initSaveParameter(const QString&, MeshModel&, RichParam
 bool IoAnimStreamPlugin::open(const QString&, const QString& fileName, MeshModel& m, int& mask,
                               const RichParameterList& par, vcg::CallBackPos* cb, QWidget*) {
   mask = 0;
-  AmsImport range;
-  if (par.hasParameter("FirstFrame")) range.first_frame = par.getInt("FirstFrame");
-  if (par.hasParameter("LastFrame")) range.last_frame = par.getInt("LastFrame");
+  AmsImport range = frameRangeFrom(par);
   MeshDocument* md = m.parent;
   if (md == nullptr) range.last_frame = range.first_frame;  // no document to add layers to
   auto layers = importAms(fileName.toStdString(), range, md, &m, progressFrom(cb));
