@@ -8,6 +8,9 @@ namespace {
 // Enum order is the script value: append, never reorder.
 const QStringList kCodecs = {"Affine-Octree", "Wavelet"};
 const QStringList kProfiles = {"default", "paper"};
+// How wavelet detail frames refer to the frame before them (animc encode: default,
+// --progressive-p-frames, --i-frames-only).
+const QStringList kWaveletFrames = {"P-frames", "progressive P-frames", "I-frames only"};
 
 }  // namespace
 
@@ -35,6 +38,11 @@ void addEncodeParameters(RichParameterList& par) {
   par.addParam(RichFloat("WaveletTargetKG", float(defaults.wavelet.target_kg), "Target KG error (%) (Wavelet)",
                          "Rate control by error: each frame gets the fewest bits that keep the animation's "
                          "KG error at or below this (down to what the step allows); 0 = off."));
+  par.addParam(RichEnum("WaveletFrames", 0, kWaveletFrames, "Detail frames (Wavelet)",
+                        "P-frames: each frame predicted from the last (smallest files). Progressive P-frames: "
+                        "the same without temporal contexts, so a decoder may cut them (animc decode "
+                        "--bitplanes / --max-bytes), with drift until the next I-frame; 0.6-5 % more bits. "
+                        "I-frames only: every frame on its own, cuttable without drift; largest files."));
   par.addParam(RichInt("IFrameInterval", int(defaults.iframe_interval), "I-frame interval",
                        "An intra frame every K frames, so playback can start there; 0 = only the first frame."));
 }
@@ -60,10 +68,16 @@ Status readOctreeParameters(const RichParameterList& par, AffineOctreeOptions& o
   return Status();
 }
 
-void readWaveletParameters(const RichParameterList& par, WaveletOptions& o) {
+Status readWaveletParameters(const RichParameterList& par, WaveletOptions& o) {
   o.step = typedValue(par, "WaveletStepPercent") / 100;
   o.bits_per_vertex = typedValue(par, "WaveletBitsPerVertex");
   o.target_kg = typedValue(par, "WaveletTargetKG");
+  const int frames = par.getEnum("WaveletFrames");
+  if (frames < 0 || frames >= kWaveletFrames.size())
+    return invalidArgument("unknown wavelet detail-frame kind " + std::to_string(frames));
+  o.progressive_p_frames = frames == 1;
+  o.temporal_prediction = frames != 2;
+  return Status();
 }
 
 }  // namespace
@@ -74,7 +88,7 @@ Result<EncodeSettings> encodeSettingsFrom(const RichParameterList& par) {
   if (codec < 0 || codec >= kCodecs.size()) return invalidArgument("unknown codec " + std::to_string(codec));
   if (codec == 1) {
     s.codec = CodecId::kWavelet;
-    readWaveletParameters(par, s.wavelet);
+    ANIMC_RETURN_IF_ERROR(readWaveletParameters(par, s.wavelet));
   } else {
     ANIMC_RETURN_IF_ERROR(readOctreeParameters(par, s.octree));
   }

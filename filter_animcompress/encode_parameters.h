@@ -8,8 +8,9 @@
 namespace animc::meshlab {
 
 // Codec, Profile, MaxErrorPercent, Bits, WaveletStepPercent, WaveletBitsPerVertex,
-// WaveletTargetKG, IFrameInterval. MaxErrorPercent is the CLI's --max-error times 100 (percent of the root
-// cube's side, as the paper writes ME), WaveletStepPercent its --step times 100. Every
+// WaveletTargetKG, WaveletFrames, IFrameInterval. MaxErrorPercent is the CLI's --max-error
+// times 100 (percent of the root cube's side, as the paper writes ME), WaveletStepPercent its
+// --step times 100. Every
 // parameter is always there (a script must name them all); those of the codec not chosen
 // are ignored.
 void addEncodeParameters(RichParameterList& par);

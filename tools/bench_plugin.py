@@ -30,24 +30,22 @@ sys.path.insert(0, os.path.join(REPO, 'tools'))
 from make_samples import write_ply_frames  # noqa: E402
 
 MAX_ERROR_PERCENT = 1
-SCRIPT = '''<!DOCTYPE FilterScript>
-<FilterScript>
- <filter name="Compress Animation Layers">
-  <Param type="RichEnum" name="Codec" value="0" enum_cardinality="2" enum_val0="Affine-Octree" enum_val1="Wavelet"/>
-  <Param type="RichEnum" name="Profile" value="0" enum_cardinality="2" enum_val0="default" enum_val1="paper"/>
-  <Param type="RichFloat" name="MaxErrorPercent" value="{percent}"/>
-  <Param type="RichInt" name="Bits" value="16"/>
-  <Param type="RichFloat" name="WaveletStepPercent" value="0.01"/>
-  <Param type="RichFloat" name="WaveletBitsPerVertex" value="0"/>
-  <Param type="RichFloat" name="WaveletTargetKG" value="0"/>
-  <Param type="RichInt" name="IFrameInterval" value="0"/>
-  <Param type="RichBool" name="VisibleOnly" value="false"/>
-  <Param type="RichSaveFile" name="OutputFile" value="{output}" ext="*.ams"/>
-  <Param type="RichBool" name="AddReconstructed" value="{layers}"/>
-  <Param type="RichBool" name="ColourByError" value="{layers}"/>
- </filter>
-</FilterScript>
-'''
+SAMPLE_SCRIPT = os.path.join(REPO, 'samples', 'compress.mlx')
+
+
+def filter_script(output, layers):
+    """samples/compress.mlx with this benchmark's max error, output and layer options."""
+    with open(SAMPLE_SCRIPT) as f:
+        script = f.read()
+    values = {'MaxErrorPercent': str(MAX_ERROR_PERCENT), 'OutputFile': output,
+              'AddReconstructed': layers, 'ColourByError': layers}
+    for name, value in values.items():
+        script, found = re.subn(f'(name="{name}" value=")[^"]*"', lambda m: m.group(1) + value + '"', script)
+        if found != 1:
+            raise RuntimeError(f'{SAMPLE_SCRIPT}: no parameter {name}')
+    return script
+
+
 FILTER_TIME = re.compile(r'encode time: ([0-9.]+) s .*; whole filter ([0-9.]+) s')
 
 
@@ -75,7 +73,7 @@ def run_filter(frames, work, layers):
     output = os.path.join(work, 'filter.ams')
     script = os.path.join(work, 'compress.mlx')
     with open(script, 'w') as f:
-        f.write(SCRIPT.format(percent=MAX_ERROR_PERCENT, output=output, layers='true' if layers else 'false'))
+        f.write(filter_script(output, 'true' if layers else 'false'))
     env = dict(os.environ, ANIMC_MESHLAB_HOME=os.path.join(work, 'home'))
     done = subprocess.run([os.path.join(REPO, 'tools', 'meshlabserver.sh'), '-i', *frames, '-s', script],
                           capture_output=True, text=True, env=env, cwd=work)

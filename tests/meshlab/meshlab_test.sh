@@ -151,6 +151,23 @@ case_wavelet() {
   server wavelet_open -i "$TMP/sydney_24.ams" "${EXPORTS[@]}"
   expect_ok wavelet_open
   expect_same_frames wavelet_open opened.txt decoded "$N"
+
+  # WaveletFrames 1 and 2 are animc's --progressive-p-frames and --i-frames-only.
+  local frames flag
+  "$ANIMC" encode "$SRC/samples/sydney/frames" -o cli_plain.ams --codec wavelet >/dev/null
+  for frames in 1:progressive-p-frames 2:i-frames-only; do
+    flag=${frames#*:} frames=${frames%%:*}
+    sed -e 's|name="Codec" value="0"|name="Codec" value="1"|' \
+        -e "s|name=\"WaveletFrames\" value=\"0\"|name=\"WaveletFrames\" value=\"$frames\"|" \
+        "$SRC/samples/compress.mlx" >"wavelet_$flag.mlx"
+    grep -q "name=\"WaveletFrames\" value=\"$frames\"" "wavelet_$flag.mlx" ||
+      die "wavelet_$flag.mlx: the sample's WaveletFrames parameter changed"
+    server "wavelet_$flag" -i "${FRAMES[@]}" -s "$TMP/wavelet_$flag.mlx"
+    expect_ok "wavelet_$flag"
+    "$ANIMC" encode "$SRC/samples/sydney/frames" -o "cli_$flag.ams" --codec wavelet --"$flag" >/dev/null
+    cmp -s sydney_24.ams "cli_$flag.ams" || check_failed "the filter's WaveletFrames $frames file differs from animc --$flag's"
+    if cmp -s sydney_24.ams cli_plain.ams; then check_failed "WaveletFrames $frames wrote a plain P-frame file"; fi
+  done
 }
 
 # bad_case NAME EXPECTED_TEXT FRAME_FILES...: compress.mlx on these layers fails cleanly.
