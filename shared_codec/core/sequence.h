@@ -12,6 +12,10 @@
 
 namespace animc {
 
+// Coordinates beyond this are treated like NaN, in inputs and in what a stream decodes to:
+// they overflow any quantisation grid.
+constexpr double kMaxCoordinate = 1e30;
+
 using Triangle = std::array<uint32_t, 3>;
 
 struct Topology {

@@ -8,9 +8,6 @@
 
 namespace animc {
 
-// Coordinates beyond this are treated like NaN: they overflow any quantisation grid.
-constexpr double kMaxCoordinate = 1e30;
-
 // Checks `vertex_count` xyz triples; the message names the first bad vertex.
 Status checkPositions(const float* xyz, uint32_t vertex_count);
 // Checks one coordinate before it is narrowed to float (PLY may store doubles).

@@ -82,7 +82,7 @@ class AffineOctreeEncoder final : public FrameEncoder {
     if (options_.profile == Profile::kPaper) {
       PaperFrameStats s;
       paper_.encode(in, out, state_.recon_unit, s);
-      stats.cells = s.affine_cells + s.position_cells;
+      stats.cells = s.cells;
     } else {
       PredictiveFrameStats s;
       if (!predictive_.encode(in, out, state_.recon_unit, s)) return false;

@@ -9,6 +9,7 @@
 
 #include "codecs/affine_octree/octree_shared.h"
 #include "codecs/affine_octree/simd_math.h"
+#include "core/sequence.h"
 
 namespace animc {
 namespace {
@@ -26,7 +27,7 @@ RootCube cubeOfBox(const double min[3], const double max[3]) {
   return cube;
 }
 
-// Running bounding box of points, x and y in one Pair.
+// PointBox fed from xyz triples, ending in the root cube of the box.
 struct BoxBuilder : PointBox {
   using PointBox::add;
   using PointBox::PointBox;
@@ -39,8 +40,6 @@ struct BoxBuilder : PointBox {
 
 const double kOrigin[3] = {0, 0, 0};
 
-// What a valid stream decodes to: finite and within ±1e30 (false for NaN too).
-constexpr double kMaxCoordinate = 1e30;
 typedef float FloatPair __attribute__((vector_size(8)));
 typedef long long PairMask __attribute__((vector_size(16)));
 

@@ -33,8 +33,7 @@ struct PaperModels {
 };
 
 struct PaperFrameStats {
-  uint64_t affine_cells = 0;
-  uint64_t position_cells = 0;
+  uint64_t cells = 0;  // leaves: affine or stored positions
 };
 
 class PaperOctreeEncoder {

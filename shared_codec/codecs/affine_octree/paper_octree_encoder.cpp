@@ -55,13 +55,13 @@ void PaperOctreeEncoder::encodeCell(Walk& w, const Cell& cell) {
   }
   w.rc.encode(models_->positions_leaf, !fits);
   if (!fits) return encodePositions(w, cell);
-  ++w.stats.affine_cells;
+  ++w.stats.cells;
   for (int i = 0; i < 12; ++i) encodeWide(w.rc, models_->affine[i], coded[i], bits_);
   for (uint32_t i = 0; i < n; ++i) applyAffine34(a, &u[3 * size_t(idx[i])], &w.recon[3 * size_t(idx[i])]);
 }
 
 void PaperOctreeEncoder::encodePositions(Walk& w, const Cell& cell) {
-  ++w.stats.position_cells;
+  ++w.stats.cells;
   const std::vector<double>& q = *w.in.target;
   const uint32_t* idx = partition_.vertices(cell);
   for (uint32_t i = 0; i < cell.end - cell.begin; ++i) {
