@@ -177,14 +177,14 @@ Collapse recordCollapse(const LevelMesh& mesh, const Candidate& c, const std::ve
 // above. Only non-adjacent boundary vertices are welded: coincident neighbours (a
 // coarse parametric grid merging close vertices) are degenerate edges, not seams. Exact
 // comparisons and index order keep it deterministic.
-int weldSeams(LevelMesh& mesh, const std::vector<double>& xyz, std::vector<uint8_t>& removed, ProgressiveMesh& pm) {
+int weldSeams(LevelMesh& mesh, const std::vector<double>& xyz, const BoundaryLoops& loops, std::vector<uint8_t>& removed,
+              ProgressiveMesh& pm) {
   std::vector<uint32_t> order(removed.size());
   std::iota(order.begin(), order.end(), 0u);
   auto position = [&](uint32_t v) { return std::make_tuple(xyz[3 * size_t(v)], xyz[3 * size_t(v) + 1], xyz[3 * size_t(v) + 2]); };
   std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
     return position(a) < position(b) || (position(a) == position(b) && a < b);
   });
-  const BoundaryLoops loops(mesh, uint32_t(removed.size()));
   int welded = 0;
   for (size_t first = 0, end = 0; first < order.size(); first = end) {
     const uint32_t original = order[first];
@@ -238,11 +238,12 @@ ProgressiveMesh buildProgressiveMesh(const Topology& topology, const std::vector
   LevelMesh mesh(topology);
   std::vector<uint8_t> removed(topology.vertex_count, 0);
   double max_length = settings.first_length_factor * meanEdgeLength(topology, parametric_xyz);
-  if (settings.weld_seams && weldSeams(mesh, parametric_xyz, removed, pm) > 0) {
+  BoundaryLoops loops(mesh, topology.vertex_count);
+  if (settings.weld_seams && weldSeams(mesh, parametric_xyz, loops, removed, pm) > 0) {
     pm.level_count = 1;
     mesh.rebuildIncidence();
+    loops = BoundaryLoops(mesh, topology.vertex_count);  // the welded seams are no longer boundary
   }
-  BoundaryLoops loops(mesh, topology.vertex_count);
   CollapseOptionCache cache(topology.vertex_count);
   for (int level = 0; level < settings.max_levels; ++level, max_length *= settings.length_growth) {
     bool any_valid = false;

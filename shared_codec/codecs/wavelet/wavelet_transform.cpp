@@ -44,10 +44,12 @@ WaveletTransform::WaveletTransform(const Topology& topology, const std::vector<d
       stencils_(buildPredictor(pm_, parametric_xyz)),
       level_of_(topology.vertex_count, -1) {
   flattenStencils();
-  cosines_.resize(pm_.ring.size());
-  sines_.resize(pm_.ring.size());
+  if (local_frames_) {  // the tangent masks of frameOf; world axes need none
+    cosines_.resize(pm_.ring.size());
+    sines_.resize(pm_.ring.size());
+  }
   for (const Collapse& c : pm_.collapses) {
-    for (uint32_t k = 0; k < c.ring_size; ++k) {
+    for (uint32_t k = 0; local_frames_ && k < c.ring_size; ++k) {
       cosines_[c.ring_begin + k] = std::cos(2 * kPi * k / c.ring_size);
       sines_[c.ring_begin + k] = std::sin(2 * kPi * k / c.ring_size);
     }
