@@ -95,7 +95,12 @@ void fillMesh(MeshModel& layer, const Topology& topology, const float* xyz) {
   layer.UpdateBoxAndNormals();
 }
 
+namespace {
+
+// "frame_00012"
 QString frameLabel(int64_t frame) { return QString("frame_%1").arg(frame, 5, 10, QChar('0')); }
+
+}  // namespace
 
 Result<QList<MeshModel*>> importAms(const std::string& path, const AmsImport& range,
                                     MeshDocument* md, MeshModel* first_layer,

@@ -61,7 +61,4 @@ Result<QList<MeshModel*>> importAms(const std::string& path, const AmsImport& ra
                                     MeshDocument* md, MeshModel* first_layer,
                                     const ProgressFn& progress);
 
-// "frame_00012"
-QString frameLabel(int64_t frame);
-
 }  // namespace animc::meshlab

@@ -5,7 +5,7 @@
 #include <common/filter_parameter/rich_parameter_list.h>
 #include <common/meshmodel.h>
 
-#include "compress_layers.h"
+#include "plugin_support.h"
 
 namespace animc::meshlab {
 
