@@ -86,7 +86,7 @@ void encodeBitplanes(const double* values, const BitplaneLayout& layout,
   std::vector<uint8_t>& range = ws.range;
   range.clear();
   ws.checkpoints.clear();
-  ws.models.reset();
+  ws.models.reset(top);
   RangeEncoder rc(range);
   EncoderIo io{&rc};
   const size_t blocks = s.blockCount();
@@ -178,7 +178,7 @@ Status decodeBitplanes(ByteReader& in, const BitplaneLayout& layout,
   }
   const size_t available = std::min<uint64_t>(in.remaining(), range_bytes);
   DecoderIo io{RangeDecoder(in.cursor(), available)};
-  ws.models.reset();
+  ws.models.reset(top);
   for (int i = 0; i < planes; ++i) {
     const int p = top - 1 - i;
     const size_t end = i + 1 == planes ? size_t(stop) : blocks;
