@@ -1,5 +1,6 @@
 #include "codecs/wavelet/collapse_choice.h"
 
+#include <algorithm>
 #include <cstdint>
 
 #include <Eigen/Core>
@@ -13,26 +14,18 @@ using Vec3 = Eigen::Vector3d;
 Vec3 at(const std::vector<double>& xyz, uint32_t v) { return Vec3(xyz[3 * size_t(v)], xyz[3 * size_t(v) + 1], xyz[3 * size_t(v) + 2]); }
 
 // v's triangles (v, ring[i], ring[i+1]): k of them around a closed ring, k - 1 in an open
-// fan. Their normals (twice their area long) are shared by every target's checks and cost.
+// fan, with their normals (twice their area long), as VertexCollapses keeps them.
 struct Fan {
   const std::vector<uint32_t>& ring;
   bool closed;
   Vec3 pv;
-  std::vector<Vec3> normal;
-  std::vector<double> twice_area;
+  const double* normals;
+  const double* twice_area;
 
-  Fan(const std::vector<double>& xyz, uint32_t v, const std::vector<uint32_t>& r, bool is_closed)
-      : ring(r), closed(is_closed), pv(at(xyz, v)) {
-    normal.reserve(triangleCount());
-    twice_area.reserve(triangleCount());
-    for (size_t i = 0; i < triangleCount(); ++i) {
-      normal.push_back((at(xyz, ring[i]) - pv).cross(at(xyz, ring[next(i)]) - pv));
-      twice_area.push_back(normal.back().norm());
-    }
-  }
   size_t triangleCount() const { return closed ? ring.size() : ring.size() - 1; }
   // The ring position after i (the fan's triangles are (v, ring[i], ring[next(i)])).
   size_t next(size_t i) const { return i + 1 == ring.size() ? 0 : i + 1; }
+  Eigen::Map<const Vec3> normal(size_t i) const { return Eigen::Map<const Vec3>(normals + 3 * i); }
 };
 
 // Whether ring[i] is u = ring[at_u] or next to it along the fan (no wrap-around in an open
@@ -62,7 +55,7 @@ bool keepsTrianglesSound(const LevelMesh& mesh, const std::vector<double>& xyz, 
     if (a == u || b == u) continue;  // this triangle disappears
     if (flanks(i) && flanks(fan.next(i)) && mesh.hasTriangle(u, a, b)) return false;
     const Vec3 pa = at(xyz, a), pb = at(xyz, b);
-    const Vec3& before = fan.normal[i];
+    const Vec3 before = fan.normal(i);
     const Vec3 after = (pa - pu).cross(pb - pu);
     const double nb = fan.twice_area[i], na = after.norm();
     const double scale = (pa - pu).squaredNorm() + (pb - pu).squaredNorm();
@@ -90,7 +83,7 @@ double collapseCost(const std::vector<double>& xyz, const Fan& fan, uint32_t u) 
   for (size_t i = 0; i < fan.triangleCount(); ++i) {
     const double twice_area = fan.twice_area[i];
     if (twice_area <= 0) continue;
-    const double distance = fan.normal[i].dot(d) / twice_area;
+    const double distance = fan.normal(i).dot(d) / twice_area;
     quadric += 0.5 * twice_area * distance * distance;
     area += 0.5 * twice_area;
   }
@@ -108,41 +101,68 @@ double boundaryCost(const std::vector<double>& xyz, uint32_t v, uint32_t a, uint
   return off.squaredNorm() * length2;
 }
 
-// Appends u = fan.ring[at_u] to out when the collapse onto it is valid, at its cost plus
-// extra_cost.
-void addIfValid(const LevelMesh& mesh, const std::vector<double>& xyz, const Fan& fan, size_t at_u,
-                double min_cos, double extra_cost, std::vector<CollapseOption>& out) {
-  const Flanks flanks(fan, at_u);
-  if (!linkConditionHolds(mesh, fan, flanks) || !keepsTrianglesSound(mesh, xyz, fan, flanks, min_cos)) return;
-  const uint32_t u = fan.ring[at_u];
-  out.push_back({u, collapseCost(xyz, fan, u) + extra_cost, (at(xyz, u) - fan.pv).norm()});
-}
-
 }  // namespace
 
-void interiorCollapseOptions(const LevelMesh& mesh, const std::vector<double>& xyz, uint32_t v,
-                             const std::vector<uint32_t>& ring, double min_normal_cosine,
-                             std::vector<CollapseOption>& out) {
-  const Fan fan(xyz, v, ring, true);
-  for (size_t i = 0; i < ring.size(); ++i) addIfValid(mesh, xyz, fan, i, min_normal_cosine, 0.0, out);
-}
-
-void boundaryCollapseOptions(const LevelMesh& mesh, const std::vector<double>& xyz, uint32_t v,
-                             const std::vector<uint32_t>& ring, double min_normal_cosine,
-                             std::vector<CollapseOption>& out) {
+void VertexCollapses::prepare(const std::vector<double>& xyz, uint32_t v, bool closed) {
+  vertex_ = v;
+  closed_ = closed;
+  options_.clear();
+  ring_position_.clear();
+  validity_.clear();
   // An ear (one triangle) stays: its ring is a single edge, which spans no local frame, and
   // removing it turns an inner edge into boundary.
-  if (ring.size() < 3) return;
-  const Fan fan(xyz, v, ring, false);
-  const double curve = boundaryCost(xyz, v, ring.front(), ring.back());
-  for (size_t i : {size_t(0), ring.size() - 1}) addIfValid(mesh, xyz, fan, i, min_normal_cosine, curve, out);
+  if (!closed && ring.size() < 3) return;
+  const Vec3 pv = at(xyz, v);
+  normal_.resize(3 * triangleCount());
+  twice_area_.resize(triangleCount());
+  for (size_t i = 0; i < triangleCount(); ++i) {
+    const Vec3 normal = (at(xyz, ring[i]) - pv).cross(at(xyz, ring[next(i)]) - pv);
+    std::copy(normal.data(), normal.data() + 3, &normal_[3 * i]);
+    twice_area_[i] = normal.norm();
+  }
+  const Fan fan{ring, closed, pv, normal_.data(), twice_area_.data()};
+  const double curve = closed ? 0.0 : boundaryCost(xyz, v, ring.front(), ring.back());
+  auto add = [&](size_t at_u) {
+    const uint32_t u = ring[at_u];
+    options_.push_back({u, collapseCost(xyz, fan, u) + curve, (at(xyz, u) - pv).norm()});
+    ring_position_.push_back(uint32_t(at_u));
+    validity_.push_back(Validity::kUnknown);
+  };
+  if (closed) {
+    for (size_t i = 0; i < ring.size(); ++i) add(i);
+  } else {
+    add(0);
+    add(ring.size() - 1);
+  }
 }
 
-const CollapseOption* cheapestWithin(const std::vector<CollapseOption>& options, double max_length) {
+bool VertexCollapses::valid(size_t option, const LevelMesh& mesh, const std::vector<double>& xyz,
+                            double min_normal_cosine) {
+  if (validity_[option] == Validity::kUnknown) {
+    const Fan fan{ring, closed_, at(xyz, vertex_), normal_.data(), twice_area_.data()};
+    const Flanks flanks(fan, ring_position_[option]);
+    const bool ok = linkConditionHolds(mesh, fan, flanks) && keepsTrianglesSound(mesh, xyz, fan, flanks, min_normal_cosine);
+    validity_[option] = ok ? Validity::kValid : Validity::kInvalid;
+  }
+  return validity_[option] == Validity::kValid;
+}
+
+// Only an option that would beat the best so far needs its validity: the result is the
+// cheapest valid one, as if every option had been checked.
+const CollapseOption* VertexCollapses::cheapestWithin(const LevelMesh& mesh, const std::vector<double>& xyz,
+                                                      double max_length, double min_normal_cosine) {
   const CollapseOption* best = nullptr;
-  for (const CollapseOption& o : options)
-    if (o.length <= max_length && (!best || o.cost < best->cost)) best = &o;
+  for (size_t i = 0; i < options_.size(); ++i) {
+    const CollapseOption& o = options_[i];
+    if (o.length <= max_length && (!best || o.cost < best->cost) && valid(i, mesh, xyz, min_normal_cosine)) best = &o;
+  }
   return best;
+}
+
+bool VertexCollapses::anyValid(const LevelMesh& mesh, const std::vector<double>& xyz, double min_normal_cosine) {
+  for (size_t i = 0; i < options_.size(); ++i)
+    if (valid(i, mesh, xyz, min_normal_cosine)) return true;
+  return false;
 }
 
 }  // namespace animc

@@ -10,31 +10,53 @@
 
 namespace animc {
 
-// One valid target of a vertex's collapse, with its cost and the length of the edge (the
-// level's length bound is applied by the caller, so options stay valid from level to level
-// while the vertex's neighbourhood does not change).
+// One target of a vertex's collapse, with its cost and the length of the edge (the level's
+// length bound is applied when choosing, so options stay usable from level to level while
+// the vertex's neighbourhood does not change).
 struct CollapseOption {
   uint32_t target = kNoVertex;
   double cost = 0;
   double length = 0;
 };
 
-// ring: v's ordered ring (LevelMesh::orderedRing). Appends to `out` every neighbour that is
-// a valid target, in ring order.
-void interiorCollapseOptions(const LevelMesh& mesh, const std::vector<double>& xyz, uint32_t v,
-                             const std::vector<uint32_t>& ring, double min_normal_cosine,
-                             std::vector<CollapseOption>& out);
+// A vertex's collapse options on the current level. Costs and lengths are computed for every
+// target at once; the validity rules (link condition, no duplicate, degenerate or flipped
+// triangle), which cost several times more, only for the targets a level's choice reaches,
+// once each. Valid while the vertex's neighbourhood within two edges is unchanged.
+class VertexCollapses {
+ public:
+  // v's ordered ring (LevelMesh::orderedRing) or open fan (LevelMesh::openFan); fill it,
+  // then call prepare().
+  std::vector<uint32_t> ring;
 
-// The same for a boundary vertex v with open fan `fan` (LevelMesh::openFan): it may only
-// collapse along a boundary edge, onto fan.front() or fan.back(), so that the boundary stays
-// a curve and v can be predicted from its two boundary neighbours; v needs >= 2 triangles.
-// The cost adds the squared distance of v to the chord between them (what the boundary curve
-// loses).
-void boundaryCollapseOptions(const LevelMesh& mesh, const std::vector<double>& xyz, uint32_t v,
-                             const std::vector<uint32_t>& fan, double min_normal_cosine,
-                             std::vector<CollapseOption>& out);
+  // Closed ring: every neighbour is a target. Open fan: only fan.front() and fan.back(), so
+  // that the boundary stays a curve and v can be predicted from its two boundary neighbours;
+  // v needs >= 2 triangles, and the cost adds the squared distance of v to the chord between
+  // them (what the boundary curve loses).
+  void prepare(const std::vector<double>& xyz, uint32_t v, bool closed);
+  void clear() { options_.clear(); }  // v cannot be removed on this level
 
-// The cheapest option within max_length (the first of equal ones); null when none fits.
-const CollapseOption* cheapestWithin(const std::vector<CollapseOption>& options, double max_length);
+  // The cheapest valid option within max_length (the first of equal ones in ring order);
+  // null when none fits.
+  const CollapseOption* cheapestWithin(const LevelMesh& mesh, const std::vector<double>& xyz, double max_length,
+                                       double min_normal_cosine);
+  // Whether some option is valid, whatever its length.
+  bool anyValid(const LevelMesh& mesh, const std::vector<double>& xyz, double min_normal_cosine);
+
+ private:
+  enum class Validity : uint8_t { kUnknown, kValid, kInvalid };
+  bool valid(size_t option, const LevelMesh& mesh, const std::vector<double>& xyz, double min_normal_cosine);
+  size_t triangleCount() const { return closed_ ? ring.size() : ring.size() - 1; }
+  size_t next(size_t i) const { return i + 1 == ring.size() ? 0 : i + 1; }
+
+  uint32_t vertex_ = kNoVertex;
+  bool closed_ = true;
+  // v's triangles (v, ring[i], ring[next(i)]): normals twice their area long, and that area.
+  std::vector<double> normal_;  // 3 per triangle
+  std::vector<double> twice_area_;
+  std::vector<CollapseOption> options_;
+  std::vector<uint32_t> ring_position_;  // of each option's target
+  std::vector<Validity> validity_;
+};
 
 }  // namespace animc

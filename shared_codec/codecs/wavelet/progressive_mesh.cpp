@@ -94,29 +94,30 @@ class CollapseOptionCache {
   struct Entry {
     bool stale = true;
     CollapseKind kind = CollapseKind::kInterior;
-    std::vector<CollapseOption> options;  // empty: v cannot be removed
-    std::vector<uint32_t> ring;           // its closed ring, or open fan on a boundary
+    VertexCollapses collapses;  // its ring is v's closed ring, or open fan on a boundary
   };
 
   explicit CollapseOptionCache(uint32_t vertex_count) : entries_(vertex_count) {}
 
-  const Entry& at(const LevelMesh& mesh, const std::vector<double>& xyz, uint32_t v, const HierarchySettings& settings) {
+  Entry& at(const LevelMesh& mesh, const std::vector<double>& xyz, uint32_t v, const HierarchySettings& settings) {
     Entry& e = entries_[v];
     if (!e.stale) return e;
     e.stale = false;
-    e.options.clear();
     e.kind = CollapseKind::kInterior;
-    if (mesh.orderedRing(v, e.ring)) {
-      interiorCollapseOptions(mesh, xyz, v, e.ring, settings.min_normal_cosine, e.options);
-    } else if (settings.collapse_boundaries && mesh.openFan(v, e.ring)) {
+    VertexCollapses& c = e.collapses;
+    if (mesh.orderedRing(v, c.ring)) {
+      c.prepare(xyz, v, true);
+    } else if (settings.collapse_boundaries && mesh.openFan(v, c.ring)) {
       e.kind = CollapseKind::kBoundary;
-      boundaryCollapseOptions(mesh, xyz, v, e.ring, settings.min_normal_cosine, e.options);
+      c.prepare(xyz, v, false);
+    } else {
+      c.clear();
     }
     return e;
   }
   // The ring of a vertex whose fresh entry has options: unchanged until the level's collapses
   // are applied (they mark every vertex whose ring they change stale).
-  const std::vector<uint32_t>& ring(uint32_t v) const { return entries_[v].ring; }
+  const std::vector<uint32_t>& ring(uint32_t v) const { return entries_[v].collapses.ring; }
 
   // Before w's collapse is applied: every vertex within two edges of w (w among them).
   void markStale(const LevelMesh& mesh, uint32_t w) {
@@ -138,13 +139,17 @@ std::vector<Candidate> levelCandidates(const LevelMesh& mesh, const std::vector<
                                        CollapseOptionCache& cache, bool& any_valid) {
   std::vector<Candidate> out;
   any_valid = false;
+  const double min_cos = settings.min_normal_cosine;
   for (uint32_t v = 0; v < removed.size(); ++v) {
     if (removed[v]) continue;
-    const CollapseOptionCache::Entry& e = cache.at(mesh, xyz, v, settings);
-    if (e.options.empty() || (e.kind == CollapseKind::kBoundary && !loops.canLose(v))) continue;
-    any_valid = true;
-    if (const CollapseOption* best = cheapestWithin(e.options, max_length))
+    CollapseOptionCache::Entry& e = cache.at(mesh, xyz, v, settings);
+    if (e.kind == CollapseKind::kBoundary && !loops.canLose(v)) continue;
+    if (const CollapseOption* best = e.collapses.cheapestWithin(mesh, xyz, max_length, min_cos)) {
       out.push_back({best->cost, v, best->target, e.kind});
+      any_valid = true;
+    } else {
+      any_valid = any_valid || e.collapses.anyValid(mesh, xyz, min_cos);
+    }
   }
   // Cost, then vertex index: a total order, so both sides pick the same batch.
   std::sort(out.begin(), out.end(), [](const Candidate& a, const Candidate& b) {
