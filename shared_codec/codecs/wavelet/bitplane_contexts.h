@@ -150,29 +150,39 @@ class BitplaneState {
   }
 
   // Coefficients [begin, end), known down to plane q. Without branches on the magnitude or
-  // the sign: both are close to random in the low planes. Same values as
-  // sign * (k == 0 ? 0 : (k + offset) * scale), bit for bit (negation flips the sign bit).
+  // the sign: both are close to random in the low planes. The same
+  // values as sign * (k == 0 ? 0 : (k + offset) * scale), bit for bit, and for the history
+  // the bit length of k (from the exponent of k as a double: exact below 2^31) plus q.
   template <class Known>
   void reconstructRange(size_t begin, size_t end, int planes, int q, double scale, double* decoded,
                         BitplaneHistory* history, Known known) const {
+    if (history)
+      reconstructLoop<true>(begin, end, planes, q, scale, decoded, history->bits.data(), history->negative.data(), known);
+    else
+      reconstructLoop<false>(begin, end, planes, q, scale, decoded, nullptr, nullptr, known);
+  }
+
+  template <bool kHistory, class Known>
+  void reconstructLoop(size_t begin, size_t end, int planes, int q, double scale, double* decoded,
+                       uint8_t* bit_lengths, uint8_t* was_negative, Known known) const {
     const uint8_t* const negative = negative_.data();
     const double offsets[2] = {kRefinedOffset, kFreshOffset};
     for (size_t j = begin; j < end; ++j) {
       const uint32_t k = planes == 0 ? 0 : known(j, q);
-      const double magnitude = (double(k) + offsets[k == 1]) * scale;
+      const double exact = double(int32_t(k));
+      const double magnitude = (exact + offsets[k == 1]) * scale;
+      const uint64_t zero_mask = 0ull - uint64_t(k != 0);  // k = 0: +0.0
       uint64_t bits;
       std::memcpy(&bits, &magnitude, sizeof bits);
-      bits &= 0ull - uint64_t(k != 0);       // k = 0: +0.0
-      bits ^= uint64_t(negative[j] != 0) << 63;
+      bits = (bits & zero_mask) ^ (uint64_t(negative[j] != 0) << 63);
       std::memcpy(&decoded[j], &bits, sizeof bits);
-    }
-    if (!history) return;
-    uint8_t* const bit_lengths = history->bits.data();
-    uint8_t* const was_negative = history->negative.data();
-    for (size_t j = begin; j < end; ++j) {
-      const uint32_t k = planes == 0 ? 0 : known(j, q);
-      bit_lengths[j] = uint8_t((32 - __builtin_clz(k | 1) + q) & -int(k != 0));
-      was_negative[j] = negative[j];
+      if (kHistory) {
+        uint64_t exact_bits;
+        std::memcpy(&exact_bits, &exact, sizeof exact_bits);
+        const int length = int(exact_bits >> 52) - 1022;  // 1 + floor(log2 k) for k >= 1
+        bit_lengths[j] = uint8_t((length + q) & int(zero_mask));
+        was_negative[j] = negative[j];
+      }
     }
   }
 
@@ -236,8 +246,16 @@ struct PlaneWalk {
   const uint8_t *const input_negative, *const vertex_bits, *const block_bits;
 
   // The temporal context of a coefficient (or vertex, block) whose last-frame bit length was
-  // `previous`, without branches: each comparison adds one.
-  int temporal(uint8_t previous) const { return (previous != 0) + (previous > p) + (previous > p + 1); }
+  // `previous` (<= kMaxBitplanes): (previous != 0) + (previous > p) + (previous > p + 1),
+  // looked up in 2-bit fields of one word, since every significance decision needs one.
+  int temporal(uint8_t previous) const { return int((temporal_fields >> (2 * (previous & 31))) & 3); }
+  static uint64_t temporalFields(int plane) {
+    uint64_t fields = 0;
+    for (int b = 0; b <= kMaxBitplanes; ++b)
+      fields |= uint64_t((b != 0) + (b > plane) + (b > plane + 1)) << (2 * b);
+    return fields;
+  }
+  const uint64_t temporal_fields = temporalFields(p);
   int magnitudeBit(size_t j) const { return Io::kEncodes ? int((magnitude[j] >> p) & 1) : 0; }
   int newlySignificant(const uint8_t* bits, size_t i) const { return Io::kEncodes ? bits[i] == p + 1 : 0; }
 

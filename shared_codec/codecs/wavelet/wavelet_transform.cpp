@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "codecs/affine_octree/simd_math.h"
 #include "codecs/wavelet/local_frame.h"
 
 namespace animc {
@@ -18,15 +19,19 @@ double triangleArea(const std::vector<double>& xyz, uint32_t a, uint32_t b, uint
 }
 
 // Sum of weight * position over a stencil, component by component in stencil order (the
-// order Eigen's p += w * x used: encoder and decoder, old and new, round alike).
+// order Eigen's p += w * x used: encoder and decoder, old and new, round alike); x and y as
+// the two lanes of a Pair, the same IEEE operations per lane.
 inline void predict(const uint32_t* offsets, const double* weights, size_t size, const double* xyz, double p[3]) {
-  p[0] = p[1] = p[2] = 0.0;
+  Pair xy = splat(0.0);
+  double z = 0.0;
   for (size_t s = 0; s < size; ++s) {
     const double* x = xyz + offsets[s];
-    p[0] += weights[s] * x[0];
-    p[1] += weights[s] * x[1];
-    p[2] += weights[s] * x[2];
+    xy += splat(weights[s]) * loadPair(x);
+    z += weights[s] * x[2];
   }
+  p[0] = xy[0];
+  p[1] = xy[1];
+  p[2] = z;
 }
 
 // c[0] * normal + c[1] * tangent + c[2] * bitangent, summed in Eigen's order (as the code it
