@@ -119,14 +119,16 @@ class BitplaneState {
   // `stop`, and what it leaves for the next frame's temporal contexts.
   void finish(int top, int planes, size_t stop, double step, std::vector<double>& decoded,
               BitplaneHistory* history) const {
-    reconstruct(top, planes, stop, step, decoded, history, [this](size_t j, int) { return known_[j]; });
+    // Raw pointers into the lambdas: the loop's byte stores would otherwise make the compiler
+    // reload a vector's data pointer for every coefficient.
+    reconstruct(top, planes, stop, step, decoded, history, [known = known_.data()](size_t j, int) { return known[j]; });
   }
 
   // Encoder only, after quantise(): what finish() would give had the walk been cut there.
   void preview(int planes, size_t stop, double step, std::vector<double>& decoded) {
     for (size_t j = 0; j < negative_.size(); ++j) negative_[j] = input_negative_[j];
     reconstruct(topPlane(), planes, stop, step, decoded, nullptr,
-                [this](size_t j, int q) { return q >= 32 ? 0u : magnitude_[j] >> q; });
+                [magnitude = magnitude_.data()](size_t j, int q) { return q >= 32 ? 0u : magnitude[j] >> q; });
   }
 
  private:
