@@ -1,14 +1,15 @@
 #include "compress_layers.h"
 
 #include <QFileInfo>
-#include <algorithm>
 #include <chrono>
+#include <cstdio>
 
 #include "api.h"
 #include "encode_parameters.h"
 #include "error_colouring.h"
 #include "layer_frames.h"
 #include "metrics/encode_metrics.h"
+#include "metrics/encode_summary.h"
 
 namespace animc::meshlab {
 namespace {
@@ -89,14 +90,9 @@ std::string compressLayers(MeshDocument& md, const RichParameterList& par, vcg::
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   log("Compressed " + std::to_string(r.frames) + " frames of " + std::to_string(r.vertices) +
       " vertices (" + std::to_string(r.triangles) + " triangles) into " + path);
-  logLines(log, describeSettings(settings.value()));
-  logLines(log, formatSizeText(r.file_bytes, r.static_bytes, r.vertices, r.frames));
-  logLines(log, formatMetricsText(m));
-  char line[160];
-  std::snprintf(line, sizeof line, "encode time: %.3f s (%.2f M vertices/s); whole filter %.3f s",
-                r.encode_seconds, double(r.vertices) * double(r.frames) / std::max(r.encode_seconds, 1e-9) / 1e6,
-                seconds);
-  log(line);
+  char whole_filter[64];
+  std::snprintf(whole_filter, sizeof whole_filter, "; whole filter %.3f s", seconds);
+  logLines(log, formatEncodeSummary(settings.value(), r, m, whole_filter));
   if (add_decoded) log("added " + std::to_string(out.decoded_layers.size()) + " reconstructed layers ('decoded ...')");
   return {};
 }

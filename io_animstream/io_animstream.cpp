@@ -6,7 +6,7 @@
 #include "frame_range_parameters.h"
 #include "gui_rendering.h"
 #include "layer_frames.h"
-#include "metrics/sequence_metrics.h"
+#include "metrics/encode_summary.h"
 #include "plugin_support.h"
 
 using namespace animc::meshlab;
@@ -67,8 +67,7 @@ bool IoAnimStreamPlugin::save(const QString&, const QString& fileName, MeshModel
   const animc::EncodeReport& r = report.value();
   Log("Saved %lld layers of %u vertices as frames of %s", (long long)r.frames, r.vertices, qUtf8Printable(fileName));
   const LogFn log = [this](const std::string& line) { Log("%s", line.c_str()); };
-  logLines(log, animc::describeSettings(settings.value()));
-  logLines(log, animc::formatSizeText(r.file_bytes, r.static_bytes, r.vertices, r.frames));
+  logLines(log, animc::formatEncodeResult(settings.value(), r));
   return true;
 }
 

@@ -10,6 +10,7 @@
 #include "core/memory_sequence.h"
 #include "metrics/compare_sequences.h"
 #include "metrics/encode_metrics.h"
+#include "metrics/encode_summary.h"
 #include "test_sequences.h"
 #include "metrics/json_writer.h"
 #include "metrics/sequence_metrics.h"
@@ -346,6 +347,29 @@ TEST(MetricsFormat, TextHasOneLinePerFigure) {
 
   const std::vector<Frame> seq = {{0, 0, 0, 1, 0, 0}};
   EXPECT_NE(formatMetricsText(measure(2, seq, seq)).find("psnr: inf dB\n"), std::string::npos);
+}
+
+TEST(MetricsFormat, EncodeSummaryLinesAndSpeed) {
+  EncodeReport r;
+  r.vertices = 1000;
+  r.frames = 50;
+  r.file_bytes = 30000;
+  r.static_bytes = 10000;
+  r.encode_seconds = 0.025;  // 50000 vertex positions: 2 M vertices/s
+  EXPECT_DOUBLE_EQ(encodeMvps(r), 2.0);
+  const std::vector<Frame> seq = {{0, 0, 0, 1, 0, 0}};
+  const SequenceMetrics m = measure(2, seq, seq);
+  const EncodeSettings settings;
+  const std::string result = describeSettings(settings) + formatSizeText(30000, 10000, 1000, 50);
+  EXPECT_EQ(formatEncodeResult(settings, r), result);
+  EXPECT_EQ(formatEncodeSummary(settings, r, m, "; note"),
+            result + formatMetricsText(m) + "encode time: 0.025 s (2.00 M vertices/s); note\n");
+
+  // No measurable time: no speed either, rather than a huge or infinite one.
+  r.encode_seconds = 0;
+  EXPECT_EQ(encodeMvps(r), 0.0);
+  const std::string summary = formatEncodeSummary(settings, r, m);
+  EXPECT_NE(summary.find("\nencode time: 0.000 s (0.00 M vertices/s)\n"), std::string::npos) << summary;
 }
 
 TEST(JsonWriter, EscapesQuotesBackslashesAndControls) {

@@ -2,6 +2,7 @@
 
 #include "cli.h"
 #include "metrics/encode_metrics.h"
+#include "metrics/encode_summary.h"
 #include "report.h"
 #include "seqio/sequence_io.h"
 
@@ -28,7 +29,6 @@ int runEncode(const std::vector<std::string>& argv) {
   endProgressLine();
   const EncodeReport& r = report.value();
   const SequenceMetrics m = metrics.finish();
-  const double mvps = r.encode_seconds > 0 ? double(r.vertices) * r.frames / r.encode_seconds / 1e6 : 0;
   if (args.has("json")) {
     JsonObject o;
     o.add("output", args.get("output"));
@@ -38,17 +38,14 @@ int runEncode(const std::vector<std::string>& argv) {
     o.add("intra_frames", r.intra_frames);
     o.add("cells", r.cells);
     o.add("encode_seconds", r.encode_seconds);
-    o.add("encode_mvps", mvps);
+    o.add("encode_mvps", encodeMvps(r));
     std::printf("%s\n", o.str().c_str());
     return 0;
   }
   std::printf("%s: %u vertices, %llu triangles, %lld frames (%llu intra)\n", args.get("output").c_str(),
               r.vertices, (unsigned long long)r.triangles, (long long)r.frames,
               (unsigned long long)r.intra_frames);
-  std::fputs(describeSettings(settings.value()).c_str(), stdout);
-  std::fputs(formatSizeText(r.file_bytes, r.static_bytes, r.vertices, r.frames).c_str(), stdout);
-  std::fputs(formatMetricsText(m).c_str(), stdout);
-  std::printf("encode time: %.3f s (%.2f M vertices/s)\n", r.encode_seconds, mvps);
+  std::fputs(formatEncodeSummary(settings.value(), r, m).c_str(), stdout);
   return 0;
 }
 
