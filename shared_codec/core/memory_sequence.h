@@ -1,6 +1,8 @@
 // A sequence held in memory: for the MeshLab plugins (layers are already in memory), tests
 // and benchmarks. Everything else streams.
 #pragma once
+#include <cstdint>
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -41,6 +43,10 @@ class MemorySequence final : public FrameSource {
   std::string name_;
   size_t next_ = 0;
 };
+
+// The next frames of source, read into memory: all that are left, or at most max_frames.
+Result<std::vector<std::vector<float>>> readFrames(
+    FrameSource& source, int64_t max_frames = std::numeric_limits<int64_t>::max());
 
 // Reads every frame of source into memory.
 Result<MemorySequence> readAll(FrameSource& source);

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -55,15 +56,10 @@ inline MemorySequence sharedSequence(const std::string& name, int frames) {
   auto source = openSequence(dir + name + ".pc2.xz", dir + name + ".ply");
   EXPECT_TRUE(source.ok()) << source.status().message();
   if (!source.ok()) return MemorySequence(Topology(), {});
-  std::vector<std::vector<float>> all;
-  std::vector<float> xyz;
-  while (frames <= 0 || int(all.size()) < frames) {
-    auto more = source.value()->next(xyz);
-    EXPECT_TRUE(more.ok()) << more.status().message();
-    if (!more.ok() || !more.value()) break;
-    all.push_back(xyz);
-  }
-  return MemorySequence(source.value()->topology(), std::move(all), 25.0, name);
+  auto read = readFrames(*source.value(), frames > 0 ? frames : std::numeric_limits<int64_t>::max());
+  EXPECT_TRUE(read.ok()) << read.status().message();
+  if (!read.ok()) return MemorySequence(Topology(), {});
+  return MemorySequence(source.value()->topology(), std::move(read).value(), 25.0, name);
 }
 
 }  // namespace animc::testing_support
