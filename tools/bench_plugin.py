@@ -28,6 +28,7 @@ import time
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(REPO, 'tools'))
 from make_samples import write_ply_frames  # noqa: E402
+from mlx_script import with_values  # noqa: E402
 
 MAX_ERROR_PERCENT = 1
 SAMPLE_SCRIPT = os.path.join(REPO, 'samples', 'compress.mlx')
@@ -35,15 +36,8 @@ SAMPLE_SCRIPT = os.path.join(REPO, 'samples', 'compress.mlx')
 
 def filter_script(output, layers):
     """samples/compress.mlx with this benchmark's max error, output and layer options."""
-    with open(SAMPLE_SCRIPT) as f:
-        script = f.read()
-    values = {'MaxErrorPercent': str(MAX_ERROR_PERCENT), 'OutputFile': output,
-              'AddReconstructed': layers, 'ColourByError': layers}
-    for name, value in values.items():
-        script, found = re.subn(f'(name="{name}" value=")[^"]*"', lambda m: m.group(1) + value + '"', script)
-        if found != 1:
-            raise RuntimeError(f'{SAMPLE_SCRIPT}: no parameter {name}')
-    return script
+    return with_values(SAMPLE_SCRIPT, {'MaxErrorPercent': str(MAX_ERROR_PERCENT), 'OutputFile': output,
+                                       'AddReconstructed': layers, 'ColourByError': layers})
 
 
 FILTER_TIME = re.compile(r'encode time: ([0-9.]+) s .*; whole filter ([0-9.]+) s')

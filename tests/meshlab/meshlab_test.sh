@@ -42,6 +42,13 @@ expect_same_frames() {
   "$PY" -c 'import json,sys; d=json.loads(sys.argv[1]); n=int(sys.argv[2]); sys.exit(0 if d["frames"]==n and d["max_error"]==0 else 1)' "$out" "$4" ||
     check_failed "$1: frames differ: $out"
 }
+# derive_script SAMPLE OUT NAME=VALUE...: samples/SAMPLE with those parameter values, as OUT;
+# stops the test when the sample has no such parameter (it was renamed or removed).
+derive_script() {
+  local sample=$1 out=$2
+  shift 2
+  "$PY" "$SRC/tools/mlx_script.py" "$SRC/samples/$sample" "$@" >"$out" || die "$out: samples/$sample changed"
+}
 # layer_exports FIRST COUNT PREFIX: meshlabserver arguments saving layers FIRST.. as PREFIX_k.ply,
 # and a list file PREFIX.txt naming them in order.
 layer_exports() {
@@ -93,9 +100,7 @@ case_scripts() {
   expect_same_frames import imported.txt last 1
 
   # A frame range: frames 5..9 become five layers, the last of them frame 9.
-  sed -e 's|name="FirstFrame" value="0"|name="FirstFrame" value="5"|' \
-      -e 's|name="LastFrame" value="-1"|name="LastFrame" value="9"|' "$SRC/samples/import.mlx" >range.mlx
-  grep -q 'value="5"' range.mlx || die "range.mlx: the sample's FirstFrame parameter changed"
+  derive_script import.mlx range.mlx FirstFrame=5 LastFrame=9
   server import_range -s "$TMP/range.mlx" -o "$TMP/range_last.ply" -l x
   expect_ok import_range
   expect_log import_range "Imported 5 frames of 342 vertices"
@@ -134,11 +139,7 @@ case_io_roundtrip() {
 case_wavelet() {
   # The filter with Codec = Wavelet writes what animc encode --codec wavelet writes, its
   # reconstructed layers are what animc decodes, and the IO plugin opens the file.
-  sed -e 's|name="Codec" value="0"|name="Codec" value="1"|' \
-      -e 's|name="WaveletStepPercent" value="0.01"|name="WaveletStepPercent" value="0.03"|' \
-      "$SRC/samples/compress_error.mlx" >wavelet.mlx
-  grep -q 'name="Codec" value="1"' wavelet.mlx && grep -q 'value="0.03"' wavelet.mlx ||
-    die "wavelet.mlx: the sample's Codec or WaveletStepPercent parameter changed"
+  derive_script compress_error.mlx wavelet.mlx Codec=1 WaveletStepPercent=0.03
   layer_exports "$N" "$N" recon
   server wavelet -i "${FRAMES[@]}" -s "$TMP/wavelet.mlx" "${EXPORTS[@]}"
   expect_ok wavelet
@@ -157,11 +158,7 @@ case_wavelet() {
   "$ANIMC" encode "$SRC/samples/sydney/frames" -o cli_plain.ams --codec wavelet >/dev/null
   for frames in 1:progressive-p-frames 2:i-frames-only; do
     flag=${frames#*:} frames=${frames%%:*}
-    sed -e 's|name="Codec" value="0"|name="Codec" value="1"|' \
-        -e "s|name=\"WaveletFrames\" value=\"0\"|name=\"WaveletFrames\" value=\"$frames\"|" \
-        "$SRC/samples/compress.mlx" >"wavelet_$flag.mlx"
-    grep -q "name=\"WaveletFrames\" value=\"$frames\"" "wavelet_$flag.mlx" ||
-      die "wavelet_$flag.mlx: the sample's WaveletFrames parameter changed"
+    derive_script compress.mlx "wavelet_$flag.mlx" Codec=1 WaveletFrames="$frames"
     server "wavelet_$flag" -i "${FRAMES[@]}" -s "$TMP/wavelet_$flag.mlx"
     expect_ok "wavelet_$flag"
     "$ANIMC" encode "$SRC/samples/sydney/frames" -o "cli_$flag.ams" --codec wavelet --"$flag" >/dev/null
@@ -246,12 +243,11 @@ case_bad_ams() {
     expect_log "open_$bad" "io_animstream: cannot open"
     [[ ! -e out_$bad.ply ]] || check_failed "open_$bad: an output was written"
   done
-  sed "s|sydney_24.ams|truncated.ams|" "$SRC/samples/import.mlx" >import_truncated.mlx
+  derive_script import.mlx import_truncated.mlx AmsFile=truncated.ams
   server import_truncated -s "$TMP/import_truncated.mlx"
   ((RC != 0)) || check_failed "import_truncated: meshlabserver reported success"
   expect_log import_truncated "Import Compressed Animation failed: "
-  sed -e 's|sydney_24.ams|good.ams|' -e 's|name="LastFrame" value="-1"|name="LastFrame" value="50"|' \
-    "$SRC/samples/import.mlx" >import_past_end.mlx
+  derive_script import.mlx import_past_end.mlx AmsFile=good.ams LastFrame=50
   server import_past_end -s "$TMP/import_past_end.mlx"
   ((RC != 0)) || check_failed "import_past_end: meshlabserver reported success"
   expect_log import_past_end "frames 0 to 50 asked for, but good.ams has frames 0 to 49"
