@@ -30,18 +30,8 @@ convert=/usr/bin/convert
 say() { echo "gui_screenshots: $*"; }
 die() { echo "gui_screenshots: error: $*" >&2; exit 1; }
 
-# --- packages (only the missing ones; apt is not touched when nothing is missing) ---------
-missing=()
-for p in xvfb xauth xdotool imagemagick x11-utils; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-done
-if [ ${#missing[@]} -gt 0 ]; then
-  [ "$(id -u)" = 0 ] || die "missing packages ${missing[*]}; run as root or apt-get install them"
-  say "installing ${missing[*]}"
-  export DEBIAN_FRONTEND=noninteractive
-  apt-get update -qq
-  apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
-fi
+source "$root/tools/host_setup.sh"
+install_missing_packages gui_screenshots xvfb xauth xdotool imagemagick x11-utils
 
 [ -x "$meshlab" ] || die "$meshlab missing; run: cmake --install build --prefix build/stage"
 ls "$samples"/frame_*.ply >/dev/null 2>&1 || die "no sample frames in $samples"
@@ -52,15 +42,8 @@ nframes=$(ls "$samples"/frame_*.ply | wc -l)
 tmp=$(mktemp -d /tmp/animc-gui.XXXXXX)
 work="$tmp/sydney"          # the sample frames; the filter writes sydney/animation.ams
 shots="$tmp/shots"          # every screenshot, copied to docs/img only when all succeeded
-home="$tmp/home"
-mkdir -p "$work" "$shots" "$home/.config/VCG" "$home/.cache" "$home/run"
-chmod 700 "$home/run"
+mkdir -p "$work" "$shots"
 cp "$samples"/frame_*.ply "$work/"
-# Without a GPU memory budget MeshLab logs "no additional memory available" per layer.
-cat > "$home/.config/VCG/MeshLab_64bit_fp.conf" <<'INI'
-[General]
-MeshLab%3A%3ASystem%3A%3AmaxGPUMemDedicatedToGeometry="<!DOCTYPE MeshLabSettings>\n<Param value=\"350\" type=\"RichInt\" name=\"MeshLab::System::maxGPUMemDedicatedToGeometry\"/>\n"
-INI
 
 xvfb_pid=""
 ml_pid=""
@@ -99,8 +82,8 @@ done
 [ -n "$display" ] || die "could not start Xvfb on any display :71..:98"
 say "Xvfb on $display"
 
-export DISPLAY="$display" HOME="$home" XDG_CONFIG_HOME="$home/.config" \
-       XDG_CACHE_HOME="$home/.cache" XDG_RUNTIME_DIR="$home/run" MESA_SHADER_CACHE_DISABLE=true
+export DISPLAY="$display"
+use_private_meshlab_home "$tmp/home"
 
 # --- helpers -----------------------------------------------------------------------------
 # pixels.py rows FILE X: y centres of the selected (blue) and current (yellow) layer rows in

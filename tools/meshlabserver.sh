@@ -10,15 +10,6 @@ stage=${ANIMC_STAGE:-$root/build/stage}
 program="$stage/bin/${ANIMC_MESHLAB_BIN:-meshlabserver}"
 [ -x "$program" ] || { echo "meshlabserver.sh: $program missing; run: cmake --install build --prefix build/stage" >&2; exit 2; }
 
-home=${ANIMC_MESHLAB_HOME:-$root/build/meshlab-home}
-mkdir -p "$home/.config/VCG" "$home/.cache" "$home/run"
-chmod 700 "$home/run"
-settings="$home/.config/VCG/MeshLab_64bit_fp.conf"
-# Without a GPU memory budget meshlabserver logs "no additional memory available" per layer.
-[ -f "$settings" ] || cat > "$settings" <<'INI'
-[General]
-MeshLab%3A%3ASystem%3A%3AmaxGPUMemDedicatedToGeometry="<!DOCTYPE MeshLabSettings>\n<Param value=\"350\" type=\"RichInt\" name=\"MeshLab::System::maxGPUMemDedicatedToGeometry\"/>\n"
-INI
-export HOME="$home" XDG_CONFIG_HOME="$home/.config" XDG_CACHE_HOME="$home/.cache" \
-       XDG_RUNTIME_DIR="$home/run" MESA_SHADER_CACHE_DISABLE=true
+source "$root/tools/host_setup.sh"
+use_private_meshlab_home "${ANIMC_MESHLAB_HOME:-$root/build/meshlab-home}"
 exec xvfb-run -a -s "-screen 0 1280x1024x24" "$program" "$@"

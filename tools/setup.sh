@@ -14,17 +14,8 @@ PACKAGES=(
   xvfb xauth                       # meshlabserver and meshlab need an X server, even headless
 )
 
-missing=()
-for p in "${PACKAGES[@]}"; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-done
-
-if [ ${#missing[@]} -gt 0 ]; then
-  echo "setup: installing ${missing[*]}"
-  export DEBIAN_FRONTEND=noninteractive
-  apt-get update -qq
-  apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
-fi
+source "$(dirname "$0")/host_setup.sh"
+install_missing_packages setup "${PACKAGES[@]}"
 echo "setup: all packages present"
 
 # MeshLab's headers come from Debian's source package, into a cache outside the tree.
