@@ -44,7 +44,7 @@ from long_sequence import write_long_sequence  # noqa: E402
 from bench_plugin import plugin_section  # noqa: E402
 from bench_wavelet import wavelet_section  # noqa: E402
 from bench_common import (log, run_bench, loglog_interp, num, pct, mib, table,  # noqa: E402
-                          failed_cell, START)
+                          failed_cell, find_sequences, START)
 
 PROFILES = ['paper', 'default']
 MAX_ERRORS = [0.01, 0.05, 0.10]
@@ -65,18 +65,6 @@ LONG_FRAMES = [1000, 100000]
 LONG_SETTINGS = ['--profile', 'default', '--max-error', '0.01']
 
 # ---------------------------------------------------------------- running things
-
-def find_sequences(data_dir):
-    """Sorted [(name, pc2_xz_path, ply_path)] of the folders that hold both files."""
-    found = []
-    for name in sorted(os.listdir(data_dir)):
-        folder = os.path.join(data_dir, name)
-        pc2 = os.path.join(folder, name + '.pc2.xz')
-        ply = os.path.join(folder, name + '.ply')
-        if os.path.isfile(pc2) and os.path.isfile(ply):
-            found.append((name, pc2, ply))
-    return found
-
 
 def octree_settings(profile, max_error):
     return ['--profile', profile, '--max-error', repr(max_error)]

@@ -1,8 +1,10 @@
 #!/usr/bin/python3
-"""Helpers shared by the benchmark scripts (bench.py, bench_wavelet.py): running
-`animc bench --json`, log-log interpolation, Markdown cells and tables, progress lines."""
+"""Helpers shared by the benchmark scripts (bench.py, bench_wavelet.py, bench_progressive.py,
+bench_plugin.py): finding the sequences, running `animc bench --json` and other animc
+commands that print JSON, log-log interpolation, Markdown cells and tables, progress lines."""
 import json
 import math
+import os
 import shlex
 import subprocess
 import sys
@@ -17,6 +19,34 @@ START = time.monotonic()
 def log(message):
     """Progress line on stderr, with the time since start."""
     print(f'[{time.monotonic() - START:7.1f} s] {message}', file=sys.stderr, flush=True)
+
+
+def find_sequences(data_dir):
+    """Sorted [(name, pc2_xz_path, ply_path)] of the folders that hold both files."""
+    found = []
+    for name in sorted(os.listdir(data_dir)):
+        folder = os.path.join(data_dir, name)
+        pc2 = os.path.join(folder, name + '.pc2.xz')
+        ply = os.path.join(folder, name + '.ply')
+        if os.path.isfile(pc2) and os.path.isfile(ply):
+            found.append((name, pc2, ply))
+    return found
+
+
+def animc_json(cmd):
+    """JSON of an animc command that prints one, or None (logged) when it fails."""
+    p = subprocess.run(cmd, capture_output=True, text=True)
+    if p.returncode != 0:
+        log(f'  FAILED: {" ".join(cmd)}\n    {p.stderr.strip()}')
+        return None
+    return json.loads(p.stdout)
+
+
+def encode_wavelet(animc, seq, ams, args):
+    """JSON of `animc encode --codec wavelet --json` of seq into ams with more arguments args,
+    or None (logged) when it fails."""
+    return animc_json([animc, 'encode', seq['pc2'], '--mesh', seq['ply'], '-o', ams, '--codec', 'wavelet',
+                       '--json'] + args)
 
 
 def run_bench(animc, pc2, ply, settings, runs):

@@ -27,6 +27,7 @@ import time
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(REPO, 'tools'))
+from bench_common import find_sequences, table  # noqa: E402
 from make_samples import write_ply_frames  # noqa: E402
 from mlx_script import with_values  # noqa: E402
 
@@ -47,10 +48,10 @@ def log(message):
     print(f'[bench_plugin] {message}', file=sys.stderr, flush=True)
 
 
-def prepare(name, folder, tmp):
-    """Writes tmp/NAME/frames/*.ply and tmp/NAME/NAME.pc2; returns (frame paths, pc2, mesh)."""
-    ply = os.path.join(folder, name + '.ply')
-    with lzma.open(os.path.join(folder, name + '.pc2.xz'), 'rb') as f:
+def prepare(name, pc2_xz, ply, tmp):
+    """Writes tmp/NAME/frames/*.ply and tmp/NAME/NAME.pc2; returns (frame paths, pc2, mesh,
+    vertices, frames)."""
+    with lzma.open(pc2_xz, 'rb') as f:
         pc2 = f.read()
     points, frames = struct.unpack_from('<i', pc2, 16)[0], struct.unpack_from('<i', pc2, 28)[0]
     work = os.path.join(tmp, name)
@@ -89,8 +90,8 @@ def run_cli(animc, pc2, mesh, work):
     return float(re.search(r'"encode_seconds":([0-9.eE+-]+)', done.stdout).group(1)), wall, output
 
 
-def bench_sequence(animc, name, folder, runs, tmp):
-    frames, pc2, mesh, points, count = prepare(name, folder, tmp)
+def bench_sequence(animc, name, pc2_xz, ply, runs, tmp):
+    frames, pc2, mesh, points, count = prepare(name, pc2_xz, ply, tmp)
     work = os.path.dirname(pc2)
     cli, bare, full = [], [], []
     for run in range(runs):
@@ -113,24 +114,20 @@ def section(rows, runs, command):
              f'same frames; medians of {runs} runs. "filter" is the wall time the filter logs for itself '
              '(read the layers, check them, encode, write, measure); "animc" is the whole process (start, '
              'read the PC2, encode, write, measure). "coding" is the time inside the encoder alone, which '
-             'both report. The two .ams files were byte-identical in every run.', '',
-             '| sequence | vertices × frames | animc (s) | filter (s) | filter / animc | coding: animc / filter (s) '
-             '| filter + reconstructed layers and colours (s) |',
-             '|---|---|---|---|---|---|---|']
-    for r in rows:
-        lines.append(f'| {r["name"]} | {r["points"]} × {r["frames"]} | {r["cli_wall"]:.3f} | {r["filter_wall"]:.3f} '
-                     f'| {r["filter_wall"] / r["cli_wall"]:.2f} | {r["cli_encode"]:.3f} / {r["filter_encode"]:.3f} '
-                     f'| {r["full_wall"]:.3f} |')
-    return lines + ['']
+             'both report. The two .ams files were byte-identical in every run.', '']
+    header = ['sequence', 'vertices × frames', 'animc (s)', 'filter (s)', 'filter / animc',
+              'coding: animc / filter (s)', 'filter + reconstructed layers and colours (s)']
+    cells = [[r['name'], f'{r["points"]} × {r["frames"]}', f'{r["cli_wall"]:.3f}', f'{r["filter_wall"]:.3f}',
+              f'{r["filter_wall"] / r["cli_wall"]:.2f}', f'{r["cli_encode"]:.3f} / {r["filter_encode"]:.3f}',
+              f'{r["full_wall"]:.3f}'] for r in rows]
+    return lines + table(header, cells) + ['']
 
 
 def plugin_section(animc, data, runs, command):
     rows = []
     with tempfile.TemporaryDirectory(prefix='animc_bench_plugin.') as tmp:
-        for name in sorted(os.listdir(data)):
-            folder = os.path.join(data, name)
-            if os.path.isfile(os.path.join(folder, name + '.pc2.xz')) and os.path.isfile(os.path.join(folder, name + '.ply')):
-                rows.append(bench_sequence(animc, name, folder, runs, tmp))
+        for name, pc2_xz, ply in find_sequences(data):
+            rows.append(bench_sequence(animc, name, pc2_xz, ply, runs, tmp))
     return section(rows, runs, command)
 
 

@@ -3,32 +3,17 @@
 option costs in rate, and what a decoder that keeps only the first N bytes of every frame
 gets, against I-frames only and against the encoder's own fixed rate. bench_wavelet.py puts
 the returned Markdown lines into docs/benchmarks.md."""
-import json
 import os
 import subprocess
 import tempfile
 
-from bench_common import log, num, step_label, table
+from bench_common import animc_json, encode_wavelet, log, num, step_label, table
 
 COST_STEPS = [1e-2, 1e-3, 1e-4]
 CUT_STEP = 1e-4
 CUT_BYTES = [300, 1000, 3000]   # bytes kept of every detail frame
 CUT_SEQUENCE = 'chickenCrossing'
 GROUP = 25                      # --iframe-interval of the grouped file
-
-
-def animc_json(cmd):
-    """JSON of an animc command that prints one, or None (logged) when it fails."""
-    p = subprocess.run(cmd, capture_output=True, text=True)
-    if p.returncode != 0:
-        log(f'  FAILED: {" ".join(cmd)}\n    {p.stderr.strip()}')
-        return None
-    return json.loads(p.stdout)
-
-
-def encode(animc, seq, ams, args):
-    return animc_json([animc, 'encode', seq['pc2'], '--mesh', seq['ply'], '-o', ams, '--codec', 'wavelet',
-                       '--json'] + args)
 
 
 def cut_kg(animc, seq, ams, cut_bytes, work):
@@ -50,7 +35,7 @@ def cost_rows(animc, seq, plain_points, work):
     for step in COST_STEPS:
         log(f'{seq["name"]}: wavelet step {step:g} with --progressive-p-frames')
         plain = plain_points.get(step_label(step), {'error': 'not measured'})
-        progressive = encode(animc, seq, ams, ['--step', repr(step), '--progressive-p-frames'])
+        progressive = encode_wavelet(animc, seq, ams, ['--step', repr(step), '--progressive-p-frames'])
         if 'error' in plain or progressive is None:
             rows.append([seq['name'], f'{step:g}', 'failed', '', '', ''])
             failures += progressive is None
@@ -70,14 +55,14 @@ def cut_rows(animc, seq, work):
     for i, (label, args) in enumerate(files):
         path = os.path.join(work, f'cut{i}.ams')
         log(f'{seq["name"]}: wavelet step {CUT_STEP:g} {label}')
-        ok = encode(animc, seq, path, ['--step', repr(CUT_STEP)] + args) is not None
+        ok = encode_wavelet(animc, seq, path, ['--step', repr(CUT_STEP)] + args) is not None
         failures += not ok
         paths.append(path if ok else None)
     rows = []
     for cut in CUT_BYTES:
         kgs = [cut_kg(animc, seq, p, cut, work) if p else None for p in paths]
         bpv = 8.0 * cut / seq['vertices']
-        closed = encode(animc, seq, os.path.join(work, 'bpv.ams'), ['--step', repr(CUT_STEP), '--bpv', f'{bpv:.4f}'])
+        closed = encode_wavelet(animc, seq, os.path.join(work, 'bpv.ams'), ['--step', repr(CUT_STEP), '--bpv', f'{bpv:.4f}'])
         failures += sum(k is None for k in kgs) + (closed is None)
         rows.append([str(cut), num(bpv, 2)] + [num(k, 3) for k in kgs] + [num(closed and closed['kg_error'], 3)])
     return rows, [label for label, _a in files], failures

@@ -3,12 +3,11 @@
 speed, parametric (static) archive size. bench.py calls wavelet_section() with the sequences
 it measured (their Affine-Octree sweeps and baseline points) and puts the returned Markdown
 lines into docs/benchmarks.md; the plot goes to docs/img/rate_distortion.png."""
-import json
 import os
-import subprocess
 import tempfile
 
-from bench_common import failed_cell, log, loglog_interp, num, run_bench, step_label, table
+from bench_common import (animc_json, encode_wavelet, failed_cell, log, loglog_interp, num, run_bench, step_label,
+                          table)
 from bench_progressive import progressive_section
 from rd_plot import draw_rd_plot
 
@@ -61,18 +60,15 @@ def rd_table(seq, points):
 
 
 def static_size(animc, seq):
-    """{'static_bytes', 'conn_bytes', 'vertices'} of a default wavelet encoding, or None."""
+    """{'static_bytes', 'conn_bytes', 'vertices', 'triangles'} of a default wavelet encoding, or None."""
     with tempfile.TemporaryDirectory(prefix='animc-wavelet-') as work:
         ams = os.path.join(work, 'w.ams')
-        enc = subprocess.run([animc, 'encode', seq['pc2'], '--mesh', seq['ply'], '-o', ams, '--codec', 'wavelet',
-                              '--json'], capture_output=True, text=True)
-        info = subprocess.run([animc, 'info', ams, '--json'], capture_output=True, text=True)
-        if enc.returncode != 0 or info.returncode != 0:
-            log(f'{seq["name"]}: wavelet static size FAILED: {enc.stderr.strip()} {info.stderr.strip()}')
+        info = encode_wavelet(animc, seq, ams, []) and animc_json([animc, 'info', ams, '--json'])
+        if info is None:
+            log(f'{seq["name"]}: wavelet static size FAILED')
             return None
-        i = json.loads(info.stdout)
-        return {'static_bytes': i['static_bytes'], 'conn_bytes': i['section_CONN_bytes'], 'vertices': i['vertices'],
-                'triangles': i['triangles']}
+        return {'static_bytes': info['static_bytes'], 'conn_bytes': info['section_CONN_bytes'],
+                'vertices': info['vertices'], 'triangles': info['triangles']}
 
 
 def static_table(rows):
