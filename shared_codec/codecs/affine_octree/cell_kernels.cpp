@@ -111,16 +111,15 @@ void predictPointsPortable(const double* u, size_t n, const double c[3], const C
 // ---- AVX2 versions: a whole point per Quad (lane 3 unused). ----
 
 ANIMC_TARGET_AVX2 Quad loadPoint3(const double* p) { return Quad{p[0], p[1], p[2], 0.0}; }
-ANIMC_TARGET_AVX2 Quad splat4(double x) { return Quad{x, x, x, x}; }
 
 ANIMC_TARGET_AVX2 CellFrame gatherPointsAvx2(const double* frame, const uint32_t* idx, size_t n, double* out) {
-  Quad sum = splat4(0), lo = loadPoint3(&frame[3 * size_t(idx[0])]), hi = lo;
+  Quad sum = splatQuad(0), lo = loadPoint3(&frame[3 * size_t(idx[0])]), hi = lo;
   for (size_t i = 0; i < n; ++i) {
     const Quad p = loadPoint3(&frame[3 * size_t(idx[i])]);
     storeQuad(&out[kPointStride * i], p);
     sum += p;
-    lo = p < lo ? p : lo;  // std::min(lo, p) lane by lane
-    hi = hi < p ? p : hi;  // std::max(hi, p)
+    lo = minQuad(lo, p);
+    hi = maxQuad(hi, p);
   }
   const double s[3] = {sum[0], sum[1], sum[2]}, l[3] = {lo[0], lo[1], lo[2]}, h[3] = {hi[0], hi[1], hi[2]};
   return frameOf(s, l, h, n);
@@ -135,7 +134,7 @@ ANIMC_TARGET_AVX2 void copyPointsAvx2(const double* frame, const uint32_t* idx, 
 // with d'' = (d2, d0, d1). Each entry is the same product the scalar formula sums.
 ANIMC_TARGET_AVX2 FitSums fitSumsAvx2(const double* u, const double* q, size_t n, const double c[3]) {
   const Quad c4 = {c[0], c[1], c[2], 0.0};
-  Quad m = splat4(0), d = m, dd = m, dd1 = m, md = m, md1 = m, md2 = m;
+  Quad m = splatQuad(0), d = m, dd = m, dd1 = m, md = m, md1 = m, md2 = m;
   for (size_t i = 0; i < n; ++i) {
     const Quad ui = loadQuad(&u[kPointStride * i]);
     const Quad di = ui - c4;
@@ -164,7 +163,7 @@ ANIMC_TARGET_AVX2 void predictPointsAvx2(const double* u, size_t n, const double
   for (size_t i = 0; i < n; ++i) {
     const Quad ui = loadQuad(&u[kPointStride * i]);
     const Quad di = ui - c4;
-    const Quad p = (ui + t4) + ((l0 * splat4(di[0]) + l1 * splat4(di[1])) + l2 * splat4(di[2]));
+    const Quad p = (ui + t4) + ((l0 * splatQuad(di[0]) + l1 * splatQuad(di[1])) + l2 * splatQuad(di[2]));
     double* out = &recon[3 * size_t(idx[i])];  // three lanes only: the next vertex follows
     storePair(out, Pair{p[0], p[1]});
     out[2] = p[2];

@@ -124,7 +124,7 @@ ANIMC_TARGET_AVX2 bool toFloatsAvx2(const double* frame, size_t size, float* out
 
 ANIMC_TARGET_AVX2 void normalizeAvx2(const RootCube& cube, const double* xyz, size_t size, double* out) {
   const double inv = 1.0 / cube.side;
-  const Quad scale = {inv, inv, inv, inv};
+  const Quad scale = splatQuad(inv);
   const BlockPattern min(cube.min);
   size_t i = 0;
   for (; i + kBlock <= size; i += kBlock)
@@ -145,7 +145,7 @@ ANIMC_TARGET_AVX2 void foldBox(const Quad lo[3], const Quad hi[3], double min[3]
 ANIMC_TARGET_AVX2 RootCube denormalizeAvx2(const RootCube& cube, const double* unit, size_t size, double* out) {
   if (size < kBlock) return denormalizePortable(cube, unit, size, out);
   const BlockPattern min(cube.min);
-  const Quad side = {cube.side, cube.side, cube.side, cube.side};
+  const Quad side = splatQuad(cube.side);
   Quad lo[3], hi[3];
   for (int k = 0; k < 3; ++k) {
     lo[k] = hi[k] = min.q[k] + side * loadQuad(&unit[4 * k]);
@@ -159,8 +159,8 @@ ANIMC_TARGET_AVX2 RootCube denormalizeAvx2(const RootCube& cube, const double* u
       // Min and max are exact and, without NaN or -0.0 (neither comes out of a valid stream:
       // decoded frames are min + side · unit with min never -0.0), indifferent to the order
       // they see values in, so each lane keeps its own and they fold per axis at the end.
-      lo[k] = p < lo[k] ? p : lo[k];
-      hi[k] = hi[k] < p ? p : hi[k];
+      lo[k] = minQuad(lo[k], p);
+      hi[k] = maxQuad(hi[k], p);
     }
   double box_min[3] = {out[0], out[1], out[2]}, box_max[3] = {out[0], out[1], out[2]};
   foldBox(lo, hi, box_min, box_max);

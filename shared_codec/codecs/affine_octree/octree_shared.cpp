@@ -77,14 +77,13 @@ typedef int Int4 __attribute__((vector_size(16)));
 ANIMC_TARGET_AVX2 void mortonKeysAvx2(const double* unit, size_t n, bool deep, uint64_t* keys) {
   constexpr double kScale = double(1u << OctreePartition::kGridBits);
   constexpr double kTop = double((1u << OctreePartition::kGridBits) - 1);
-  const Quad scale = {kScale, kScale, kScale, kScale}, top = {kTop, kTop, kTop, kTop}, zero = {0, 0, 0, 0};
+  const Quad scale = splatQuad(kScale), top = splatQuad(kTop), zero = splatQuad(0);
   size_t v = 0;
   for (; v + 4 <= n; v += 4) {
     uint32_t g[12];
     for (int k = 0; k < 3; ++k) {
       const Quad scaled = loadQuad(&unit[3 * v + 4 * k]) * scale;
-      const Quad above_zero = zero < scaled ? scaled : zero;  // NaN too
-      const Quad clamped = above_zero < top ? above_zero : top;
+      const Quad clamped = minQuad(top, maxQuad(zero, scaled));  // NaN to 0
       const Int4 grid = __builtin_convertvector(clamped, Int4);  // truncation = floor here
       for (int l = 0; l < 4; ++l) g[4 * k + l] = uint32_t(grid[l]);
     }

@@ -53,6 +53,10 @@ typedef double UnalignedQuad __attribute__((vector_size(32), aligned(8)));
 // Four consecutive doubles anywhere in a double array (as loadPair and storePair).
 ANIMC_TARGET_AVX2 inline Quad loadQuad(const double* p) { return *reinterpret_cast<const UnalignedQuad*>(p); }
 ANIMC_TARGET_AVX2 inline void storeQuad(double* p, Quad v) { *reinterpret_cast<UnalignedQuad*>(p) = v; }
+ANIMC_TARGET_AVX2 inline Quad splatQuad(double x) { return Quad{x, x, x, x}; }
+// Lane-wise std::min / std::max, as minPair and maxPair.
+ANIMC_TARGET_AVX2 inline Quad minQuad(Quad a, Quad b) { return b < a ? b : a; }
+ANIMC_TARGET_AVX2 inline Quad maxQuad(Quad a, Quad b) { return a < b ? b : a; }
 
 // Whether this CPU runs the AVX2 versions (checked once).
 inline bool cpuHasAvx2() {
