@@ -66,17 +66,19 @@ inline bool canSplit(const Cell& cell, int max_depth) {
 struct CellPoints {
   std::vector<double> reference, before, target;  // before/target: when the input has them
   CellFrame reference_frame, before_frame;
+  size_t count = 0;         // points per buffer in the last gather
+  bool has_before = false;  // whether that gather had frame f-2 (before_frame is stale if not)
   void gather(const PFrameInput& in, const uint32_t* idx, size_t n);
   const double* referencePoint(size_t i) const { return &reference[kPointStride * i]; }
   const double* targetPoint(size_t i) const { return &target[kPointStride * i]; }
 };
 
-// Leaf arithmetic shared by encoder and decoder.
+// Leaf arithmetic shared by encoder and decoder, for the cell last gathered.
 struct LeafModel {
   CellFrame frame;
   CentredAffine prior;
 };
-LeafModel leafModel(const CellPoints& points, size_t n, bool has_before);
+LeafModel leafModel(const CellPoints& points);
 // Prediction of the cell's i-th vertex from the reference frame with the leaf's coded affine.
 // (Adding a share of the vertex's own last motion beyond its cell's was tried: it amplifies
 // the reconstruction noise and cost 60-200 % more bits on chickenCrossing.)

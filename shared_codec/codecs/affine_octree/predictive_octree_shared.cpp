@@ -14,18 +14,21 @@ void CellPoints::gather(const PFrameInput& in, const uint32_t* idx, size_t n) {
     before.resize(size);
     target.resize(size);
   }
+  count = n;
+  has_before = in.before != nullptr;
   reference_frame = gatherPoints(in.reference->data(), idx, n, reference.data());
   if (in.before) before_frame = gatherPoints(in.before->data(), idx, n, before.data());
   if (in.target) copyPoints(in.target->data(), idx, n, target.data());
 }
 
-LeafModel leafModel(const CellPoints& points, size_t n, bool has_before) {
+LeafModel leafModel(const CellPoints& points) {
   LeafModel m;
   m.frame = points.reference_frame;
-  if (has_before) {
+  if (points.has_before) {
     // The cell's own motion from f-2 to f-1, assumed to continue.
     static const double kZero[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
-    fitCentred(points.before.data(), points.reference.data(), n, points.before_frame, kZero, m.prior);
+    fitCentred(points.before.data(), points.reference.data(), points.count, points.before_frame, kZero,
+               m.prior);
   }
   return m;
 }
