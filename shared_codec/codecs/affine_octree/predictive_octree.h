@@ -26,7 +26,7 @@ namespace animc {
 
 constexpr int kCtxTranslation = 0;
 constexpr int kCtxLinear = 1;
-constexpr int kCtxResidual = 2;  // + ResidualContexts::context()
+constexpr int kCtxResidual = 2;  // + ResidualContexts::contextAt()
 constexpr uint32_t kMinLinearVertices = 4;  // fewer vertices: translation only, L from the prior
 // Tuned on all four shared sequences; docs/affine_octree.md gives the measurements.
 constexpr double kTranslationStep = 0.125;    // in residual steps

@@ -93,13 +93,14 @@ double PredictiveOctreeEncoder::evaluateLeaf(Walk& w, const Cell& cell, Node& no
   for (uint32_t i = 0; i < n; ++i) {
     double p[3];
     const double* t = points_.targetPoint(i);
+    const size_t v = 3 * size_t(idx[i]);
     predictVertex(points_, m, a, i, p);
     for (int ax = 0; ax < 3; ++ax) {
       const double k = std::nearbyint((t[ax] - p[ax]) / w.step);
       if (std::fabs(k) > double(kMaxCodedMagnitude)) w.overflow = true;
       const int64_t r = w.overflow ? 0 : int64_t(k);
       all_zero = all_zero && r == 0;
-      residual_bits += intCost(pm.ints, kCtxResidual + contexts_.context(idx[i], ax), r);
+      residual_bits += intCost(pm.ints, kCtxResidual + contexts_.contextAt(v + ax), r);
       const double e = t[ax] - p[ax] - double(r) * w.step;
       distortion += e * e;
     }
@@ -152,12 +153,14 @@ void PredictiveOctreeEncoder::codeLeaf(Walk& w, const Cell& cell, const Node& no
     }
   }
   rc.encode(pm.residuals_zero[n <= kMinLinearVertices], all_zero);
+  if (all_zero) return contexts_.setZero(idx, n);
   for (uint32_t i = 0; i < n; ++i) {
-    const int64_t* r = &residual_[3 * size_t(i)];
-    for (int ax = 0; ax < 3 && !all_zero; ++ax) {
-      encodeInt(rc, pm.ints, kCtxResidual + contexts_.context(idx[i], ax), r[ax]);
+    const size_t v = 3 * size_t(idx[i]);
+    for (int ax = 0; ax < 3; ++ax) {
+      const int64_t r = residual_[3 * size_t(i) + ax];
+      encodeInt(rc, pm.ints, kCtxResidual + contexts_.contextAt(v + ax), r);
+      contexts_.setAt(v + ax, r);
     }
-    contexts_.set(idx[i], r);
   }
 }
 

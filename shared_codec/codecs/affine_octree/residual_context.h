@@ -25,11 +25,8 @@ class ResidualContexts {
   // The frame just coded becomes the history.
   void beginFrame() { before_.swap(now_); }
 
-  int context(uint32_t v, int axis) const { return before_[3 * size_t(v) + axis]; }
-  void set(uint32_t v, const int64_t r[3]) {
-    for (int a = 0; a < 3; ++a) now_[3 * size_t(v) + a] = contextOf(r[a]);
-  }
-  // The same by coordinate index (3·v + axis), for loops that already have it.
+  // By coordinate index (3·v + axis): the context its residual is coded in this frame, and
+  // its residual, recorded for the next.
   int contextAt(size_t coordinate) const { return before_[coordinate]; }
   void setAt(size_t coordinate, int64_t r) { now_[coordinate] = contextOf(r); }
   // A leaf without residuals: its vertices had none.
