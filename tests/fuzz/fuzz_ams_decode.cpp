@@ -1,0 +1,81 @@
+// libFuzzer harness: an .ams file decoded through the public API (AmsSource), both codecs,
+// with random access and the wavelet codec's progressive decoding. Any Status is fine; a
+// crash, sanitizer report, leak, hang or huge allocation is a bug.
+//
+// Input = 4 control bytes, then the file:
+//   [0] bit 0: repair section CRCs first, so mutations reach the parsers behind them
+//       bit 1: progressive decoding with the limits of bytes [2] and [3]
+//       bit 2: seek to frame [1] (modulo the frame count) before decoding
+//   [2] max bitplanes (modulo 65; 0 = all)   [3] max payload bytes / 4 (0 = all)
+#include <algorithm>
+#include <cstdint>
+#include <cstdio>
+#include <vector>
+
+#include "api.h"
+#include "container/crc32.h"
+#include "fuzz_support.h"
+
+namespace {
+
+using animc::DecoderLimits;
+
+constexpr size_t kControlBytes = 4;
+// Decoding stops after this many decoded vertices (frames x vertex count): a legit file may
+// ask for far more work than one fuzz input should take.
+constexpr uint64_t kVertexBudget = uint64_t(1) << 21;
+
+// Rewrites each section's CRC (the GRUP CRC skips First_Frame and Frame_Count), walking the
+// sections while their lengths fit in the file.
+void repairCrcs(std::vector<uint8_t>& file) {
+  uint64_t offset = animc::kFileHeaderBytes;
+  while (offset + animc::kSectionOverhead <= file.size()) {
+    uint64_t length = 0;
+    for (int k = 0; k < 8; ++k) length |= uint64_t(file[offset + 4 + k]) << (8 * k);
+    if (length > file.size() - offset - animc::kSectionOverhead) return;
+    const bool group = std::equal(file.begin() + offset, file.begin() + offset + 4, animc::kTagGroup);
+    const uint64_t skip = group && length >= 12 ? 12 : 0;
+    const uint64_t crc_at = offset + 12 + length;
+    const uint32_t crc = animc::crc32Update(0, file.data() + offset + 12 + skip, length - skip);
+    for (int k = 0; k < 4; ++k) file[crc_at + k] = uint8_t(crc >> (8 * k));
+    offset = crc_at + 4;
+  }
+}
+
+// Limits small enough that one input cannot allocate much, yet above every seed.
+DecoderLimits fuzzLimits() {
+  DecoderLimits limits;
+  limits.max_vertices = 1 << 16;
+  limits.max_triangles = 1 << 17;
+  limits.max_frame_bytes = 1 << 22;
+  return limits;
+}
+
+void decode(const std::string& path, const uint8_t* control) {
+  animc::WaveletDecodeControl progressive;
+  if (control[0] & 2) {
+    progressive.max_bitplanes = control[2] % 65;
+    progressive.max_payload_bytes = uint64_t(control[3]) * 4;
+  }
+  auto opened = animc::AmsSource::open(path, fuzzLimits(), progressive);
+  if (!opened.ok()) return;
+  animc::AmsSource& ams = *opened.value();
+  if ((control[0] & 4) && !ams.seek(int64_t(control[1]) % ams.frameCount()).ok()) return;
+  std::vector<float> xyz;
+  for (uint64_t work = 0; work < kVertexBudget; work += ams.topology().vertex_count) {
+    auto more = ams.next(xyz);
+    if (!more.ok() || !more.value()) return;
+  }
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  if (size < kControlBytes) return 0;
+  std::vector<uint8_t> file(data + kControlBytes, data + size);
+  if (data[0] & 1) repairCrcs(file);
+  static const std::string path = animc::fuzz::scratchPath(".ams");
+  if (!animc::fuzz::writeScratch(path, file.data(), file.size())) return 0;
+  decode(path, data);
+  return 0;
+}

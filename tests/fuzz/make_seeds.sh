@@ -1,0 +1,111 @@
+#!/usr/bin/env bash
+# Writes the seed corpora of the fuzz harnesses (a few KB each, so they are regenerated rather
+# than committed): OUT/ams for fuzz_ams_decode, OUT/seqio for fuzz_sequence_readers.
+#   usage: tests/fuzz/make_seeds.sh path/to/animc OUT
+# Sources: a 20-vertex grid made here and the first 3 frames of samples/sydney, encoded by the
+# project's own animc with several settings of both codecs and decoded back to every format.
+set -euo pipefail
+ANIMC=$(realpath "$1")
+OUT=$(realpath -m "$2")
+ROOT=$(cd "$(dirname "$0")/../.." && pwd)
+WORK=$(mktemp -d)
+trap 'rm -rf "$WORK"' EXIT
+mkdir -p "$OUT/ams" "$OUT/seqio"
+
+# The grid (binary PLY + PC2) and sydney cut to 3 frames (PC2).
+/usr/bin/python3 - "$WORK" "$ROOT/samples/sydney/sydney_50.pc2.xz" <<'PY'
+import lzma, math, struct, sys
+work, sydney = sys.argv[1], sys.argv[2]
+nx, ny, frames = 5, 4, 8
+faces = []
+for y in range(ny - 1):
+    for x in range(nx - 1):
+        a = y * nx + x
+        faces += [(a, a + 1, a + nx + 1), (a, a + nx + 1, a + nx)]
+def frame(f):
+    return [c for y in range(ny) for x in range(nx)
+            for c in (x / (nx - 1) + 0.02 * f, y / (ny - 1), 0.2 * math.sin(3 * x / nx + 0.4 * f))]
+header = ('ply\nformat binary_little_endian 1.0\nelement vertex %d\nproperty float x\nproperty float y\n'
+          'property float z\nelement face %d\nproperty list uchar int vertex_indices\nend_header\n'
+          % (nx * ny, len(faces))).encode()
+with open(work + '/grid.ply', 'wb') as f:
+    f.write(header + struct.pack('<%df' % (3 * nx * ny), *frame(0)))
+    for t in faces:
+        f.write(struct.pack('<B3i', 3, *t))
+with open(work + '/grid.pc2', 'wb') as f:
+    f.write(struct.pack('<12siiffi', b'POINTCACHE2\0', 1, nx * ny, 0.0, 1.0, frames))
+    for i in range(frames):
+        f.write(struct.pack('<%df' % (3 * nx * ny), *frame(i)))
+with lzma.open(sydney, 'rb') as f:
+    magic, version, points, start, rate, count = struct.unpack('<12siiffi', f.read(32))
+    body = f.read(3 * points * 12)
+with open(work + '/sydney3.pc2', 'wb') as f:
+    f.write(struct.pack('<12siiffi', magic, version, points, start, rate, 3) + body)
+PY
+
+# Control bytes of fuzz_ams_decode: repair CRCs (1), progressive (2), seek (4); seek frame;
+# bitplanes; payload bytes / 4.
+prefix() { printf "\\x$(printf %02x "$1")\\x$(printf %02x "$2")\\x$(printf %02x "$3")\\x$(printf %02x "$4")"; }
+ams_seed() {  # name, cuttable (1/0), file
+  { prefix 1 0 0 0; cat "$3"; } > "$OUT/ams/$1"
+  { prefix 5 2 0 0; cat "$3"; } > "$OUT/ams/$1.seek2"
+  if [ "$2" = 1 ]; then
+    { prefix 7 1 3 0; cat "$3"; } > "$OUT/ams/$1.planes3"
+    { prefix 3 0 0 8; cat "$3"; } > "$OUT/ams/$1.bytes32"
+  fi
+}
+encode() {  # name, cuttable, input, mesh, options...
+  local name=$1 cuttable=$2 input=$3 mesh=$4
+  shift 4
+  "$ANIMC" encode "$input" --mesh "$mesh" -o "$WORK/$name.ams" "$@" >/dev/null
+  ams_seed "$name" "$cuttable" "$WORK/$name.ams"
+}
+G=("$WORK/grid.pc2" "$WORK/grid.ply")
+S=("$WORK/sydney3.pc2" "$ROOT/samples/sydney/sydney_md2.ply")
+encode grid_octree 0 "${G[@]}" --max-error 0.02
+encode grid_octree_i3 0 "${G[@]}" --max-error 0.02 --iframe-interval 3
+encode grid_octree_paper 0 "${G[@]}" --max-error 0.02 --profile paper --iframe-interval 4
+encode grid_octree_bits10 0 "${G[@]}" --max-error 0.05 --bits 10 --max-depth 4
+encode grid_wavelet 0 "${G[@]}" --codec wavelet --step 1e-2
+encode grid_wavelet_pp 1 "${G[@]}" --codec wavelet --step 1e-2 --iframe-interval 3 --progressive-p-frames
+encode grid_wavelet_ionly 1 "${G[@]}" --codec wavelet --step 1e-2 --i-frames-only
+encode grid_wavelet_bpv 1 "${G[@]}" --codec wavelet --bpv 8 --progressive-p-frames
+encode grid_wavelet_kg 0 "${G[@]}" --codec wavelet --target-kg 1 --parametric-bits 10
+encode sydney_octree 0 "${S[@]}" --max-error 0.02
+encode sydney_wavelet_pp 1 "${S[@]}" --codec wavelet --step 1e-2 --progressive-p-frames
+
+# Sequence readers: control byte 0 picks .ply .off .pc2 .mdd .pc2.xz .mdd.xz, byte 1 is the
+# point caches' vertex count - 1 (the grid has 20 vertices).
+seq_seed() {  # name, kind, file
+  { printf "\\x$(printf %02x "$2")\\x13"; cat "$3"; } > "$OUT/seqio/$1"
+}
+"$ANIMC" decode "$WORK/grid_octree.ams" -o "$WORK/grid_out.pc2" >/dev/null
+"$ANIMC" decode "$WORK/grid_octree.ams" -o "$WORK/grid_out.mdd" >/dev/null
+"$ANIMC" decode "$WORK/grid_octree.ams" -o "$WORK/grid_off" --format off --frames 0 >/dev/null
+"$ANIMC" decode "$WORK/grid_octree.ams" -o "$WORK/grid_ply" --format ply --frames 0 >/dev/null
+seq_seed grid.ply 0 "$WORK/grid.ply"
+seq_seed grid_decoded.ply 0 "$WORK/grid_ply/frame_00000.ply"
+seq_seed grid.off 1 "$WORK/grid_off/frame_00000.off"
+seq_seed grid.pc2 2 "$WORK/grid_out.pc2"
+seq_seed grid.mdd 3 "$WORK/grid_out.mdd"
+xz --check=crc32 -c "$WORK/grid_out.pc2" > "$WORK/grid.pc2.xz"
+xz --check=none -c "$WORK/grid_out.mdd" > "$WORK/grid.mdd.xz"
+seq_seed grid.pc2.xz 4 "$WORK/grid.pc2.xz"
+seq_seed grid.mdd.xz 5 "$WORK/grid.mdd.xz"
+# PLY in ASCII and big-endian, with extra properties and a quad, written by hand.
+{ printf '\x00\x00'
+  printf 'ply\nformat ascii 1.0\ncomment fuzz seed\nelement vertex 5\nproperty float x\nproperty float y\n'
+  printf 'property float z\nproperty uchar red\nelement face 2\nproperty list uchar int vertex_indices\n'
+  printf 'property float quality\nend_header\n0 0 0 1\n1 0 0 2\n1 1 0 3\n0 1 0 4\n2 2 1 5\n4 0 1 2 3 0.5\n3 2 3 4 1\n'
+} > "$OUT/seqio/quad_ascii.ply"
+/usr/bin/python3 - "$OUT/seqio/quad_be.ply" <<'PY'
+import struct, sys
+head = (b'ply\nformat binary_big_endian 1.0\nelement vertex 4\nproperty double x\nproperty double y\n'
+        b'property double z\nelement face 1\nproperty list uint8 uint16 vertex_indices\nend_header\n')
+body = struct.pack('>12d', 0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0) + struct.pack('>B4H', 4, 0, 1, 2, 3)
+open(sys.argv[1], 'wb').write(b'\x00\x00' + head + body)
+PY
+{ printf '\x01\x00'
+  printf 'OFF\n# comment\n4 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n'
+} > "$OUT/seqio/square.off"
+echo "seeds: $(ls "$OUT/ams" | wc -l) in $OUT/ams ($(du -sh "$OUT/ams" | cut -f1)), $(ls "$OUT/seqio" | wc -l) in $OUT/seqio"
