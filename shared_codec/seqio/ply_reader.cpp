@@ -37,6 +37,9 @@ Status skipProperty(PlyValueReader& in, const PlyProperty& p) {
 }
 
 Status skipElement(PlyValueReader& in, const PlyElement& element) {
+  // Without properties an instance takes no bytes, so checkPlyDataSize() lets any count
+  // through: skip them all at once rather than loop up to 2^64 times over nothing.
+  if (element.properties.empty()) return Status();
   for (uint64_t i = 0; i < element.count; ++i)
     for (const PlyProperty& p : element.properties) ANIMC_RETURN_IF_ERROR(skipProperty(in, p));
   return Status();

@@ -254,6 +254,17 @@ TEST_F(SeqioTest, TruncatedAndAbsurdBinaryPly) {
             std::string::npos);
 }
 
+// Found by fuzzing: an element with no properties takes no bytes, so the data-size check
+// lets any count through, and skipping it one instance at a time would loop 2^64 times (when
+// the compiler keeps the empty loop: clang does, gcc -O2 drops it).
+TEST_F(SeqioTest, PlyElementWithoutPropertiesAndAHugeCountIsSkippedAtOnce) {
+  writeFile("empty_element.ply",
+            replaced(kTrianglePly, "element face", "element junk 18446744073709551615\nelement face"));
+  auto mesh = readMesh(path("empty_element.ply"));
+  ASSERT_TRUE(mesh.ok()) << errorOf(mesh);
+  EXPECT_EQ(mesh.value().topology.triangles.size(), 1u);
+}
+
 TEST_F(SeqioTest, BadOffInputsAreRejectedWithReasons) {
   const std::string good = "OFF\n3 1 0\n0.0 0.0 0.0\n1.0 0.0 0.0\n0.0 1.0 0.0\n3 0 1 2\n";
   struct Case {
