@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "codecs/affine_octree/affine_octree_codec.h"
+#include "codecs/wavelet/progressive_mesh.h"
 #include "codecs/wavelet/wavelet_codec.h"
 #include "container/container_writer.h"
 #include "io/byte_writer.h"
@@ -37,12 +38,16 @@ Status checkFrame(const std::vector<float>& xyz, const std::string& where, int64
 }
 
 // A file the default decoder would refuse is not worth writing.
-Status checkDecodable(const Topology& t) {
+Status checkDecodable(const Topology& t, CodecId codec) {
   const DecoderLimits limits;
   if (t.vertex_count > limits.max_vertices || t.triangles.size() > limits.max_triangles)
     return invalidArgument("the mesh has " + std::to_string(t.vertex_count) + " vertices and " +
                            std::to_string(t.triangles.size()) + " triangles; decoders accept at most " +
                            std::to_string(limits.max_vertices) + " and " + std::to_string(limits.max_triangles));
+  if (codec == CodecId::kWavelet) {
+    const Status cost = checkHierarchyCost(t);
+    if (!cost.ok()) return invalidArgument(cost.message() + "; --codec affine-octree has no such limit");
+  }
   return Status();
 }
 
@@ -109,7 +114,7 @@ Result<EncodeReport> encodeSequence(FrameSource& source, const EncodeSettings& s
                                     const FrameObserver& observer) {
   ANIMC_RETURN_IF_ERROR(settings.validate());
   ANIMC_RETURN_IF_ERROR(checkSource(source));
-  ANIMC_RETURN_IF_ERROR(checkDecodable(source.topology()));
+  ANIMC_RETURN_IF_ERROR(checkDecodable(source.topology(), settings.codec));
   const Topology& topology = source.topology();
   ContainerHeader header;
   header.codec = settings.codec;

@@ -5,6 +5,10 @@
 #include <cmath>
 #include <random>
 
+#include "api.h"
+#include "codec_test_support.h"
+#include "codecs/affine_octree/iframe_coder.h"
+#include "codecs/wavelet/progressive_mesh.h"
 #include "codecs/wavelet/wavelet_codec.h"
 #include "test_sequences.h"
 #include "wavelet_test_support.h"
@@ -255,6 +259,51 @@ TEST(WaveletCodec, GarbagePayloadsNeverCrash) {
       for (float v : xyz) ASSERT_TRUE(std::isfinite(v));
     }
   }
+}
+
+// A closed fan: vertex 0 at the centre of a slightly wavy disk of `triangles` rim vertices.
+MemorySequence fanSequence(uint32_t triangles) {
+  Topology fan;
+  fan.vertex_count = triangles + 1;
+  std::vector<float> xyz = {0, 0, 0};
+  for (uint32_t k = 0; k < triangles; ++k) {
+    fan.triangles.push_back({0, 1 + k, 1 + (k + 1) % triangles});
+    const double angle = 2 * M_PI * k / triangles;
+    xyz.insert(xyz.end(), {float(std::cos(angle)), float(std::sin(angle)), 0.01f * float(k % 7)});
+  }
+  return MemorySequence(fan, {xyz, xyz});
+}
+
+// Found while fuzzing: the hierarchy costs the square of a vertex's triangle count, so a fan
+// declared in a few bytes of connectivity kept the decoder busy for minutes (this one: 90 s
+// under ASan), or hours. Such meshes are refused on both sides, with a message naming the vertex.
+TEST(WaveletCodec, MeshWhoseHierarchyWouldTakeTooLongIsRefused) {
+  const MemorySequence fan = fanSequence(3000);
+  std::vector<uint8_t> parametric = {uint8_t(WaveletFrameType::kParametric)};
+  std::vector<double> positions(fan.frames()[0].begin(), fan.frames()[0].end()), recon;
+  IFrameCoder(fan.topology()).encode(positions, 1e-3, parametric, recon);
+  auto decoder = makeWaveletDecoder(WaveletOptions(), fan.topology());
+  std::vector<float> xyz;
+  const Status decoded = decoder->decodeFrame(ByteReader(parametric.data(), parametric.size()), xyz, nullptr);
+  EXPECT_EQ(decoded.code(), StatusCode::kLimitExceeded) << decoded.message();
+  EXPECT_NE(decoded.message().find("vertex 0 is in 3000 triangles"), std::string::npos) << decoded.message();
+
+  MemorySequence source = fan;
+  EncodeSettings settings;
+  settings.codec = CodecId::kWavelet;
+  const std::string path = testing_support::tempPath("fan.ams");
+  auto encoded = encodeSequence(source, settings, path);
+  ASSERT_FALSE(encoded.ok());
+  EXPECT_EQ(encoded.status().code(), StatusCode::kInvalidArgument);
+  EXPECT_NE(encoded.status().message().find("affine-octree"), std::string::npos) << encoded.status().message();
+}
+
+TEST(WaveletCodec, HierarchyCostLimitLeavesRealisticPolesAlone) {
+  EXPECT_TRUE(checkHierarchyCost(fanSequence(1000).topology()).ok());
+  EXPECT_TRUE(checkHierarchyCost(testing_support::gridTopology(300, 300)).ok());
+  Topology too_busy = fanSequence(10).topology();
+  too_busy.triangles.assign(kMaxTrianglesAtVertex + 1, {0, 1, 2});
+  EXPECT_NE(checkHierarchyCost(too_busy).message().find("at most 65534 triangles at a vertex"), std::string::npos);
 }
 
 }  // namespace

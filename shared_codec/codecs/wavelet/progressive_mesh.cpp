@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <string>
 #include <tuple>
 
 #include "codecs/wavelet/collapse_choice.h"
@@ -235,6 +236,31 @@ int applyBatch(LevelMesh& mesh, const std::vector<Candidate>& candidates, int le
 }
 
 }  // namespace
+
+Status checkHierarchyCost(const Topology& topology) {
+  if (topology.vertex_count == 0) return Status();  // nothing to build
+  std::vector<uint32_t> triangles_at(topology.vertex_count, 0);
+  for (const Triangle& t : topology.triangles)
+    for (uint32_t v : t) ++triangles_at[v];
+  uint64_t cost = 0;
+  uint32_t busiest = 0;
+  for (uint32_t v = 0; v < topology.vertex_count; ++v) {
+    cost += uint64_t(triangles_at[v]) * triangles_at[v];
+    if (triangles_at[v] > triangles_at[busiest]) busiest = v;
+  }
+  const std::string culprit =
+      "vertex " + std::to_string(busiest) + " is in " + std::to_string(triangles_at[busiest]) + " triangles";
+  if (triangles_at[busiest] > kMaxTrianglesAtVertex)
+    return limitExceeded("the wavelet codec's hierarchy takes at most " + std::to_string(kMaxTrianglesAtVertex) +
+                         " triangles at a vertex: " + culprit);
+  const uint64_t limit = kMaxRingCostPerTriangle * topology.triangles.size() + kRingCostAllowance;
+  if (cost > limit)
+    return limitExceeded("the wavelet codec's hierarchy would take too long on this mesh: " + culprit +
+                         " (sum over vertices of their triangle count squared " + std::to_string(cost) +
+                         ", limit " + std::to_string(limit) + " for " + std::to_string(topology.triangles.size()) +
+                         " triangles)");
+  return Status();
+}
 
 ProgressiveMesh buildProgressiveMesh(const Topology& topology, const std::vector<double>& parametric_xyz,
                                      const HierarchySettings& settings) {

@@ -7,6 +7,7 @@
 #include "codecs/affine_octree/octree_shared.h"
 #include "codecs/wavelet/bitplane_coder.h"
 #include "codecs/wavelet/frame_model.h"
+#include "codecs/wavelet/progressive_mesh.h"
 #include "codecs/wavelet/rate_control.h"
 
 namespace animc {
@@ -103,9 +104,11 @@ class WaveletEncoder final : public FrameEncoder {
 class WaveletDecoder final : public FrameDecoder {
  public:
   WaveletDecoder(const WaveletOptions& options, const Topology& topology, const WaveletDecodeControl& control)
-      : control_(control), topology_(topology), static_coder_(topology_), model_(options, topology_) {}
+      : control_(control), topology_(topology), hierarchy_cost_(checkHierarchyCost(topology_)),
+        static_coder_(topology_), model_(options, topology_) {}
 
   Status decodeFrame(ByteReader payload, std::vector<float>& xyz, bool* intra) override {
+    ANIMC_RETURN_IF_ERROR(hierarchy_cost_);
     ANIMC_ASSIGN_OR_RETURN(uint8_t type, payload.u8("Frame_Type"));
     // Progressive decoding cuts detail frames only: a parametric frame is needed whole.
     const bool cut = type != uint8_t(WaveletFrameType::kParametric) && control_.max_payload_bytes > 0 &&
@@ -150,6 +153,7 @@ class WaveletDecoder final : public FrameDecoder {
 
   WaveletDecodeControl control_;
   Topology topology_;
+  Status hierarchy_cost_;  // a mesh whose hierarchy would take too long is refused, not decoded
   IFrameCoder static_coder_;
   WaveletFrameModel model_;
   std::vector<double> decoded_;
