@@ -207,7 +207,8 @@ TEST(WaveletHierarchy, SeamCopiesAreWeldedAndBothComponentsSimplified) {
   expectSoundBase(pm);
   EXPECT_EQ(countKind(pm, CollapseKind::kSeam), mesh.copies.size());
   for (const auto& [copy, original] : mesh.copies) {
-    const auto c = std::find_if(pm.collapses.begin(), pm.collapses.end(), [&](const Collapse& x) { return x.vertex == copy; });
+    const uint32_t seam_copy = copy;  // a structured binding cannot be captured before C++20
+    const auto c = std::find_if(pm.collapses.begin(), pm.collapses.end(), [&](const Collapse& x) { return x.vertex == seam_copy; });
     ASSERT_NE(c, pm.collapses.end()) << "seam copy " << copy << " kept";
     EXPECT_EQ(c->kind, CollapseKind::kSeam);
     EXPECT_EQ(c->target, original);
