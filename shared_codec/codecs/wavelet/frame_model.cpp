@@ -7,6 +7,17 @@
 namespace animc {
 namespace {
 
+// Extent (max - min) of x y z triples along each axis; zeros when there are none.
+std::array<double, 3> boxExtent(const std::vector<double>& xyz) {
+  if (xyz.empty()) return {0, 0, 0};
+  double lo[3] = {xyz[0], xyz[1], xyz[2]}, hi[3] = {xyz[0], xyz[1], xyz[2]};
+  for (size_t i = 0; i < xyz.size(); ++i) {
+    lo[i % 3] = std::min(lo[i % 3], xyz[i]);
+    hi[i % 3] = std::max(hi[i % 3], xyz[i]);
+  }
+  return {hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]};
+}
+
 double boxDiagonal(const std::vector<double>& xyz) {
   const std::array<double, 3> e = boxExtent(xyz);
   return std::sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
@@ -22,15 +33,6 @@ uint8_t classOf(int level, int level_count) {
 
 }  // namespace
 
-std::array<double, 3> boxExtent(const std::vector<double>& xyz) {
-  if (xyz.empty()) return {0, 0, 0};
-  double lo[3] = {xyz[0], xyz[1], xyz[2]}, hi[3] = {xyz[0], xyz[1], xyz[2]};
-  for (size_t i = 0; i < xyz.size(); ++i) {
-    lo[i % 3] = std::min(lo[i % 3], xyz[i]);
-    hi[i % 3] = std::max(hi[i % 3], xyz[i]);
-  }
-  return {hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]};
-}
 
 WaveletFrameModel::WaveletFrameModel(const WaveletOptions& options, const Topology& topology)
     : options_(options), topology_(topology) {}

@@ -14,9 +14,6 @@
 
 namespace animc {
 
-// Extent (max - min) of x y z triples along each axis; zeros when there are none.
-std::array<double, 3> boxExtent(const std::vector<double>& xyz);
-
 // How a detail frame predicts its coefficients, per group of vertices (base vertices, then
 // removed ones): selector k <= kDampingSteps predicts previous + (k / kDampingSteps) *
 // (previous - the one before), i.e. 0 = the paper's P-frame, kDampingSteps = linear

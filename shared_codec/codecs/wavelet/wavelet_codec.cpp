@@ -13,6 +13,12 @@
 namespace animc {
 namespace {
 
+// Grid step of a parametric frame coded at `bits` bits with the given largest bounding-box side.
+double parametricStep(int bits, double largest_side) {
+  const double side = largest_side > 0 && std::isfinite(largest_side) ? largest_side : 1.0;
+  return side / double(1u << bits);
+}
+
 static_assert(kPredictionGroups == 2 && kIntraSelector < 16, "selectors are two nibbles of one byte");
 
 uint8_t packSelectors(const Prediction& p) { return uint8_t(p.selector[0] | (p.selector[1] << 4)); }
@@ -160,11 +166,6 @@ class WaveletDecoder final : public FrameDecoder {
 };
 
 }  // namespace
-
-double parametricStep(int bits, double largest_side) {
-  const double side = largest_side > 0 && std::isfinite(largest_side) ? largest_side : 1.0;
-  return side / double(1u << bits);
-}
 
 std::unique_ptr<FrameEncoder> makeWaveletEncoder(const WaveletOptions& options, const Topology& topology) {
   return std::make_unique<WaveletEncoder>(options, topology);

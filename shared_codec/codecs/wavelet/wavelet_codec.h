@@ -21,7 +21,4 @@ std::unique_ptr<FrameEncoder> makeWaveletEncoder(const WaveletOptions& options, 
 std::unique_ptr<FrameDecoder> makeWaveletDecoder(const WaveletOptions& options, const Topology& topology,
                                                  const WaveletDecodeControl& control = {});
 
-// Grid step of a parametric frame coded at `bits` bits with the given largest bounding-box side.
-double parametricStep(int bits, double largest_side);
-
 }  // namespace animc
