@@ -103,44 +103,44 @@ double boundaryCost(const std::vector<double>& xyz, uint32_t v, uint32_t a, uint
 
 }  // namespace
 
-void VertexCollapses::prepare(const std::vector<double>& xyz, uint32_t v, bool closed) {
+void VertexCollapses::computeFan(const std::vector<double>& xyz, FanGeometry& scratch) const {
+  const Vec3 pv = at(xyz, vertex_);
+  scratch.normal.resize(3 * triangleCount());
+  scratch.twice_area.resize(triangleCount());
+  for (size_t i = 0; i < triangleCount(); ++i) {
+    const Vec3 normal = (at(xyz, ring[i]) - pv).cross(at(xyz, ring[next(i)]) - pv);
+    std::copy(normal.data(), normal.data() + 3, &scratch.normal[3 * i]);
+    scratch.twice_area[i] = normal.norm();
+  }
+}
+
+void VertexCollapses::prepare(const std::vector<double>& xyz, uint32_t v, bool closed, FanGeometry& scratch) {
   vertex_ = v;
   closed_ = closed;
   options_.clear();
-  ring_position_.clear();
   validity_.clear();
   // An ear (one triangle) stays: its ring is a single edge, which spans no local frame, and
   // removing it turns an inner edge into boundary.
   if (!closed && ring.size() < 3) return;
+  computeFan(xyz, scratch);
   const Vec3 pv = at(xyz, v);
-  normal_.resize(3 * triangleCount());
-  twice_area_.resize(triangleCount());
-  for (size_t i = 0; i < triangleCount(); ++i) {
-    const Vec3 normal = (at(xyz, ring[i]) - pv).cross(at(xyz, ring[next(i)]) - pv);
-    std::copy(normal.data(), normal.data() + 3, &normal_[3 * i]);
-    twice_area_[i] = normal.norm();
-  }
-  const Fan fan{ring, closed, pv, normal_.data(), twice_area_.data()};
+  const Fan fan{ring, closed, pv, scratch.normal.data(), scratch.twice_area.data()};
   const double curve = closed ? 0.0 : boundaryCost(xyz, v, ring.front(), ring.back());
-  auto add = [&](size_t at_u) {
-    const uint32_t u = ring[at_u];
+  const size_t count = closed ? ring.size() : 2;
+  for (size_t i = 0; i < count; ++i) {
+    const uint32_t u = ring[ringPosition(i)];
     options_.push_back({u, collapseCost(xyz, fan, u) + curve, (at(xyz, u) - pv).norm()});
-    ring_position_.push_back(uint32_t(at_u));
-    validity_.push_back(Validity::kUnknown);
-  };
-  if (closed) {
-    for (size_t i = 0; i < ring.size(); ++i) add(i);
-  } else {
-    add(0);
-    add(ring.size() - 1);
   }
+  validity_.assign(count, Validity::kUnknown);
 }
 
 bool VertexCollapses::valid(size_t option, const LevelMesh& mesh, const std::vector<double>& xyz,
-                            double min_normal_cosine) {
+                            double min_normal_cosine, FanGeometry& scratch, bool& fan_ready) {
   if (validity_[option] == Validity::kUnknown) {
-    const Fan fan{ring, closed_, at(xyz, vertex_), normal_.data(), twice_area_.data()};
-    const Flanks flanks(fan, ring_position_[option]);
+    if (!fan_ready) computeFan(xyz, scratch);
+    fan_ready = true;
+    const Fan fan{ring, closed_, at(xyz, vertex_), scratch.normal.data(), scratch.twice_area.data()};
+    const Flanks flanks(fan, ringPosition(option));
     const bool ok = linkConditionHolds(mesh, fan, flanks) && keepsTrianglesSound(mesh, xyz, fan, flanks, min_normal_cosine);
     validity_[option] = ok ? Validity::kValid : Validity::kInvalid;
   }
@@ -150,18 +150,24 @@ bool VertexCollapses::valid(size_t option, const LevelMesh& mesh, const std::vec
 // Only an option that would beat the best so far needs its validity: the result is the
 // cheapest valid one, as if every option had been checked.
 const CollapseOption* VertexCollapses::cheapestWithin(const LevelMesh& mesh, const std::vector<double>& xyz,
-                                                      double max_length, double min_normal_cosine) {
+                                                      double max_length, double min_normal_cosine,
+                                                      FanGeometry& scratch) {
   const CollapseOption* best = nullptr;
+  bool fan_ready = false;
   for (size_t i = 0; i < options_.size(); ++i) {
     const CollapseOption& o = options_[i];
-    if (o.length <= max_length && (!best || o.cost < best->cost) && valid(i, mesh, xyz, min_normal_cosine)) best = &o;
+    if (o.length <= max_length && (!best || o.cost < best->cost) &&
+        valid(i, mesh, xyz, min_normal_cosine, scratch, fan_ready))
+      best = &o;
   }
   return best;
 }
 
-bool VertexCollapses::anyValid(const LevelMesh& mesh, const std::vector<double>& xyz, double min_normal_cosine) {
+bool VertexCollapses::anyValid(const LevelMesh& mesh, const std::vector<double>& xyz, double min_normal_cosine,
+                               FanGeometry& scratch) {
+  bool fan_ready = false;
   for (size_t i = 0; i < options_.size(); ++i)
-    if (valid(i, mesh, xyz, min_normal_cosine)) return true;
+    if (valid(i, mesh, xyz, min_normal_cosine, scratch, fan_ready)) return true;
   return false;
 }
 

@@ -19,6 +19,14 @@ struct CollapseOption {
   double length = 0;
 };
 
+// Normals (twice their area long) and twice the areas of a vertex's triangles: scratch that
+// VertexCollapses fills when it needs them, shared by all vertices so that the per-vertex
+// entries of a large mesh stay small.
+struct FanGeometry {
+  std::vector<double> normal;  // 3 per triangle
+  std::vector<double> twice_area;
+};
+
 // A vertex's collapse options on the current level. Costs and lengths are computed for every
 // target at once; the validity rules (link condition, no duplicate, degenerate or flipped
 // triangle), which cost several times more, only for the targets a level's choice reaches,
@@ -33,29 +41,30 @@ class VertexCollapses {
   // that the boundary stays a curve and v can be predicted from its two boundary neighbours;
   // v needs >= 2 triangles, and the cost adds the squared distance of v to the chord between
   // them (what the boundary curve loses).
-  void prepare(const std::vector<double>& xyz, uint32_t v, bool closed);
+  void prepare(const std::vector<double>& xyz, uint32_t v, bool closed, FanGeometry& scratch);
   void clear() { options_.clear(); }  // v cannot be removed on this level
 
   // The cheapest valid option within max_length (the first of equal ones in ring order);
   // null when none fits.
   const CollapseOption* cheapestWithin(const LevelMesh& mesh, const std::vector<double>& xyz, double max_length,
-                                       double min_normal_cosine);
+                                       double min_normal_cosine, FanGeometry& scratch);
   // Whether some option is valid, whatever its length.
-  bool anyValid(const LevelMesh& mesh, const std::vector<double>& xyz, double min_normal_cosine);
+  bool anyValid(const LevelMesh& mesh, const std::vector<double>& xyz, double min_normal_cosine, FanGeometry& scratch);
 
  private:
   enum class Validity : uint8_t { kUnknown, kValid, kInvalid };
-  bool valid(size_t option, const LevelMesh& mesh, const std::vector<double>& xyz, double min_normal_cosine);
+  // `fan_ready`: whether scratch already holds this vertex's fan (computed on first need).
+  bool valid(size_t option, const LevelMesh& mesh, const std::vector<double>& xyz, double min_normal_cosine,
+             FanGeometry& scratch, bool& fan_ready);
+  void computeFan(const std::vector<double>& xyz, FanGeometry& scratch) const;
   size_t triangleCount() const { return closed_ ? ring.size() : ring.size() - 1; }
   size_t next(size_t i) const { return i + 1 == ring.size() ? 0 : i + 1; }
+  // Ring position of option i's target: all of a closed ring, the two ends of an open fan.
+  size_t ringPosition(size_t option) const { return closed_ || option == 0 ? option : ring.size() - 1; }
 
   uint32_t vertex_ = kNoVertex;
   bool closed_ = true;
-  // v's triangles (v, ring[i], ring[next(i)]): normals twice their area long, and that area.
-  std::vector<double> normal_;  // 3 per triangle
-  std::vector<double> twice_area_;
   std::vector<CollapseOption> options_;
-  std::vector<uint32_t> ring_position_;  // of each option's target
   std::vector<Validity> validity_;
 };
 

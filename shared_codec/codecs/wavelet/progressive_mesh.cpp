@@ -107,10 +107,10 @@ class CollapseOptionCache {
     e.kind = CollapseKind::kInterior;
     VertexCollapses& c = e.collapses;
     if (mesh.orderedRing(v, c.ring)) {
-      c.prepare(xyz, v, true);
+      c.prepare(xyz, v, true, fan_);
     } else if (settings.collapse_boundaries && mesh.openFan(v, c.ring)) {
       e.kind = CollapseKind::kBoundary;
-      c.prepare(xyz, v, false);
+      c.prepare(xyz, v, false, fan_);
     } else {
       c.clear();
     }
@@ -128,8 +128,12 @@ class CollapseOptionCache {
           for (uint32_t y : mesh.triangle(*t2)) entries_[y].stale = true;
   }
 
+  // Fan normals of the vertex being prepared or checked, shared by every entry.
+  FanGeometry& scratch() { return fan_; }
+
  private:
   std::vector<Entry> entries_;
+  FanGeometry fan_;
 };
 
 // Every removable vertex's best collapse within the length bound; any_valid tells whether
@@ -145,11 +149,11 @@ std::vector<Candidate> levelCandidates(const LevelMesh& mesh, const std::vector<
     if (removed[v]) continue;
     CollapseOptionCache::Entry& e = cache.at(mesh, xyz, v, settings);
     if (e.kind == CollapseKind::kBoundary && !loops.canLose(v)) continue;
-    if (const CollapseOption* best = e.collapses.cheapestWithin(mesh, xyz, max_length, min_cos)) {
+    if (const CollapseOption* best = e.collapses.cheapestWithin(mesh, xyz, max_length, min_cos, cache.scratch())) {
       out.push_back({best->cost, v, best->target, e.kind});
       any_valid = true;
     } else {
-      any_valid = any_valid || e.collapses.anyValid(mesh, xyz, min_cos);
+      any_valid = any_valid || e.collapses.anyValid(mesh, xyz, min_cos, cache.scratch());
     }
   }
   // Cost, then vertex index: a total order, so both sides pick the same batch.
