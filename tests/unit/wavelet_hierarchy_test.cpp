@@ -7,6 +7,7 @@
 #include <numeric>
 
 #include "codecs/wavelet/anisotropic_predictor.h"
+#include "codecs/wavelet/collapse_choice.h"
 #include "codecs/wavelet/progressive_mesh.h"
 #include "codecs/wavelet/wavelet_transform.h"
 #include "test_sequences.h"
@@ -239,6 +240,45 @@ TEST(WaveletHierarchy, SeamsStayApartWhenWeldingIsOff) {
   // Each grid is a disc: its boundary loop keeps at least 3 vertices, so does the triangle.
   const std::vector<int> loops = boundaryLoopSizes(pm.base_triangles, pm.vertex_count);
   EXPECT_EQ(loops.size(), 3u);
+}
+
+// A disk whose rim of n vertices (alternately slightly up and down) is fanned by two hubs,
+// each over half of it: both hubs are in n / 2 + 2 triangles.
+struct TwoHubDisk {
+  Topology topology;
+  std::vector<double> xyz;
+  uint32_t hub_a, hub_b;
+};
+
+TwoHubDisk twoHubDisk(uint32_t n) {
+  TwoHubDisk d;
+  d.hub_a = n;
+  d.hub_b = n + 1;
+  d.topology.vertex_count = n + 2;
+  for (uint32_t i = 0; i < n; ++i) {
+    const double a = M_PI / 2 + 2 * M_PI * i / n;
+    d.xyz.insert(d.xyz.end(), {std::cos(a), std::sin(a), i % 2 ? 0.05 : -0.05});
+  }
+  d.xyz.insert(d.xyz.end(), {-1e-3, 0, 0, 1e-3, 0, 0});
+  for (uint32_t i = 0; i < n / 2; ++i) d.topology.triangles.push_back({d.hub_a, i, i + 1});
+  for (uint32_t i = n / 2; i < n; ++i) d.topology.triangles.push_back({d.hub_b, i, (i + 1) % n});
+  d.topology.triangles.push_back({d.hub_a, n / 2, d.hub_b});
+  d.topology.triangles.push_back({d.hub_b, 0, d.hub_a});
+  return d;
+}
+
+TEST(WaveletHierarchy, NoCollapseLeavesAVertexInMoreTrianglesThanTheBound) {
+  // Merging the hubs would leave one in 402 triangles: over the bound, so it is not done
+  // (without the bound the hubs merged on level 0, and merges like it can double a vertex's
+  // fan, and the square cost of walking it, on every level).
+  const TwoHubDisk disk = twoHubDisk(400);
+  const ProgressiveMesh pm = buildProgressiveMesh(disk.topology, disk.xyz);
+  expectValidHierarchy(pm);
+  for (const Collapse& c : pm.collapses) {
+    EXPECT_FALSE((c.vertex == disk.hub_a || c.vertex == disk.hub_b) && (c.target == disk.hub_a || c.target == disk.hub_b))
+        << "hubs merged on level " << c.level;
+    EXPECT_LE(c.ring_size, kMaxCollapseTriangles + 1);
+  }
 }
 
 TEST(WaveletHierarchy, SharedSequencesAreCoveredAndRebuiltIdentically) {

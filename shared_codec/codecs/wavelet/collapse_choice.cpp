@@ -14,7 +14,7 @@ using Vec3 = Eigen::Vector3d;
 Vec3 at(const std::vector<double>& xyz, uint32_t v) { return Vec3(xyz[3 * size_t(v)], xyz[3 * size_t(v) + 1], xyz[3 * size_t(v) + 2]); }
 
 // v's triangles (v, ring[i], ring[i+1]): k of them around a closed ring, k - 1 in an open
-// fan, with their normals (twice their area long), as VertexCollapses keeps them.
+// fan, with their normals (twice their area long) from the FanGeometry scratch.
 struct Fan {
   const std::vector<uint32_t>& ring;
   bool closed;
@@ -105,10 +105,12 @@ double boundaryCost(const std::vector<double>& xyz, uint32_t v, uint32_t a, uint
 
 void VertexCollapses::computeFan(const std::vector<double>& xyz, FanGeometry& scratch) const {
   const Vec3 pv = at(xyz, vertex_);
-  scratch.normal.resize(3 * triangleCount());
-  scratch.twice_area.resize(triangleCount());
-  for (size_t i = 0; i < triangleCount(); ++i) {
-    const Vec3 normal = (at(xyz, ring[i]) - pv).cross(at(xyz, ring[next(i)]) - pv);
+  const Fan shape{ring, closed_, pv, nullptr, nullptr};
+  scratch.vertex = vertex_;
+  scratch.normal.resize(3 * shape.triangleCount());
+  scratch.twice_area.resize(shape.triangleCount());
+  for (size_t i = 0; i < shape.triangleCount(); ++i) {
+    const Vec3 normal = (at(xyz, ring[i]) - pv).cross(at(xyz, ring[shape.next(i)]) - pv);
     std::copy(normal.data(), normal.data() + 3, &scratch.normal[3 * i]);
     scratch.twice_area[i] = normal.norm();
   }
@@ -119,6 +121,7 @@ void VertexCollapses::prepare(const std::vector<double>& xyz, uint32_t v, bool c
   closed_ = closed;
   options_.clear();
   validity_.clear();
+  if (scratch.vertex == v) scratch.vertex = kNoVertex;  // v's ring has changed
   // An ear (one triangle) stays: its ring is a single edge, which spans no local frame, and
   // removing it turns an inner edge into boundary.
   if (!closed && ring.size() < 3) return;
@@ -135,10 +138,12 @@ void VertexCollapses::prepare(const std::vector<double>& xyz, uint32_t v, bool c
 }
 
 bool VertexCollapses::valid(size_t option, const LevelMesh& mesh, const std::vector<double>& xyz,
-                            double min_normal_cosine, FanGeometry& scratch, bool& fan_ready) {
+                            double min_normal_cosine, FanGeometry& scratch) {
+  if (validity_[option] == Validity::kUnknown &&
+      mesh.triangleCount(options_[option].target) + mesh.triangleCount(vertex_) > kMaxCollapseTriangles + 2)
+    validity_[option] = Validity::kInvalid;  // before the checks, which would walk the big fan
   if (validity_[option] == Validity::kUnknown) {
-    if (!fan_ready) computeFan(xyz, scratch);
-    fan_ready = true;
+    if (scratch.vertex != vertex_) computeFan(xyz, scratch);
     const Fan fan{ring, closed_, at(xyz, vertex_), scratch.normal.data(), scratch.twice_area.data()};
     const Flanks flanks(fan, ringPosition(option));
     const bool ok = linkConditionHolds(mesh, fan, flanks) && keepsTrianglesSound(mesh, xyz, fan, flanks, min_normal_cosine);
@@ -153,11 +158,10 @@ const CollapseOption* VertexCollapses::cheapestWithin(const LevelMesh& mesh, con
                                                       double max_length, double min_normal_cosine,
                                                       FanGeometry& scratch) {
   const CollapseOption* best = nullptr;
-  bool fan_ready = false;
   for (size_t i = 0; i < options_.size(); ++i) {
     const CollapseOption& o = options_[i];
     if (o.length <= max_length && (!best || o.cost < best->cost) &&
-        valid(i, mesh, xyz, min_normal_cosine, scratch, fan_ready))
+        valid(i, mesh, xyz, min_normal_cosine, scratch))
       best = &o;
   }
   return best;
@@ -165,9 +169,8 @@ const CollapseOption* VertexCollapses::cheapestWithin(const LevelMesh& mesh, con
 
 bool VertexCollapses::anyValid(const LevelMesh& mesh, const std::vector<double>& xyz, double min_normal_cosine,
                                FanGeometry& scratch) {
-  bool fan_ready = false;
   for (size_t i = 0; i < options_.size(); ++i)
-    if (valid(i, mesh, xyz, min_normal_cosine, scratch, fan_ready)) return true;
+    if (valid(i, mesh, xyz, min_normal_cosine, scratch)) return true;
   return false;
 }
 

@@ -10,6 +10,13 @@
 
 namespace animc {
 
+// A vertex in more triangles is never removed, and no collapse may leave its target in more
+// (counted as the two vertices' triangles less the two an interior edge loses). Ring walks and
+// checks cost the square of a vertex's triangle count at every level that touches it; this
+// keeps that bounded whatever welded seams or earlier collapses made of the mesh (real meshes
+// stay far below: the shared sequences build the same hierarchies with a bound of 30).
+constexpr uint32_t kMaxCollapseTriangles = 256;
+
 // One target of a vertex's collapse, with its cost and the length of the edge (the level's
 // length bound is applied when choosing, so options stay usable from level to level while
 // the vertex's neighbourhood does not change).
@@ -23,7 +30,8 @@ struct CollapseOption {
 // VertexCollapses fills when it needs them, shared by all vertices so that the per-vertex
 // entries of a large mesh stay small.
 struct FanGeometry {
-  std::vector<double> normal;  // 3 per triangle
+  uint32_t vertex = kNoVertex;  // whose fan it holds (its ring as last prepared)
+  std::vector<double> normal;   // 3 per triangle
   std::vector<double> twice_area;
 };
 
@@ -53,12 +61,10 @@ class VertexCollapses {
 
  private:
   enum class Validity : uint8_t { kUnknown, kValid, kInvalid };
-  // `fan_ready`: whether scratch already holds this vertex's fan (computed on first need).
+  // Computes the fan into scratch on first need (prepare() left it there for the first checks).
   bool valid(size_t option, const LevelMesh& mesh, const std::vector<double>& xyz, double min_normal_cosine,
-             FanGeometry& scratch, bool& fan_ready);
+             FanGeometry& scratch);
   void computeFan(const std::vector<double>& xyz, FanGeometry& scratch) const;
-  size_t triangleCount() const { return closed_ ? ring.size() : ring.size() - 1; }
-  size_t next(size_t i) const { return i + 1 == ring.size() ? 0 : i + 1; }
   // Ring position of option i's target: all of a closed ring, the two ends of an open fan.
   size_t ringPosition(size_t option) const { return closed_ || option == 0 ? option : ring.size() - 1; }
 

@@ -20,6 +20,7 @@ class LevelMesh {
   void rebuildIncidence();
   const uint32_t* trianglesBegin(uint32_t v) const { return &incident_[first_[v]]; }
   const uint32_t* trianglesEnd(uint32_t v) const { return &incident_[0] + first_[v + 1]; }
+  uint32_t triangleCount(uint32_t v) const { return first_[v + 1] - first_[v]; }
   const Triangle& triangle(uint32_t t) const { return triangles_[t]; }
 
   // The neighbours of v in cyclic order, following the orientation of its triangles, so that

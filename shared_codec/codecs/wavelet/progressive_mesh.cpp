@@ -106,7 +106,9 @@ class CollapseOptionCache {
     e.stale = false;
     e.kind = CollapseKind::kInterior;
     VertexCollapses& c = e.collapses;
-    if (mesh.orderedRing(v, c.ring)) {
+    if (mesh.triangleCount(v) > kMaxCollapseTriangles) {
+      c.clear();  // not removable; its ring is not even walked
+    } else if (mesh.orderedRing(v, c.ring)) {
       c.prepare(xyz, v, true, fan_);
     } else if (settings.collapse_boundaries && mesh.openFan(v, c.ring)) {
       e.kind = CollapseKind::kBoundary;
@@ -252,14 +254,15 @@ Status checkHierarchyCost(const Topology& topology) {
     cost += uint64_t(triangles_at[v]) * triangles_at[v];
     if (triangles_at[v] > triangles_at[busiest]) busiest = v;
   }
-  const std::string culprit =
-      "vertex " + std::to_string(busiest) + " is in " + std::to_string(triangles_at[busiest]) + " triangles";
+  auto culprit = [&] {
+    return "vertex " + std::to_string(busiest) + " is in " + std::to_string(triangles_at[busiest]) + " triangles";
+  };
   if (triangles_at[busiest] > kMaxTrianglesAtVertex)
     return limitExceeded("the wavelet codec's hierarchy takes at most " + std::to_string(kMaxTrianglesAtVertex) +
-                         " triangles at a vertex: " + culprit);
+                         " triangles at a vertex: " + culprit());
   const uint64_t limit = kMaxRingCostPerTriangle * topology.triangles.size() + kRingCostAllowance;
   if (cost > limit)
-    return limitExceeded("the wavelet codec's hierarchy would take too long on this mesh: " + culprit +
+    return limitExceeded("the wavelet codec's hierarchy would take too long on this mesh: " + culprit() +
                          " (sum over vertices of their triangle count squared " + std::to_string(cost) +
                          ", limit " + std::to_string(limit) + " for " + std::to_string(topology.triangles.size()) +
                          " triangles)");
