@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "codecs/affine_octree/simd_math.h"
+#include "core/simd_math.h"
 
 namespace animc {
 

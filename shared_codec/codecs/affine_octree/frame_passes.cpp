@@ -8,7 +8,7 @@
 #include <string>
 
 #include "codecs/affine_octree/octree_shared.h"
-#include "codecs/affine_octree/simd_math.h"
+#include "core/simd_math.h"
 #include "core/sequence.h"
 
 namespace animc {

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cstring>
 
-#include "codecs/affine_octree/simd_math.h"
+#include "core/simd_math.h"
 
 namespace animc {
 

@@ -1,7 +1,7 @@
 #include <cmath>
 
 #include "codecs/affine_octree/predictive_octree.h"
-#include "codecs/affine_octree/simd_math.h"
+#include "core/simd_math.h"
 
 namespace animc {
 

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-
 namespace animc {
 namespace {
 
@@ -32,7 +31,6 @@ uint8_t classOf(int level, int level_count) {
 }
 
 }  // namespace
-
 
 WaveletFrameModel::WaveletFrameModel(const WaveletOptions& options, const Topology& topology)
     : options_(options), topology_(topology) {}
