@@ -62,6 +62,19 @@ Status decode(const std::vector<uint8_t>& bytes, size_t size, const Coefficients
   return decodeBitplanes(in, c.layout(), settings, out, planes, history);
 }
 
+TEST(WaveletBitplane, TemporalContextTableMatchesItsDefinition) {
+  // Encoder and decoder share the table, so a wrong entry would still round-trip: compare
+  // it with the rule it encodes, for every plane and every bit length a history can hold.
+  struct NoIo {};
+  for (int p = 0; p < kMaxBitplanes; ++p) {
+    const uint64_t fields = PlaneWalk<NoIo>::temporalFields(p);
+    for (int b = 0; b <= kMaxBitplanes; ++b) {
+      const int expected = (b != 0) + (b > p) + (b > p + 1);
+      EXPECT_EQ(int((fields >> (2 * b)) & 3), expected) << "plane " << p << ", previous bit length " << b;
+    }
+  }
+}
+
 TEST(WaveletBitplane, FullStreamIsExactToTheStepAndMatchesTheEncoder) {
   const Coefficients c = makeCoefficients(400, 1);
   std::vector<uint8_t> bytes;
