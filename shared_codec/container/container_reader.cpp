@@ -1,6 +1,5 @@
 #include "container/container_reader.h"
 
-
 #include <algorithm>
 #include <cmath>
 #include <cstring>

@@ -133,7 +133,6 @@ class AffineOctreeDecoder final : public FrameDecoder {
   }
 
  private:
-
   Status decodeInter(ByteReader payload) {
     const RootCube cube = state_.prepare();
     PFrameInput in{&state_.u, state_.has_before ? &state_.u0 : nullptr, nullptr,

@@ -103,7 +103,8 @@ struct BlockPattern {
       : q{{v[0], v[1], v[2], v[0]}, {v[1], v[2], v[0], v[1]}, {v[2], v[0], v[1], v[2]}} {}
 };
 
-typedef float FloatQuad __attribute__((vector_size(16)));
+// With the alignment of a float, to store four floats anywhere in a float array.
+typedef float UnalignedFloatQuad __attribute__((vector_size(16), aligned(4)));
 typedef long long QuadMask __attribute__((vector_size(32)));
 
 ANIMC_TARGET_AVX2 bool toFloatsAvx2(const double* frame, size_t size, float* out) {
@@ -112,14 +113,10 @@ ANIMC_TARGET_AVX2 bool toFloatsAvx2(const double* frame, size_t size, float* out
   for (; i + 4 <= size; i += 4) {
     const Quad x = loadQuad(&frame[i]);
     in_range &= (x >= -kMaxCoordinate) & (x <= kMaxCoordinate);
-    *reinterpret_cast<FloatQuad*>(&out[i]) = __builtin_convertvector(x, FloatQuad);
+    *reinterpret_cast<UnalignedFloatQuad*>(&out[i]) = __builtin_convertvector(x, UnalignedFloatQuad);
   }
-  bool ok = in_range[0] && in_range[1] && in_range[2] && in_range[3];
-  for (; i < size; ++i) {
-    ok &= frame[i] >= -kMaxCoordinate && frame[i] <= kMaxCoordinate;
-    out[i] = float(frame[i]);
-  }
-  return ok;
+  const bool tail_ok = toFloatsPortable(frame + i, size - i, out + i);  // first: it writes the tail
+  return tail_ok && in_range[0] && in_range[1] && in_range[2] && in_range[3];
 }
 
 ANIMC_TARGET_AVX2 void normalizeAvx2(const RootCube& cube, const double* xyz, size_t size, double* out) {

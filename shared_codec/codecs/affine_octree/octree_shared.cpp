@@ -22,6 +22,9 @@ struct SpreadTable {
 constexpr SpreadTable kSpread;
 
 constexpr int kLowBits = OctreePartition::kGridBits - kSpreadBits;
+// A unit coordinate times kGridScale, clamped to [0, kGridTop], is its grid coordinate.
+constexpr double kGridScale = double(1u << OctreePartition::kGridBits);
+constexpr double kGridTop = double((1u << OctreePartition::kGridBits) - 1);
 
 // Interleaved top kSpreadBits bits of the three coordinates, then (for trees deeper than
 // kSpreadBits levels) the low bits.
@@ -39,10 +42,8 @@ uint64_t mortonKey(const uint32_t g[3], bool deep) {
 // beyond, and anything below 0 (or NaN) into the first. x and y go through one Pair; the
 // clamps are lane-wise std::max(0, g) and std::min(top, g).
 void gridCoordinates(const double* p, uint32_t g[3]) {
-  constexpr double kScale = double(1u << OctreePartition::kGridBits);
-  constexpr double kTop = double((1u << OctreePartition::kGridBits) - 1);
-  const Pair xy = minPair(splat(kTop), maxPair(splat(0.0), loadPair(p) * splat(kScale)));
-  const double z = std::min(kTop, std::max(0.0, p[2] * kScale));
+  const Pair xy = minPair(splat(kGridTop), maxPair(splat(0.0), loadPair(p) * splat(kGridScale)));
+  const double z = std::min(kGridTop, std::max(0.0, p[2] * kGridScale));
   g[0] = uint32_t(xy[0]);  // truncation = floor here
   g[1] = uint32_t(xy[1]);
   g[2] = uint32_t(z);
@@ -75,9 +76,7 @@ typedef int Int4 __attribute__((vector_size(16)));
 // Four vertices (twelve coordinates, three Quads) at a time through the grid conversion,
 // whose clamps are the lane-wise forms of gridCoordinates()'.
 ANIMC_TARGET_AVX2 void mortonKeysAvx2(const double* unit, size_t n, bool deep, uint64_t* keys) {
-  constexpr double kScale = double(1u << OctreePartition::kGridBits);
-  constexpr double kTop = double((1u << OctreePartition::kGridBits) - 1);
-  const Quad scale = splatQuad(kScale), top = splatQuad(kTop), zero = splatQuad(0);
+  const Quad scale = splatQuad(kGridScale), top = splatQuad(kGridTop), zero = splatQuad(0);
   size_t v = 0;
   for (; v + 4 <= n; v += 4) {
     uint32_t g[12];
