@@ -5,9 +5,9 @@
 // here?), a vertex not yet significant one flag, then its components; coefficients already
 // significant code their refinement bit. Every decision goes through the adaptive binary
 // range coder, except refinement bits after a coefficient's first one, which are raw bits of
-// the same coder (no model); significance contexts combine the plane, the vertex's class, the parent's
-// state and, for P-frames, what the same coefficient did in the previous frame (temporal
-// context). The stream can stop after any block of any plane: the decoder then knows each
+// the same coder (no model); significance contexts combine the plane, the vertex's class,
+// the parent's state and, for P-frames, what the same coefficient did in the previous frame
+// (temporal context). The stream can stop after any block of any plane: the decoder then knows each
 // magnitude to the planes it received and reconstructs inside the remaining interval,
 // biased towards zero (residuals are roughly Laplacian).
 //

@@ -152,9 +152,9 @@ class BitplaneState {
   }
 
   // Coefficients [begin, end), known down to plane q. Without branches on the magnitude or
-  // the sign: both are close to random in the low planes. The same
-  // values as sign * (k == 0 ? 0 : (k + offset) * scale), bit for bit, and for the history
-  // the bit length of k (from the exponent of k as a double: exact below 2^31) plus q.
+  // the sign: both are close to random in the low planes. The same values as
+  // sign * (k == 0 ? 0 : (k + offset) * scale), bit for bit, and for the history the bit
+  // length of k plus q (0 for k = 0).
   template <class Known>
   void reconstructRange(size_t begin, size_t end, int planes, int q, double scale, double* decoded,
                         BitplaneHistory* history, Known known) const {
@@ -171,18 +171,14 @@ class BitplaneState {
     const double offsets[2] = {kRefinedOffset, kFreshOffset};
     for (size_t j = begin; j < end; ++j) {
       const uint32_t k = planes == 0 ? 0 : known(j, q);
-      const double exact = double(int32_t(k));
-      const double magnitude = (exact + offsets[k == 1]) * scale;
+      const double magnitude = (double(k) + offsets[k == 1]) * scale;
       const uint64_t zero_mask = 0ull - uint64_t(k != 0);  // k = 0: +0.0
       uint64_t bits;
       std::memcpy(&bits, &magnitude, sizeof bits);
       bits = (bits & zero_mask) ^ (uint64_t(negative[j] != 0) << 63);
       std::memcpy(&decoded[j], &bits, sizeof bits);
       if (kHistory) {
-        uint64_t exact_bits;
-        std::memcpy(&exact_bits, &exact, sizeof exact_bits);
-        const int length = int(exact_bits >> 52) - 1022;  // 1 + floor(log2 k) for k >= 1
-        bit_lengths[j] = uint8_t((length + q) & int(zero_mask));
+        bit_lengths[j] = uint8_t((32 - __builtin_clz(k | 1) + q) & int(zero_mask));
         was_negative[j] = negative[j];
       }
     }

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/simd_math.h"
 #include "codecs/wavelet/local_frame.h"
+#include "core/simd_math.h"
 
 namespace animc {
 namespace {
@@ -35,8 +35,7 @@ inline void predict(const uint32_t* offsets, const double* weights, size_t size,
 }
 
 // c[0] * normal + c[1] * tangent + c[2] * bitangent, summed in Eigen's order (as the code it
-// replaced did), even
-// for the world axes (0 * c and c * 1 are not no-ops for the sign of zero).
+// replaced did), even for the world axes (0 * c and c * 1 are not no-ops for the sign of zero).
 inline void toWorld(const LocalFrame& f, const double c[3], double out[3]) {
   for (int a = 0; a < 3; ++a) out[a] = (c[0] * f.normal[a] + c[1] * f.tangent[a]) + c[2] * f.bitangent[a];
 }
