@@ -114,8 +114,7 @@ Result<QList<MeshModel*>> importAms(const std::string& path, const AmsImport& ra
                            std::to_string(frames - 1));
   if (md == nullptr && (first_layer == nullptr || last > range.first_frame))
     return invalidArgument("no document to add the frames to as layers");
-  // open() leaves the source at frame 0; a seek would read and check its group again.
-  if (range.first_frame > 0) ANIMC_RETURN_IF_ERROR(source->seek(range.first_frame));
+  ANIMC_RETURN_IF_ERROR(source->seek(range.first_frame));
   QList<MeshModel*> added;
   auto undo = [&](const Status& s) {
     for (MeshModel* m : added) md->delMesh(m);

@@ -197,6 +197,8 @@ Status AmsSource::seek(int64_t frame) {
   if (frame < 0 || frame >= frameCount())
     return invalidArgument("frame " + std::to_string(frame) + " outside [0, " +
                            std::to_string(frameCount()) + ")");
+  if (positioned_ && frame == next_frame_) return Status();
+  positioned_ = false;
   group_ = reader_->groupOf(uint64_t(frame));
   Status s = reader_->beginGroup(group_);
   if (!s.ok()) return s.withContext(path_);
@@ -206,10 +208,12 @@ Status AmsSource::seek(int64_t frame) {
     ANIMC_ASSIGN_OR_RETURN(bool got, next(skipped));
     if (!got) return corrupt(path_ + ": frame group ends early");
   }
+  positioned_ = true;
   return Status();
 }
 
 Result<bool> AmsSource::next(std::vector<float>& xyz) {
+  positioned_ = false;
   if (next_frame_ >= frameCount()) {
     // The last group must end exactly after its last frame: its frame count is checked
     // against the index, so this only finds bytes left over after the last frame.

@@ -81,6 +81,9 @@ class AmsSource final : public FrameSource {
   EncodeSettings settings_;
   int64_t next_frame_ = 0;
   size_t group_ = 0;
+  // A seek succeeded and no frame was read since: a seek to next_frame_ has nothing to do
+  // (open() leaves the source there, and callers seek to their first frame).
+  bool positioned_ = false;
   std::vector<uint8_t> payload_;
 };
 
