@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cstdio>
 
+#include "metrics/encode_summary.h"
 #include "cli.h"
 #include "core/memory_sequence.h"
 #include "metrics/compare_sequences.h"
@@ -101,8 +102,7 @@ int runBench(const std::vector<std::string>& argv) {
   }
   std::printf("%s: %u vertices x %lld frames, %lld runs\n", args.positional()[0].c_str(), report.vertices,
               (long long)report.frames, runs.value());
-  std::fputs(describeSettings(settings.value()).c_str(), stdout);
-  std::fputs(formatSizeText(report.file_bytes, report.static_bytes, report.vertices, report.frames).c_str(), stdout);
+  std::fputs(formatEncodeResult(settings.value(), report).c_str(), stdout);
   std::fputs(formatMetricsText(metrics.value()).c_str(), stdout);
   std::printf("encode: %.2f M vertices/s (median %.4f s)\ndecode: %.2f M vertices/s (median %.4f s)\n",
               encode_mvps, median(encode_s), decode_mvps, median(decode_s));
