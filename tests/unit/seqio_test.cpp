@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "core/atomic_file.h"
+#include "core/memory_sequence.h"
 #include "seqio/frame_files.h"
 #include "seqio/sequence_io.h"
 
@@ -61,17 +62,6 @@ Frames makeFrames(uint32_t vertex_count, int frame_count) {
   return frames;
 }
 
-Result<Frames> readAll(FrameSource& source) {
-  Frames frames;
-  std::vector<float> xyz;
-  for (;;) {
-    Result<bool> more = source.next(xyz);
-    if (!more.ok()) return more.status();
-    if (!more.value()) return frames;
-    frames.push_back(xyz);
-  }
-}
-
 Status writeAll(FrameSink& sink, const Frames& frames) {
   for (const std::vector<float>& xyz : frames) ANIMC_RETURN_IF_ERROR(sink.write(xyz.data()));
   return sink.finish();
@@ -87,7 +77,7 @@ std::string errorOf(const Result<T>& result) {
 std::string sequenceError(const std::string& path, const std::string& mesh_path) {
   auto source = openSequence(path, mesh_path);
   if (!source.ok()) return errorOf(source);
-  return errorOf(readAll(*source.value()));
+  return errorOf(readFrames(*source.value()));
 }
 
 enum class Encoding { kAscii, kLittle, kBig };
@@ -314,7 +304,7 @@ TEST_F(SeqioTest, RoundTripEveryFormat) {
     EXPECT_EQ(source.value()->topology().vertex_count, topology.vertex_count);
     EXPECT_EQ(source.value()->frameCount(), 4);
     EXPECT_DOUBLE_EQ(source.value()->frameRate(), format == SequenceFormat::kMdd ? 30.0 : 25.0);
-    auto read = readAll(*source.value());
+    auto read = readFrames(*source.value());
     ASSERT_TRUE(read.ok()) << errorOf(read);
     EXPECT_EQ(read.value(), frames);  // bit-exact floats
   }
@@ -334,7 +324,7 @@ TEST_F(SeqioTest, FrameDirectoryInNaturalOrderAndListFile) {
     fs::rename(path("tmp/frame_00000.ply"), path(std::string("walk/") + names[i]));
   }
   writeFile("walk/readme.txt", "not a frame");
-  auto read = readAll(*openSequence(path("walk"), path("walk/f1.ply")).value());
+  auto read = readFrames(*openSequence(path("walk"), path("walk/f1.ply")).value());
   ASSERT_TRUE(read.ok()) << errorOf(read);
   EXPECT_EQ(read.value(), frames);
 
@@ -342,11 +332,11 @@ TEST_F(SeqioTest, FrameDirectoryInNaturalOrderAndListFile) {
   auto listed = openSequence(path("list.txt"), "");
   ASSERT_TRUE(listed.ok()) << errorOf(listed);
   EXPECT_EQ(listed.value()->frameCount(), 3);
-  EXPECT_EQ(readAll(*listed.value()).value(), frames);
+  EXPECT_EQ(readFrames(*listed.value()).value(), frames);
 
   auto single = openSequence(path("walk/f10.ply"), "");
   ASSERT_TRUE(single.ok());
-  EXPECT_EQ(readAll(*single.value()).value(), Frames{frames[2]});
+  EXPECT_EQ(readFrames(*single.value()).value(), Frames{frames[2]});
 }
 
 TEST_F(SeqioTest, NaturalOrder) {
@@ -450,7 +440,7 @@ TEST_F(SeqioTest, CompressedPointCachesStreamAndReportTruncation) {
   writeXz("good.pc2.xz", good);
   auto source = openSequence(path("good.pc2.xz"), path("mesh.ply"));
   ASSERT_TRUE(source.ok()) << errorOf(source);
-  EXPECT_EQ(readAll(*source.value()).value(), frames);
+  EXPECT_EQ(readFrames(*source.value()).value(), frames);
 
   writeXz("cut.pc2.xz", good.substr(0, good.size() - 7));
   EXPECT_NE(sequenceError(path("cut.pc2.xz"), path("mesh.ply")).find("truncated at frame 2 of 3"),
@@ -476,7 +466,7 @@ TEST(SeqioRealData, SydneyPc2Xz) {
   EXPECT_EQ(source.value()->topology().triangles.size(), 679u);
   EXPECT_EQ(source.value()->topology().triangles, mesh.value().topology.triangles);
   EXPECT_EQ(source.value()->frameCount(), 198);
-  auto frames = readAll(*source.value());
+  auto frames = readFrames(*source.value());
   ASSERT_TRUE(frames.ok()) << errorOf(frames);
   ASSERT_EQ(frames.value().size(), 198u);
   EXPECT_EQ(frames.value()[0], mesh.value().positions);
