@@ -12,7 +12,6 @@ namespace animc {
 namespace {
 
 constexpr uint64_t kMaxHeadBytes = 1 << 16;
-constexpr uint64_t kGroupFieldBytes = 12;  // First_Frame u64 + Frame_Count u32
 
 std::string at(uint64_t offset) { return " at byte " + std::to_string(offset); }
 

@@ -20,6 +20,8 @@ constexpr uint16_t kFormatVersion = 1;
 constexpr uint64_t kFileHeaderBytes = 8;
 constexpr uint64_t kSectionOverhead = 4 + 8 + 4;  // tag, length, CRC
 constexpr uint64_t kEndSectionBytes = kSectionOverhead + 8;
+// GRUP's payload starts with First_Frame (u64) and Frame_Count (u32); its CRC skips them.
+constexpr uint64_t kGroupFieldBytes = 8 + 4;
 
 constexpr char kTagHead[5] = "HEAD";
 constexpr char kTagConnectivity[5] = "CONN";

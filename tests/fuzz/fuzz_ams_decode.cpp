@@ -14,6 +14,7 @@
 
 #include "api.h"
 #include "container/crc32.h"
+#include "container/format.h"
 #include "fuzz_support.h"
 
 namespace {
@@ -34,7 +35,7 @@ void repairCrcs(std::vector<uint8_t>& file) {
     for (int k = 0; k < 8; ++k) length |= uint64_t(file[offset + 4 + k]) << (8 * k);
     if (length > file.size() - offset - animc::kSectionOverhead) return;
     const bool group = std::equal(file.begin() + offset, file.begin() + offset + 4, animc::kTagGroup);
-    const uint64_t skip = group && length >= 12 ? 12 : 0;
+    const uint64_t skip = group && length >= animc::kGroupFieldBytes ? animc::kGroupFieldBytes : 0;
     const uint64_t crc_at = offset + 12 + length;
     const uint32_t crc = animc::crc32Update(0, file.data() + offset + 12 + skip, length - skip);
     for (int k = 0; k < 4; ++k) file[crc_at + k] = uint8_t(crc >> (8 * k));

@@ -12,6 +12,7 @@
 #include "api.h"
 #include "codec_test_support.h"
 #include "container/crc32.h"
+#include "container/format.h"
 #include "io/byte_writer.h"
 #include "test_sequences.h"
 
@@ -174,7 +175,7 @@ TEST_P(ContainerAttack, DamageBehindAValidCrcNeverCrashes) {
   int cases = 0, refused = 0;
   for (const SectionInfo& sec : sections) {
     // The GRUP CRC covers its frames only, not First_Frame and Frame_Count.
-    const size_t begin = size_t(sec.offset) + 12 + (sec.tag == kTagGroup ? 12 : 0);
+    const size_t begin = size_t(sec.offset) + 12 + (sec.tag == kTagGroup ? kGroupFieldBytes : 0);
     const size_t end = size_t(sec.offset + 12 + sec.payload_bytes);
     for (size_t i = begin; i < end; ++i)
       for (uint8_t mask : {uint8_t(0x01), uint8_t(0xFF)}) {
