@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <random>
 
 #include "codecs/wavelet/bitplane_coder.h"
@@ -71,6 +72,31 @@ TEST(WaveletBitplane, TemporalContextTableMatchesItsDefinition) {
     for (int b = 0; b <= kMaxBitplanes; ++b) {
       const int expected = (b != 0) + (b > p) + (b > p + 1);
       EXPECT_EQ(int((fields >> (2 * b)) & 3), expected) << "plane " << p << ", previous bit length " << b;
+    }
+  }
+}
+
+TEST(WaveletBitplane, ReconstructionMatchesItsFormulaForEveryMagnitude) {
+  // The kernel picks offsets, zeros and signs by masks and reads bit lengths from double
+  // exponents (four lanes at a time where the CPU has AVX2): compare it with the plain formula,
+  // on the edges (0, 1, powers of two and their neighbours, the largest magnitude) and on an
+  // odd count, so that the scalar tail runs too.
+  std::vector<uint32_t> k = {0, 1, 2, 3, 4, 7, 8, (1u << 24) - 1, 1u << 24, (1u << 31) - 1};
+  std::mt19937 rng(7);
+  for (int i = 0; i < 21; ++i) k.push_back(rng() >> (1 + rng() % 31));
+  std::vector<uint8_t> negative(k.size());
+  for (size_t i = 0; i < k.size(); ++i) negative[i] = uint8_t(i % 3 == 1);
+  for (int q : {0, 5}) {
+    const double scale = std::ldexp(0.3, q);
+    std::vector<double> out(k.size());
+    std::vector<uint8_t> lengths(k.size()), signs(k.size());
+    reconstructCoefficients(k.data(), negative.data(), k.size(), q, scale, out.data(), lengths.data(), signs.data());
+    for (size_t i = 0; i < k.size(); ++i) {
+      const double magnitude = k[i] == 0 ? 0.0 : (double(k[i]) + (k[i] == 1 ? kFreshOffset : kRefinedOffset)) * scale;
+      const double expected = negative[i] ? -magnitude : magnitude;
+      EXPECT_EQ(std::memcmp(&out[i], &expected, sizeof expected), 0) << "k = " << k[i] << ", q = " << q;
+      EXPECT_EQ(int(lengths[i]), k[i] == 0 ? 0 : 32 - __builtin_clz(k[i]) + q) << "k = " << k[i];
+      EXPECT_EQ(signs[i], negative[i]);
     }
   }
 }

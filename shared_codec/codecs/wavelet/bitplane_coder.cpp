@@ -2,13 +2,86 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <string>
 
 #include "codecs/wavelet/bitplane_contexts.h"
+#include "core/simd_math.h"
 #include "entropy/range_coder.h"
 #include "io/byte_writer.h"
 
 namespace animc {
+namespace {
+
+// reconstructCoefficients without branches on the magnitude or the sign (both close to
+// random in the low planes): the offset and the zero picked by masks, the sign XORed in, and
+// the bit length of k >= 1 read from the exponent of double(k), which is exact.
+void reconstructPortable(const uint32_t* k, const uint8_t* negative, size_t n, int q, double scale, double* out,
+                         uint8_t* bit_lengths, uint8_t* was_negative) {
+  for (size_t i = 0; i < n; ++i) {
+    const double dk = double(k[i]);
+    const double magnitude = (dk + (k[i] == 1 ? kFreshOffset : kRefinedOffset)) * scale;
+    const uint64_t nonzero = 0ull - uint64_t(k[i] != 0);
+    uint64_t bits, dk_bits;
+    std::memcpy(&bits, &magnitude, sizeof bits);
+    std::memcpy(&dk_bits, &dk, sizeof dk_bits);
+    bits = (bits & nonzero) ^ (uint64_t(negative[i] != 0) << 63);
+    std::memcpy(&out[i], &bits, sizeof bits);
+    if (bit_lengths) {
+      bit_lengths[i] = uint8_t(((dk_bits >> 52) - 1022 + uint64_t(q)) & nonzero);
+      was_negative[i] = negative[i];
+    }
+  }
+}
+
+#if ANIMC_AVX2_PATH
+typedef int32_t IntQuad __attribute__((vector_size(16)));
+typedef int32_t IntOctet __attribute__((vector_size(32)));
+typedef uint8_t ByteQuad __attribute__((vector_size(4)));
+typedef uint8_t Bytes16 __attribute__((vector_size(16)));
+typedef long long LongQuad __attribute__((vector_size(32)));
+
+// Four coefficients at a time, the same operations lane by lane.
+ANIMC_TARGET_AVX2 void reconstructAvx2(const uint32_t* k, const uint8_t* negative, size_t n, int q, double scale,
+                                       double* out, uint8_t* bit_lengths, uint8_t* was_negative) {
+  const Quad fresh = splatQuad(kFreshOffset), refined = splatQuad(kRefinedOffset), scales = splatQuad(scale);
+  const IntQuad length_bias = {1022 - q, 1022 - q, 1022 - q, 1022 - q};
+  size_t i = 0;
+  for (; i + 4 <= n; i += 4) {
+    IntQuad kq;
+    ByteQuad nq;
+    std::memcpy(&kq, k + i, sizeof kq);  // k < 2^31: as signed, the same values
+    std::memcpy(&nq, negative + i, sizeof nq);
+    const Quad dk = __builtin_convertvector(kq, Quad);
+    const LongQuad one = __builtin_convertvector(kq == 1, LongQuad);
+    const LongQuad nonzero = __builtin_convertvector(kq != 0, LongQuad);
+    const LongQuad sign = __builtin_convertvector(nq != 0, LongQuad) << 63;
+    const Quad magnitude = (dk + (one ? fresh : refined)) * scales;
+    const LongQuad bits = (LongQuad(magnitude) & nonzero) ^ sign;
+    storeQuad(out + i, Quad(bits));
+    if (bit_lengths) {
+      const IntOctet halves = IntOctet(dk);
+      const IntQuad high = __builtin_shufflevector(halves, halves, 1, 3, 5, 7);  // sign and exponent
+      const Bytes16 wide = Bytes16(((high >> 20) - length_bias) & (kq != 0));
+      const ByteQuad lengths = __builtin_shufflevector(wide, wide, 0, 4, 8, 12);  // the low byte of each
+      std::memcpy(bit_lengths + i, &lengths, sizeof lengths);
+      std::memcpy(was_negative + i, negative + i, 4);
+    }
+  }
+  reconstructPortable(k + i, negative + i, n - i, q, scale, out + i, bit_lengths ? bit_lengths + i : nullptr,
+                      was_negative ? was_negative + i : nullptr);
+}
+#endif
+
+}  // namespace
+
+void reconstructCoefficients(const uint32_t* k, const uint8_t* negative, size_t n, int q, double scale, double* out,
+                             uint8_t* bit_lengths, uint8_t* was_negative) {
+#if ANIMC_AVX2_PATH
+  if (cpuHasAvx2()) return reconstructAvx2(k, negative, n, q, scale, out, bit_lengths, was_negative);
+#endif
+  reconstructPortable(k, negative, n, q, scale, out, bit_lengths, was_negative);
+}
 
 
 struct BitplaneWorkspace {

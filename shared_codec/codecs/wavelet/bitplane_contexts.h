@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <vector>
 
 #include "codecs/wavelet/bitplane_coder.h"
@@ -55,6 +54,13 @@ struct BitplaneContexts {
 // the interval's lower end, the more so right after significance (docs/wavelet.md).
 constexpr double kFreshOffset = 0.25;
 constexpr double kRefinedOffset = 0.5;
+
+// The values of n coefficients known to k[i] units of 2^q steps (scale = step * 2^q):
+// sign * (k == 0 ? 0 : (k + offset) * scale), the sign applied to zeros too; and, when
+// bit_lengths is given, what they leave for the next frame's temporal contexts (the bit
+// length of k plus q, 0 for k = 0, and the sign).
+void reconstructCoefficients(const uint32_t* k, const uint8_t* negative, size_t n, int q, double scale, double* out,
+                             uint8_t* bit_lengths, uint8_t* was_negative);
 
 template <class Io>
 struct PlaneWalk;
@@ -119,69 +125,52 @@ class BitplaneState {
   // `stop`, and what it leaves for the next frame's temporal contexts.
   void finish(int top, int planes, size_t stop, double step, std::vector<double>& decoded,
               BitplaneHistory* history) const {
-    // Raw pointers into the lambdas: the loop's byte stores would otherwise make the compiler
-    // reload a vector's data pointer for every coefficient.
-    reconstruct(top, planes, stop, step, decoded, history, [known = known_.data()](size_t j, int) { return known[j]; });
+    reconstruct(cutRanges(top, planes, stop), step, known_.data(), decoded, history);
   }
 
   // Encoder only, after quantise(): what finish() would give had the walk been cut there.
   void preview(int planes, size_t stop, double step, std::vector<double>& decoded) {
     for (size_t j = 0; j < negative_.size(); ++j) negative_[j] = input_negative_[j];
-    reconstruct(topPlane(), planes, stop, step, decoded, nullptr,
-                [magnitude = magnitude_.data()](size_t j, int q) { return q >= 32 ? 0u : magnitude[j] >> q; });
+    const CutRanges ranges = cutRanges(topPlane(), planes, stop);
+    preview_known_.resize(magnitude_.size());
+    for (const CutRange& r : ranges.range)  // the magnitudes down to each range's last plane
+      for (size_t j = r.begin; j < r.end; ++j) preview_known_[j] = r.q >= 32 ? 0u : magnitude_[j] >> r.q;
+    reconstruct(ranges, step, preview_known_.data(), decoded, nullptr);
   }
 
  private:
   template <class Io>
   friend struct PlaneWalk;
 
-  template <class Known>
-  void reconstruct(int top, int planes, size_t stop, double step, std::vector<double>& decoded,
-                   BitplaneHistory* history, Known known) const {
+  // A cut leaves the coefficients of the blocks before the stop known down to plane q, the
+  // others one plane less (none received: every magnitude is below 2^top, so it reads 0).
+  struct CutRange {
+    size_t begin, end;
+    int q;
+  };
+  struct CutRanges {
+    CutRange range[2];
+  };
+  CutRanges cutRanges(int top, int planes, size_t stop) const {
+    const size_t count = 3 * vertices_;
+    const size_t complete_end = std::min(count, 3 * kBlockVertices * stop);
+    const int full_q = top - planes;
+    return {{{0, complete_end, full_q}, {complete_end, count, std::min(top, full_q + 1)}}};
+  }
+
+  // known: each coefficient's magnitude in units of 2^q steps, q its range's.
+  void reconstruct(const CutRanges& ranges, double step, const uint32_t* known, std::vector<double>& decoded,
+                   BitplaneHistory* history) const {
     const size_t count = 3 * vertices_;
     decoded.resize(count);
     if (history) {
       history->bits.resize(count);
       history->negative.resize(count);
     }
-    const int full_q = top - planes, short_q = std::min(top, full_q + 1);
-    const double full_scale = std::ldexp(step, full_q), short_scale = std::ldexp(step, short_q);
-    const size_t complete_end = std::min(count, 3 * kBlockVertices * stop);  // blocks before the stop
-    reconstructRange(0, complete_end, planes, full_q, full_scale, decoded.data(), history, known);
-    reconstructRange(complete_end, count, planes, short_q, short_scale, decoded.data(), history, known);
-  }
-
-  // Coefficients [begin, end), known down to plane q. Without branches on the magnitude or
-  // the sign: both are close to random in the low planes. The same values as
-  // sign * (k == 0 ? 0 : (k + offset) * scale), bit for bit, and for the history the bit
-  // length of k plus q (0 for k = 0).
-  template <class Known>
-  void reconstructRange(size_t begin, size_t end, int planes, int q, double scale, double* decoded,
-                        BitplaneHistory* history, Known known) const {
-    if (history)
-      reconstructLoop<true>(begin, end, planes, q, scale, decoded, history->bits.data(), history->negative.data(), known);
-    else
-      reconstructLoop<false>(begin, end, planes, q, scale, decoded, nullptr, nullptr, known);
-  }
-
-  template <bool kHistory, class Known>
-  void reconstructLoop(size_t begin, size_t end, int planes, int q, double scale, double* decoded,
-                       uint8_t* bit_lengths, uint8_t* was_negative, Known known) const {
-    const uint8_t* const negative = negative_.data();
-    const double offsets[2] = {kRefinedOffset, kFreshOffset};
-    for (size_t j = begin; j < end; ++j) {
-      const uint32_t k = planes == 0 ? 0 : known(j, q);
-      const double magnitude = (double(k) + offsets[k == 1]) * scale;
-      const uint64_t zero_mask = 0ull - uint64_t(k != 0);  // k = 0: +0.0
-      uint64_t bits;
-      std::memcpy(&bits, &magnitude, sizeof bits);
-      bits = (bits & zero_mask) ^ (uint64_t(negative[j] != 0) << 63);
-      std::memcpy(&decoded[j], &bits, sizeof bits);
-      if (kHistory) {
-        bit_lengths[j] = uint8_t((32 - __builtin_clz(k | 1) + q) & int(zero_mask));
-        was_negative[j] = negative[j];
-      }
-    }
+    for (const CutRange& r : ranges.range)
+      reconstructCoefficients(known + r.begin, negative_.data() + r.begin, r.end - r.begin, r.q, std::ldexp(step, r.q),
+                              decoded.data() + r.begin, history ? history->bits.data() + r.begin : nullptr,
+                              history ? history->negative.data() + r.begin : nullptr);
   }
 
   // Largest bit length per vertex and per block (raw pointers: the byte stores would make
@@ -208,7 +197,7 @@ class BitplaneState {
   const uint8_t* previous_negative_ = nullptr;
   std::vector<uint8_t> no_history_, previous_vertex_bits_, previous_block_bits_;
   // Encoder only.
-  std::vector<uint32_t> magnitude_;
+  std::vector<uint32_t> magnitude_, preview_known_;
   std::vector<uint8_t> input_negative_, bits_, vertex_bits_, block_bits_;
 };
 
