@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/simd_math.h"
+
 namespace animc {
 namespace {
 
@@ -107,8 +109,8 @@ Prediction WaveletFrameModel::choosePrediction(const std::vector<double>& coeffi
   return best;
 }
 
-template <class PerCoefficient>
-void WaveletFrameModel::forEachPrediction(const Prediction& prediction, PerCoefficient f) const {
+template <class PerVertex>
+void WaveletFrameModel::forEachPrediction(const Prediction& prediction, PerVertex f) const {
   // Groups are runs of coding positions (base vertices first): one selector per run.
   const size_t n = order_.size();
   for (size_t begin = 0, end; begin < n; begin = end) {
@@ -120,13 +122,14 @@ void WaveletFrameModel::forEachPrediction(const Prediction& prediction, PerCoeff
     const double* const intra = intra_reference_.data();
     for (size_t i = begin; i < end; ++i) {
       const size_t v = order_[i];
-      for (size_t j = 3 * v; j < 3 * v + 3; ++j) {
-        // k = 0: the previous frame; k in 1..8: damped extrapolation; 9: the I-frame reference.
-        const double p = s == kIntraSelector ? intra[j]
-                         : s == 0            ? previous[j]
-                                             : previous[j] + damping * (previous[j] - before[j]);
-        f(i, v, j, p);
-      }
+      const double *const now = previous + 3 * v, *const then = before + 3 * v, *const reference = intra + 3 * v;
+      // s = 0: the previous frame; s in 1..8: damped extrapolation; 9: the I-frame reference.
+      if (s == kIntraSelector)
+        f(i, v, loadPair(reference), reference[2]);
+      else if (s == 0)
+        f(i, v, loadPair(now), now[2]);
+      else
+        f(i, v, loadPair(now) + splat(damping) * (loadPair(now) - loadPair(then)), now[2] + damping * (now[2] - then[2]));
     }
   }
 }
@@ -137,8 +140,9 @@ void WaveletFrameModel::residual(const std::vector<double>& coefficients, const 
   out.resize(coefficientCount());
   double* const r = out.data();
   const double* const c = coefficients.data();
-  forEachPrediction(prediction, [&](size_t i, size_t v, size_t j, double p) {
-    r[3 * i + (j - 3 * v)] = weights[v] * (c[j] - p);
+  forEachPrediction(prediction, [&](size_t i, size_t v, Pair p_xy, double p_z) {
+    storePair(r + 3 * i, splat(weights[v]) * (loadPair(c + 3 * v) - p_xy));
+    r[3 * i + 2] = weights[v] * (c[3 * v + 2] - p_z);
   });
 }
 
@@ -148,8 +152,9 @@ void WaveletFrameModel::addResidual(const std::vector<double>& decoded_residual,
   coefficients.resize(previous_.size());
   double* const c = coefficients.data();
   const double* const r = decoded_residual.data();
-  forEachPrediction(prediction, [&](size_t i, size_t v, size_t j, double p) {
-    c[j] = p + r[3 * i + (j - 3 * v)] / weights[v];
+  forEachPrediction(prediction, [&](size_t i, size_t v, Pair p_xy, double p_z) {
+    storePair(c + 3 * v, p_xy + loadPair(r + 3 * i) / splat(weights[v]));
+    c[3 * v + 2] = p_z + r[3 * i + 2] / weights[v];
   });
 }
 

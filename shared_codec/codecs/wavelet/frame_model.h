@@ -82,9 +82,9 @@ class WaveletFrameModel {
                              std::vector<double>& xyz);
 
  private:
-  // f(coding index, vertex, coefficient index, its prediction) for every coefficient.
-  template <class PerCoefficient>
-  void forEachPrediction(const Prediction& prediction, PerCoefficient f) const;
+  // f(coding index, vertex, prediction of its x and y, of its z) for every vertex.
+  template <class PerVertex>
+  void forEachPrediction(const Prediction& prediction, PerVertex f) const;
   void addResidual(const std::vector<double>& decoded_residual, const Prediction& prediction,
                    std::vector<double>& coefficients) const;
 
