@@ -137,6 +137,14 @@ void VertexCollapses::prepare(const std::vector<double>& xyz, uint32_t v, bool c
   validity_.assign(count, Validity::kUnknown);
 }
 
+void VertexCollapses::forgetValidity(uint32_t target) {
+  for (size_t i = 0; i < options_.size(); ++i)
+    if (options_[i].target == target) {
+      validity_[i] = Validity::kUnknown;
+      return;  // targets are distinct ring vertices
+    }
+}
+
 bool VertexCollapses::valid(size_t option, const LevelMesh& mesh, const std::vector<double>& xyz,
                             double min_normal_cosine, FanGeometry& scratch) {
   if (validity_[option] == Validity::kUnknown &&

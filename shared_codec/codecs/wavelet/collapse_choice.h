@@ -51,6 +51,9 @@ class VertexCollapses {
   // them (what the boundary curve loses).
   void prepare(const std::vector<double>& xyz, uint32_t v, bool closed, FanGeometry& scratch);
   void clear() { options_.clear(); }  // v cannot be removed on this level
+  // The target's triangles have changed, v's have not: the option onto it (if any) must be
+  // checked again; costs, lengths and the other options stand.
+  void forgetValidity(uint32_t target);
 
   // The cheapest valid option within max_length (the first of equal ones in ring order);
   // null when none fits.

@@ -86,10 +86,11 @@ struct BoundaryLoops {
   }
 };
 
-// Each vertex's collapse options on the current level. They depend on the vertex's
-// triangles and on its neighbours' (link condition, duplicate triangles), so they are
-// recomputed only for vertices within two edges of a collapse. Early batches reach nearly
-// every vertex; the saving is in the later levels, whose batches are small.
+// Each vertex's collapse options on the current level. Its ring, costs and lengths depend on
+// its own triangles, an option's validity also on the target's (link condition, duplicate
+// triangles, fan size). A batch changes the triangles of its vertices and their rings only:
+// those vertices are prepared again, and their neighbours forget only the validity of the
+// options onto them (a third of the vertices a batch reaches are such neighbours).
 class CollapseOptionCache {
  public:
   struct Entry {
@@ -122,12 +123,16 @@ class CollapseOptionCache {
   // are applied (they mark every vertex whose ring they change stale).
   const std::vector<uint32_t>& ring(uint32_t v) const { return entries_[v].collapses.ring; }
 
-  // Before w's collapse is applied: every vertex within two edges of w (w among them).
-  void markStale(const LevelMesh& mesh, uint32_t w) {
-    for (const uint32_t* t = mesh.trianglesBegin(w); t != mesh.trianglesEnd(w); ++t)
-      for (uint32_t x : mesh.triangle(*t))
-        for (const uint32_t* t2 = mesh.trianglesBegin(x); t2 != mesh.trianglesEnd(x); ++t2)
-          for (uint32_t y : mesh.triangle(*t2)) entries_[y].stale = true;
+  // Before a batch is applied: `changed` lists the vertices whose triangles it changes (the
+  // removed ones and their rings), flagged in is_changed.
+  void markChanged(const LevelMesh& mesh, const std::vector<uint32_t>& changed,
+                   const std::vector<uint8_t>& is_changed) {
+    for (uint32_t x : changed) {
+      entries_[x].stale = true;
+      for (const uint32_t* t = mesh.trianglesBegin(x); t != mesh.trianglesEnd(x); ++t)
+        for (uint32_t y : mesh.triangle(*t))
+          if (!is_changed[y] && !entries_[y].stale) entries_[y].collapses.forgetValidity(x);
+    }
   }
 
   // Fan normals of the vertex being prepared or checked, shared by every entry.
@@ -220,6 +225,7 @@ int weldSeams(LevelMesh& mesh, const std::vector<double>& xyz, const BoundaryLoo
 int applyBatch(LevelMesh& mesh, const std::vector<Candidate>& candidates, int level, BoundaryLoops& loops,
                std::vector<uint8_t>& removed, CollapseOptionCache& cache, ProgressiveMesh& pm) {
   std::vector<uint8_t> marked(removed.size(), 0);
+  std::vector<uint32_t> changed;  // the marked vertices
   int applied = 0;
   for (const Candidate& c : candidates) {
     if (marked[c.vertex]) continue;
@@ -229,13 +235,14 @@ int applyBatch(LevelMesh& mesh, const std::vector<Candidate>& candidates, int le
     if (!free || (c.kind == CollapseKind::kBoundary && !loops.take(c.vertex))) continue;
     marked[c.vertex] = 1;
     for (uint32_t w : ring) marked[w] = 1;
+    changed.push_back(c.vertex);
+    changed.insert(changed.end(), ring.begin(), ring.end());
     pm.collapses.push_back(recordCollapse(mesh, c, ring, level, pm));
     removed[c.vertex] = 1;
     ++applied;
   }
   // Apply after choosing, so every record above saw the level as it started.
-  for (size_t i = pm.collapses.size() - size_t(applied); i < pm.collapses.size(); ++i)
-    cache.markStale(mesh, pm.collapses[i].vertex);
+  cache.markChanged(mesh, changed, marked);
   for (size_t i = pm.collapses.size() - size_t(applied); i < pm.collapses.size(); ++i)
     mesh.collapse(pm.collapses[i].vertex, pm.collapses[i].target);
   return applied;
