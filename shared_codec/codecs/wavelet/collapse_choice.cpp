@@ -68,9 +68,9 @@ bool keepsTrianglesSound(const LevelMesh& mesh, const std::vector<double>& xyz, 
 // Link condition: v and u = ring[at_u] share exactly the neighbours flanking the edge (v, u)
 // (two inside, one on a boundary edge, where the fan does not wrap around).
 bool linkConditionHolds(const LevelMesh& mesh, const Fan& fan, const Flanks& flanks) {
-  const uint32_t u = fan.ring[flanks.at];
+  mesh.markNeighbours(fan.ring[flanks.at]);
   for (size_t i = 0; i < fan.ring.size(); ++i)
-    if (!flanks(i) && mesh.adjacent(u, fan.ring[i])) return false;
+    if (!flanks(i) && mesh.markedNeighbour(fan.ring[i])) return false;
   return true;
 }
 

@@ -6,7 +6,7 @@ namespace animc {
 
 LevelMesh::LevelMesh(const Topology& topology)
     : vertex_count_(topology.vertex_count), triangles_(topology.triangles),
-      alive_(topology.triangles.size(), 1) {
+      alive_(topology.triangles.size(), 1), mark_(topology.vertex_count, 0) {
   rebuildIncidence();
 }
 
@@ -129,6 +129,15 @@ bool LevelMesh::adjacent(uint32_t u, uint32_t w) const {
     if (tri[0] == w || tri[1] == w || tri[2] == w) return true;
   }
   return false;
+}
+
+void LevelMesh::markNeighbours(uint32_t u) const {
+  if (++mark_token_ == 0) {  // wrapped: old marks could match again
+    std::fill(mark_.begin(), mark_.end(), 0);
+    mark_token_ = 1;
+  }
+  for (const uint32_t* t = trianglesBegin(u); t != trianglesEnd(u); ++t)
+    for (uint32_t w : triangles_[*t]) mark_[w] = mark_token_;
 }
 
 void LevelMesh::collapse(uint32_t v, uint32_t u) {

@@ -40,6 +40,10 @@ class LevelMesh {
   bool hasTriangle(uint32_t a, uint32_t b, uint32_t c) const;
   // Whether u shares an edge with w.
   bool adjacent(uint32_t u, uint32_t w) const;
+  // Marks u and its neighbours, so that several adjacent(u, w) are answered by
+  // markedNeighbour(w) without walking u's triangles each time; valid until the next call.
+  void markNeighbours(uint32_t u) const;
+  bool markedNeighbour(uint32_t w) const { return mark_[w] == mark_token_; }
 
   // Half-edge collapse v -> u: triangles holding both die, v becomes u in the others.
   void collapse(uint32_t v, uint32_t u);
@@ -56,6 +60,9 @@ class LevelMesh {
   std::vector<uint32_t> incident_;
   // Scratch of the ring queries, reused so that they do not allocate (one thread per mesh).
   mutable std::vector<std::pair<uint32_t, uint32_t>> steps_;
+  // Per vertex, the token of the last markNeighbours that reached it.
+  mutable std::vector<uint32_t> mark_;
+  mutable uint32_t mark_token_ = 0;
 };
 
 }  // namespace animc
