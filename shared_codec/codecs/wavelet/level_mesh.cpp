@@ -11,16 +11,25 @@ LevelMesh::LevelMesh(const Topology& topology)
 }
 
 void LevelMesh::rebuildIncidence() {
+  dropDeadTriangles();
   first_.assign(vertex_count_ + 1, 0);
-  for (size_t t = 0; t < triangles_.size(); ++t)
-    if (alive_[t])
-      for (uint32_t v : triangles_[t]) ++first_[v + 1];
+  for (const Triangle& tri : triangles_)
+    for (uint32_t v : tri) ++first_[v + 1];
   for (uint32_t v = 0; v < vertex_count_; ++v) first_[v + 1] += first_[v];
-  incident_.assign(first_.back() + 1, 0);  // +1 keeps &incident_[first_[v]] valid when empty
-  std::vector<uint32_t> fill(first_.begin(), first_.end() - 1);
+  incident_.resize(first_.back() + 1);  // +1 keeps &incident_[first_[v]] valid when empty
+  fill_.assign(first_.begin(), first_.end() - 1);
   for (size_t t = 0; t < triangles_.size(); ++t)
-    if (alive_[t])
-      for (uint32_t v : triangles_[t]) incident_[fill[v]++] = uint32_t(t);
+    for (uint32_t v : triangles_[t]) incident_[fill_[v]++] = uint32_t(t);
+}
+
+// Dead triangles never come back: dropping them (in order, so every vertex still lists its
+// triangles in the same order) keeps each level's rebuild proportional to what is left.
+void LevelMesh::dropDeadTriangles() {
+  size_t kept = 0;
+  for (size_t t = 0; t < triangles_.size(); ++t)
+    if (alive_[t]) triangles_[kept++] = triangles_[t];
+  triangles_.resize(kept);
+  alive_.assign(kept, 1);
 }
 
 namespace {

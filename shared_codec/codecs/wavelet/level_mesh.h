@@ -1,7 +1,8 @@
 // The triangle mesh of one simplification level: the live triangles and, per vertex, the
-// triangles that use it. The incidence is rebuilt once per level; within a level the batch's
-// collapses touch disjoint sets of triangles, so queries made against the level's start stay
-// valid while the batch is applied.
+// triangles that use it, in the order of the input. The incidence is rebuilt once per level
+// (triangle numbers change then: dead ones are dropped); within a level the batch's collapses
+// touch disjoint sets of triangles, so queries made against the level's start stay valid
+// while the batch is applied.
 #pragma once
 #include <cstdint>
 #include <utility>
@@ -52,12 +53,14 @@ class LevelMesh {
  private:
   // Each triangle (v, a, b) of v as the step a -> b around v; false on a degenerate one.
   bool fanSteps(uint32_t v, std::vector<std::pair<uint32_t, uint32_t>>& steps) const;
+  void dropDeadTriangles();
 
   uint32_t vertex_count_;
   std::vector<Triangle> triangles_;
   std::vector<uint8_t> alive_;
   std::vector<uint32_t> first_;
   std::vector<uint32_t> incident_;
+  std::vector<uint32_t> fill_;  // rebuildIncidence's scratch
   // Scratch of the ring queries, reused so that they do not allocate (one thread per mesh).
   mutable std::vector<std::pair<uint32_t, uint32_t>> steps_;
   // Per vertex, the token of the last markNeighbours that reached it.
