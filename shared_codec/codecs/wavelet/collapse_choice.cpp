@@ -130,6 +130,7 @@ void VertexCollapses::prepare(const std::vector<double>& xyz, uint32_t v, bool c
   const Fan fan{ring, closed, pv, scratch.normal.data(), scratch.twice_area.data()};
   const double curve = closed ? 0.0 : boundaryCost(xyz, v, ring.front(), ring.back());
   const size_t count = closed ? ring.size() : 2;
+  options_.reserve(count);
   for (size_t i = 0; i < count; ++i) {
     const uint32_t u = ring[ringPosition(i)];
     options_.push_back({u, collapseCost(xyz, fan, u) + curve, (at(xyz, u) - pv).norm()});

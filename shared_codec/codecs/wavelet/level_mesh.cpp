@@ -41,6 +41,7 @@ using Steps = std::vector<std::pair<uint32_t, uint32_t>>;
 // ring receives the vertices visited, start first, then the vertex reached last.
 bool walkSteps(const Steps& steps, uint32_t start, std::vector<uint32_t>& ring) {
   ring.clear();
+  ring.reserve(steps.size() + 1);
   uint32_t current = start;
   for (size_t i = 0; i < steps.size(); ++i) {
     uint32_t next = kNoVertex;
