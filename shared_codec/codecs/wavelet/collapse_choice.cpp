@@ -129,13 +129,26 @@ void VertexCollapses::prepare(const std::vector<double>& xyz, uint32_t v, bool c
   const Vec3 pv = at(xyz, v);
   const Fan fan{ring, closed, pv, scratch.normal.data(), scratch.twice_area.data()};
   const double curve = closed ? 0.0 : boundaryCost(xyz, v, ring.front(), ring.back());
+  // Targets: all of a closed ring, the two ends of an open fan.
   const size_t count = closed ? ring.size() : 2;
   options_.reserve(count);
   for (size_t i = 0; i < count; ++i) {
-    const uint32_t u = ring[ringPosition(i)];
-    options_.push_back({u, collapseCost(xyz, fan, u) + curve, (at(xyz, u) - pv).norm()});
+    const uint32_t position = uint32_t(closed || i == 0 ? i : ring.size() - 1);
+    const uint32_t u = ring[position];
+    options_.push_back({u, position, collapseCost(xyz, fan, u) + curve, (at(xyz, u) - pv).norm()});
   }
+  sortByCost();
   validity_.assign(count, Validity::kUnknown);
+}
+
+// Insertion sort: a few options, and a total order (positions are distinct), so the result
+// does not depend on the algorithm.
+void VertexCollapses::sortByCost() {
+  auto before = [](const CollapseOption& a, const CollapseOption& b) {
+    return a.cost < b.cost || (a.cost == b.cost && a.ring_position < b.ring_position);
+  };
+  for (size_t i = 1; i < options_.size(); ++i)
+    for (size_t j = i; j > 0 && before(options_[j], options_[j - 1]); --j) std::swap(options_[j], options_[j - 1]);
 }
 
 void VertexCollapses::forgetValidity(uint32_t target) {
@@ -154,26 +167,21 @@ bool VertexCollapses::valid(size_t option, const LevelMesh& mesh, const std::vec
   if (validity_[option] == Validity::kUnknown) {
     if (scratch.vertex != vertex_) computeFan(xyz, scratch);
     const Fan fan{ring, closed_, at(xyz, vertex_), scratch.normal.data(), scratch.twice_area.data()};
-    const Flanks flanks(fan, ringPosition(option));
+    const Flanks flanks(fan, options_[option].ring_position);
     const bool ok = linkConditionHolds(mesh, fan, flanks) && keepsTrianglesSound(mesh, xyz, fan, flanks, min_normal_cosine);
     validity_[option] = ok ? Validity::kValid : Validity::kInvalid;
   }
   return validity_[option] == Validity::kValid;
 }
 
-// Only an option that would beat the best so far needs its validity: the result is the
-// cheapest valid one, as if every option had been checked.
+// The options are in (cost, ring position) order: the first valid one within the bound is the
+// answer, and the options after it need no validity.
 const CollapseOption* VertexCollapses::cheapestWithin(const LevelMesh& mesh, const std::vector<double>& xyz,
                                                       double max_length, double min_normal_cosine,
                                                       FanGeometry& scratch) {
-  const CollapseOption* best = nullptr;
-  for (size_t i = 0; i < options_.size(); ++i) {
-    const CollapseOption& o = options_[i];
-    if (o.length <= max_length && (!best || o.cost < best->cost) &&
-        valid(i, mesh, xyz, min_normal_cosine, scratch))
-      best = &o;
-  }
-  return best;
+  for (size_t i = 0; i < options_.size(); ++i)
+    if (options_[i].length <= max_length && valid(i, mesh, xyz, min_normal_cosine, scratch)) return &options_[i];
+  return nullptr;
 }
 
 bool VertexCollapses::anyValid(const LevelMesh& mesh, const std::vector<double>& xyz, double min_normal_cosine,

@@ -22,6 +22,7 @@ constexpr uint32_t kMaxCollapseTriangles = 256;
 // the vertex's neighbourhood does not change).
 struct CollapseOption {
   uint32_t target = kNoVertex;
+  uint32_t ring_position = 0;  // of the target in the vertex's ring
   double cost = 0;
   double length = 0;
 };
@@ -56,7 +57,8 @@ class VertexCollapses {
   void forgetValidity(uint32_t target);
 
   // The cheapest valid option within max_length (the first of equal ones in ring order);
-  // null when none fits.
+  // null when none fits. The options are kept in that order, so usually only the first one
+  // within the bound has its validity checked.
   const CollapseOption* cheapestWithin(const LevelMesh& mesh, const std::vector<double>& xyz, double max_length,
                                        double min_normal_cosine, FanGeometry& scratch);
   // Whether some option is valid, whatever its length.
@@ -68,12 +70,11 @@ class VertexCollapses {
   bool valid(size_t option, const LevelMesh& mesh, const std::vector<double>& xyz, double min_normal_cosine,
              FanGeometry& scratch);
   void computeFan(const std::vector<double>& xyz, FanGeometry& scratch) const;
-  // Ring position of option i's target: all of a closed ring, the two ends of an open fan.
-  size_t ringPosition(size_t option) const { return closed_ || option == 0 ? option : ring.size() - 1; }
+  void sortByCost();
 
   uint32_t vertex_ = kNoVertex;
   bool closed_ = true;
-  std::vector<CollapseOption> options_;
+  std::vector<CollapseOption> options_;  // by cost, then ring position
   std::vector<Validity> validity_;
 };
 
