@@ -6,8 +6,17 @@ namespace animc {
 
 LevelMesh::LevelMesh(const Topology& topology)
     : vertex_count_(topology.vertex_count), triangles_(topology.triangles),
-      alive_(topology.triangles.size(), 1), mark_(topology.vertex_count, 0) {
+      alive_(topology.triangles.size(), 1), step_to_(topology.vertex_count, kNoVertex),
+      leaves_(topology.vertex_count), entered_(topology.vertex_count), seen_(topology.vertex_count),
+      neighbours_(topology.vertex_count) {
   rebuildIncidence();
+}
+
+void VertexMarks::clearAll() {
+  if (++current_ == 0) {  // wrapped: old tokens could match again
+    std::fill(token_.begin(), token_.end(), 0);
+    current_ = 1;
+  }
 }
 
 void LevelMesh::rebuildIncidence() {
@@ -32,76 +41,67 @@ void LevelMesh::dropDeadTriangles() {
   alive_.assign(kept, 1);
 }
 
-namespace {
-
-using Steps = std::vector<std::pair<uint32_t, uint32_t>>;
-
-// Follows the steps from `start` through all of them; false when some vertex has two ways
-// out (non-manifold or inconsistent orientation) or none before the steps are used up.
-// ring receives the vertices visited, start first, then the vertex reached last.
-bool walkSteps(const Steps& steps, uint32_t start, std::vector<uint32_t>& ring) {
-  ring.clear();
-  ring.reserve(steps.size() + 1);
-  uint32_t current = start;
-  for (size_t i = 0; i < steps.size(); ++i) {
-    uint32_t next = kNoVertex;
-    for (const auto& s : steps) {
-      if (s.first != current) continue;
-      if (next != kNoVertex) return false;  // two triangles leave the same spoke
-      next = s.second;
-    }
-    if (next == kNoVertex) return false;  // a boundary or a flipped neighbour
-    ring.push_back(current);
-    current = next;
-  }
-  ring.push_back(current);
-  return true;
-}
-
-// Quadratic, without a copy: rings are short.
-bool allDistinct(const std::vector<uint32_t>& vertices) {
-  for (size_t i = 0; i < vertices.size(); ++i)
-    for (size_t j = i + 1; j < vertices.size(); ++j)
-      if (vertices[i] == vertices[j]) return false;
-  return true;
-}
-
-}  // namespace
-
-bool LevelMesh::fanSteps(uint32_t v, std::vector<std::pair<uint32_t, uint32_t>>& steps) const {
-  steps.clear();
+bool LevelMesh::fanSteps(uint32_t v) const {
+  steps_.clear();
+  leaves_.clearAll();
   for (const uint32_t* t = trianglesBegin(v); t != trianglesEnd(v); ++t) {
     const Triangle& tri = triangles_[*t];
     const int at = tri[0] == v ? 0 : (tri[1] == v ? 1 : 2);
     const uint32_t a = tri[(at + 1) % 3], b = tri[(at + 2) % 3];
     if (a == v || b == v || a == b) return false;
-    steps.emplace_back(a, b);
+    steps_.emplace_back(a, b);
+    step_to_[a] = leaves_.marked(a) ? kNoVertex : b;
+    leaves_.mark(a);
+  }
+  return true;
+}
+
+// Follows the steps from `start` through all of them; false when some vertex has two ways
+// out (non-manifold or inconsistent orientation) or none before the steps are used up.
+// ring receives the vertices visited, start first, then the vertex reached last.
+bool LevelMesh::walkSteps(uint32_t start, std::vector<uint32_t>& ring) const {
+  const size_t count = steps_.size();
+  ring.resize(count + 1);
+  uint32_t current = start;
+  for (size_t i = 0; i < count; ++i) {
+    if (!leaves_.marked(current)) return false;  // a boundary or a flipped neighbour
+    if (step_to_[current] == kNoVertex) return false;  // two triangles leave the same spoke
+    ring[i] = current;
+    current = step_to_[current];
+  }
+  ring[count] = current;
+  return true;
+}
+
+bool LevelMesh::allDistinct(const std::vector<uint32_t>& vertices) const {
+  seen_.clearAll();
+  for (uint32_t w : vertices) {
+    if (seen_.marked(w)) return false;
+    seen_.mark(w);
   }
   return true;
 }
 
 bool LevelMesh::orderedRing(uint32_t v, std::vector<uint32_t>& ring) const {
   // A closed fan is one cycle through all the steps.
-  Steps& steps = steps_;
-  if (!fanSteps(v, steps) || steps.size() < 3) return false;
-  if (!walkSteps(steps, steps[0].first, ring) || ring.back() != ring.front()) return false;
+  if (!fanSteps(v) || steps_.size() < 3) return false;
+  if (!walkSteps(steps_[0].first, ring) || ring.back() != ring.front()) return false;
   ring.pop_back();
   return allDistinct(ring);
 }
 
 bool LevelMesh::openFan(uint32_t v, std::vector<uint32_t>& ring) const {
   // An open fan is one chain through all the steps, from the one spoke no step enters.
-  Steps& steps = steps_;
-  if (!fanSteps(v, steps) || steps.empty()) return false;
+  if (!fanSteps(v) || steps_.empty()) return false;
+  entered_.clearAll();
+  for (const auto& s : steps_) entered_.mark(s.second);
   uint32_t start = kNoVertex;
-  for (const auto& s : steps) {
-    bool entered = false;
-    for (const auto& r : steps) entered = entered || r.second == s.first;
-    if (entered) continue;
+  for (const auto& s : steps_) {
+    if (entered_.marked(s.first)) continue;
     if (start != kNoVertex) return false;  // several fans meet at v
     start = s.first;
   }
-  if (start == kNoVertex || !walkSteps(steps, start, ring)) return false;
+  if (start == kNoVertex || !walkSteps(start, ring)) return false;
   return allDistinct(ring);
 }
 
@@ -142,12 +142,9 @@ bool LevelMesh::adjacent(uint32_t u, uint32_t w) const {
 }
 
 void LevelMesh::markNeighbours(uint32_t u) const {
-  if (++mark_token_ == 0) {  // wrapped: old marks could match again
-    std::fill(mark_.begin(), mark_.end(), 0);
-    mark_token_ = 1;
-  }
+  neighbours_.clearAll();
   for (const uint32_t* t = trianglesBegin(u); t != trianglesEnd(u); ++t)
-    for (uint32_t w : triangles_[*t]) mark_[w] = mark_token_;
+    for (uint32_t w : triangles_[*t]) neighbours_.mark(w);
 }
 
 void LevelMesh::collapse(uint32_t v, uint32_t u) {

@@ -14,6 +14,20 @@ namespace animc {
 
 constexpr uint32_t kNoVertex = UINT32_MAX;
 
+// A flag per vertex that clearAll() resets at once (a vertex is marked while it holds the
+// current token), so that queries over a few vertices of a large mesh stay cheap.
+class VertexMarks {
+ public:
+  explicit VertexMarks(uint32_t vertex_count) : token_(vertex_count, 0) {}
+  void clearAll();
+  void mark(uint32_t v) { token_[v] = current_; }
+  bool marked(uint32_t v) const { return token_[v] == current_; }
+
+ private:
+  std::vector<uint32_t> token_;
+  uint32_t current_ = 1;
+};
+
 class LevelMesh {
  public:
   explicit LevelMesh(const Topology& topology);
@@ -44,15 +58,18 @@ class LevelMesh {
   // Marks u and its neighbours, so that several adjacent(u, w) are answered by
   // markedNeighbour(w) without walking u's triangles each time; valid until the next call.
   void markNeighbours(uint32_t u) const;
-  bool markedNeighbour(uint32_t w) const { return mark_[w] == mark_token_; }
+  bool markedNeighbour(uint32_t w) const { return neighbours_.marked(w); }
 
   // Half-edge collapse v -> u: triangles holding both die, v becomes u in the others.
   void collapse(uint32_t v, uint32_t u);
   std::vector<Triangle> liveTriangles() const;
 
  private:
-  // Each triangle (v, a, b) of v as the step a -> b around v; false on a degenerate one.
-  bool fanSteps(uint32_t v, std::vector<std::pair<uint32_t, uint32_t>>& steps) const;
+  // Each triangle (v, a, b) of v as the step a -> b around v, into steps_ and indexed by a
+  // (step_to_, leaves_); false on a degenerate triangle.
+  bool fanSteps(uint32_t v) const;
+  bool walkSteps(uint32_t start, std::vector<uint32_t>& ring) const;
+  bool allDistinct(const std::vector<uint32_t>& vertices) const;
   void dropDeadTriangles();
 
   uint32_t vertex_count_;
@@ -61,11 +78,13 @@ class LevelMesh {
   std::vector<uint32_t> first_;
   std::vector<uint32_t> incident_;
   std::vector<uint32_t> fill_;  // rebuildIncidence's scratch
-  // Scratch of the ring queries, reused so that they do not allocate (one thread per mesh).
+  // Scratch of the queries, reused so that they do not allocate (one thread per mesh).
   mutable std::vector<std::pair<uint32_t, uint32_t>> steps_;
-  // Per vertex, the token of the last markNeighbours that reached it.
-  mutable std::vector<uint32_t> mark_;
-  mutable uint32_t mark_token_ = 0;
+  mutable std::vector<uint32_t> step_to_;  // per vertex left by a step: where to, kNoVertex if several
+  mutable VertexMarks leaves_;             // a step leaves the vertex
+  mutable VertexMarks entered_;            // a step enters it (openFan)
+  mutable VertexMarks seen_;               // allDistinct
+  mutable VertexMarks neighbours_;         // markNeighbours
 };
 
 }  // namespace animc
