@@ -120,7 +120,6 @@ void VertexCollapses::prepare(const std::vector<double>& xyz, uint32_t v, bool c
   vertex_ = v;
   closed_ = closed;
   options_.clear();
-  validity_.clear();
   if (scratch.vertex == v) scratch.vertex = kNoVertex;  // v's ring has changed
   // An ear (one triangle) stays: its ring is a single edge, which spans no local frame, and
   // removing it turns an inner edge into boundary.
@@ -135,16 +134,16 @@ void VertexCollapses::prepare(const std::vector<double>& xyz, uint32_t v, bool c
   for (size_t i = 0; i < count; ++i) {
     const uint32_t position = uint32_t(closed || i == 0 ? i : ring.size() - 1);
     const uint32_t u = ring[position];
-    options_.push_back({u, position, collapseCost(xyz, fan, u) + curve, (at(xyz, u) - pv).norm()});
+    options_.push_back({{u, position, collapseCost(xyz, fan, u) + curve, (at(xyz, u) - pv).norm()}});
   }
   sortByCost();
-  validity_.assign(count, Validity::kUnknown);
 }
 
 // Insertion sort: a few options, and a total order (positions are distinct), so the result
 // does not depend on the algorithm.
 void VertexCollapses::sortByCost() {
-  auto before = [](const CollapseOption& a, const CollapseOption& b) {
+  auto before = [](const Option& x, const Option& y) {
+    const CollapseOption &a = x.choice, &b = y.choice;
     return a.cost < b.cost || (a.cost == b.cost && a.ring_position < b.ring_position);
   };
   for (size_t i = 1; i < options_.size(); ++i)
@@ -153,25 +152,30 @@ void VertexCollapses::sortByCost() {
 
 void VertexCollapses::forgetValidity(uint32_t target) {
   for (size_t i = 0; i < options_.size(); ++i)
-    if (options_[i].target == target) {
-      validity_[i] = Validity::kUnknown;
+    if (options_[i].choice.target == target) {
+      options_[i].validity = Validity::kUnknown;
       return;  // targets are distinct ring vertices
     }
 }
 
 bool VertexCollapses::valid(size_t option, const LevelMesh& mesh, const std::vector<double>& xyz,
                             double min_normal_cosine, FanGeometry& scratch) {
-  if (validity_[option] == Validity::kUnknown &&
-      mesh.triangleCount(options_[option].target) + mesh.triangleCount(vertex_) > kMaxCollapseTriangles + 2)
-    validity_[option] = Validity::kInvalid;  // before the checks, which would walk the big fan
-  if (validity_[option] == Validity::kUnknown) {
-    if (scratch.vertex != vertex_) computeFan(xyz, scratch);
-    const Fan fan{ring, closed_, at(xyz, vertex_), scratch.normal.data(), scratch.twice_area.data()};
-    const Flanks flanks(fan, options_[option].ring_position);
-    const bool ok = linkConditionHolds(mesh, fan, flanks) && keepsTrianglesSound(mesh, xyz, fan, flanks, min_normal_cosine);
-    validity_[option] = ok ? Validity::kValid : Validity::kInvalid;
+  Option& o = options_[option];
+  if (o.validity == Validity::kUnknown &&
+      mesh.triangleCount(o.choice.target) + mesh.triangleCount(vertex_) > kMaxCollapseTriangles + 2)
+    o.validity = Validity::kInvalid;  // before the checks, which would walk the big fan
+  if (o.validity == Validity::kUnknown) {
+    const Fan shape{ring, closed_, at(xyz, vertex_), nullptr, nullptr};
+    const Flanks flanks(shape, o.choice.ring_position);
+    bool ok = linkConditionHolds(mesh, shape, flanks);
+    if (ok) {  // only the triangle checks need the fan's normals
+      if (scratch.vertex != vertex_) computeFan(xyz, scratch);
+      const Fan fan{ring, closed_, shape.pv, scratch.normal.data(), scratch.twice_area.data()};
+      ok = keepsTrianglesSound(mesh, xyz, fan, flanks, min_normal_cosine);
+    }
+    o.validity = ok ? Validity::kValid : Validity::kInvalid;
   }
-  return validity_[option] == Validity::kValid;
+  return o.validity == Validity::kValid;
 }
 
 // The options are in (cost, ring position) order: the first valid one within the bound is the
@@ -180,7 +184,8 @@ const CollapseOption* VertexCollapses::cheapestWithin(const LevelMesh& mesh, con
                                                       double max_length, double min_normal_cosine,
                                                       FanGeometry& scratch) {
   for (size_t i = 0; i < options_.size(); ++i)
-    if (options_[i].length <= max_length && valid(i, mesh, xyz, min_normal_cosine, scratch)) return &options_[i];
+    if (options_[i].choice.length <= max_length && valid(i, mesh, xyz, min_normal_cosine, scratch))
+      return &options_[i].choice;
   return nullptr;
 }
 

@@ -66,6 +66,10 @@ class VertexCollapses {
 
  private:
   enum class Validity : uint8_t { kUnknown, kValid, kInvalid };
+  struct Option {
+    CollapseOption choice;
+    Validity validity = Validity::kUnknown;
+  };
   // Computes the fan into scratch on first need (prepare() left it there for the first checks).
   bool valid(size_t option, const LevelMesh& mesh, const std::vector<double>& xyz, double min_normal_cosine,
              FanGeometry& scratch);
@@ -74,8 +78,7 @@ class VertexCollapses {
 
   uint32_t vertex_ = kNoVertex;
   bool closed_ = true;
-  std::vector<CollapseOption> options_;  // by cost, then ring position
-  std::vector<Validity> validity_;
+  std::vector<Option> options_;  // by cost, then ring position
 };
 
 }  // namespace animc
