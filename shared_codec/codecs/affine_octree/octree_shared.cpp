@@ -1,7 +1,6 @@
 #include "codecs/affine_octree/octree_shared.h"
 
 #include <algorithm>
-#include <cstring>
 
 #include "core/simd_math.h"
 
@@ -49,11 +48,11 @@ void gridCoordinates(const double* p, uint32_t g[3]) {
   g[2] = uint32_t(z);
 }
 
-// Keys are stored shifted so that the octant of the cell's own depth is always bits 45-47:
-// a split reads it with a constant shift (a shift by a variable amount costs several
-// micro-operations on x86) and hands its children key << 3.
+// The octant of depth d is bits s..s+2 of a key, s = octantShift(d): the top three bits for
+// the root.
 constexpr int kTopOctantShift = 3 * (OctreePartition::kGridBits - 1);
-int octant(uint64_t key) { return int((key >> kTopOctantShift) & 7); }
+int octantShift(int depth) { return kTopOctantShift - 3 * depth; }
+int octant(uint64_t key, int shift) { return int((key >> shift) & 7); }
 
 // Splits run through the cell in blocks of at most kBlock vertices, so that eight 8-bit
 // counters fit one register: counters in memory would make each increment wait for the
@@ -94,28 +93,22 @@ ANIMC_TARGET_AVX2 void mortonKeysAvx2(const double* unit, size_t n, bool deep, u
 
 }  // namespace
 
-Cell OctreePartition::reset(const std::vector<double>& unit_xyz, int levels, bool restartable) {
+Cell OctreePartition::reset(const std::vector<double>& unit_xyz, int levels) {
   const uint32_t n = uint32_t(unit_xyz.size() / 3);
   const bool deep = levels > kSpreadBits;
-  for (int b = 0; b < 2; ++b) {
-    key_[b].resize(n);
-    order_[b].resize(n);
-  }
-  for (uint32_t i = 0; i < n; ++i) order_[0][i] = i;
+  key_.resize(n);
+  for (int b = 0; b < 2; ++b) order_[b].resize(n);
 #if ANIMC_AVX2_PATH
-  if (cpuHasAvx2()) mortonKeysAvx2(unit_xyz.data(), n, deep, key_[0].data());
+  if (cpuHasAvx2()) mortonKeysAvx2(unit_xyz.data(), n, deep, key_.data());
   else
 #endif
-    mortonKeysPortable(unit_xyz.data(), n, deep, key_[0].data());
-  if (restartable) root_key_ = key_[0];
-  else root_key_.clear();
-  return Cell{0, n, 0};
+    mortonKeysPortable(unit_xyz.data(), n, deep, key_.data());
+  return restart();
 }
 
 Cell OctreePartition::restart() {
-  const uint32_t n = uint32_t(root_key_.size());
+  const uint32_t n = uint32_t(key_.size());
   for (uint32_t i = 0; i < n; ++i) order_[0][i] = i;
-  std::memcpy(key_[0].data(), root_key_.data(), n * sizeof(uint64_t));
   return Cell{0, n, 0};
 }
 
@@ -139,55 +132,56 @@ namespace {
 // The loops of a split, written once and compiled twice: for any x86-64 and for CPUs with
 // AVX2 and BMI2, where the shifts by a variable amount (8 · octant) take one micro-operation
 // instead of three. always_inline makes each wrapper below compile its own copy.
-__attribute__((always_inline)) inline void countLoop(const uint64_t* key, uint32_t n,
-                                                     uint64_t* block_counts, uint32_t count[8]) {
+__attribute__((always_inline)) inline void countLoop(const uint64_t* key, const uint32_t* order, uint32_t n,
+                                                     int shift, uint64_t* block_counts, uint32_t count[8]) {
   for (uint32_t i = 0, block = 0; i < n; ++block) {
     const uint32_t block_end = n - i > kBlock ? i + kBlock : n;
     uint64_t packed = 0;
-    for (; i < block_end; ++i) packed += uint64_t(1) << (8 * octant(key[i]));
+    for (; i < block_end; ++i) packed += uint64_t(1) << (8 * octant(key[order[i]], shift));
     block_counts[block] = packed;
     for (int c = 0; c < 8; ++c) count[c] += lane(packed, c);
   }
 }
 
-// Stable counting-sort pass: each vertex (and its key) to the next free slot of its octant.
-// Within a block a vertex's slot is its block's base for the octant plus an 8-bit cursor
-// held in one register; the bases only change between blocks.
+// Stable counting-sort pass: each vertex to the next free slot of its octant. Within a block
+// a vertex's slot is its block's base for the octant plus an 8-bit cursor held in one
+// register; the bases only change between blocks.
 __attribute__((always_inline)) inline void scatterLoop(const uint64_t* key, const uint32_t* order, uint32_t n,
-                                                       const uint64_t* block_counts, const uint32_t start[8],
-                                                       uint64_t* key_out, uint32_t* order_out) {
+                                                       int shift, const uint64_t* block_counts,
+                                                       const uint32_t start[8], uint32_t* order_out) {
   uint32_t base[8];
   for (int c = 0; c < 8; ++c) base[c] = start[c];
   for (uint32_t i = 0, block = 0; i < n; ++block) {
     const uint32_t block_end = n - i > kBlock ? i + kBlock : n;
     uint64_t cursors = 0;
     for (; i < block_end; ++i) {
-      const int o = octant(key[i]);
+      const uint32_t v = order[i];
+      const int o = octant(key[v], shift);
       const uint32_t slot = base[o] + lane(cursors, o);
       cursors += uint64_t(1) << (8 * o);
-      key_out[slot] = key[i] << 3;
-      order_out[slot] = order[i];
+      order_out[slot] = v;
     }
     for (int c = 0; c < 8; ++c) base[c] += lane(block_counts[block], c);
   }
 }
 
-void countPortable(const uint64_t* key, uint32_t n, uint64_t* block_counts, uint32_t count[8]) {
-  countLoop(key, n, block_counts, count);
+void countPortable(const uint64_t* key, const uint32_t* order, uint32_t n, int shift, uint64_t* block_counts,
+                   uint32_t count[8]) {
+  countLoop(key, order, n, shift, block_counts, count);
 }
-void scatterPortable(const uint64_t* key, const uint32_t* order, uint32_t n, const uint64_t* block_counts,
-                     const uint32_t start[8], uint64_t* key_out, uint32_t* order_out) {
-  scatterLoop(key, order, n, block_counts, start, key_out, order_out);
+void scatterPortable(const uint64_t* key, const uint32_t* order, uint32_t n, int shift,
+                     const uint64_t* block_counts, const uint32_t start[8], uint32_t* order_out) {
+  scatterLoop(key, order, n, shift, block_counts, start, order_out);
 }
 
 #if ANIMC_AVX2_PATH
-ANIMC_TARGET_AVX2 void countAvx2(const uint64_t* key, uint32_t n, uint64_t* block_counts, uint32_t count[8]) {
-  countLoop(key, n, block_counts, count);
+ANIMC_TARGET_AVX2 void countAvx2(const uint64_t* key, const uint32_t* order, uint32_t n, int shift,
+                                 uint64_t* block_counts, uint32_t count[8]) {
+  countLoop(key, order, n, shift, block_counts, count);
 }
-ANIMC_TARGET_AVX2 void scatterAvx2(const uint64_t* key, const uint32_t* order, uint32_t n,
-                                   const uint64_t* block_counts, const uint32_t start[8],
-                                   uint64_t* key_out, uint32_t* order_out) {
-  scatterLoop(key, order, n, block_counts, start, key_out, order_out);
+ANIMC_TARGET_AVX2 void scatterAvx2(const uint64_t* key, const uint32_t* order, uint32_t n, int shift,
+                                   const uint64_t* block_counts, const uint32_t start[8], uint32_t* order_out) {
+  scatterLoop(key, order, n, shift, block_counts, start, order_out);
 }
 #endif
 
@@ -195,27 +189,26 @@ ANIMC_TARGET_AVX2 void scatterAvx2(const uint64_t* key, const uint32_t* order, u
 
 // Counts per block, kept for scatter(), and in total.
 void OctreePartition::countOctants(const Cell& cell, uint32_t count[8]) {
-  const uint64_t* key = &key_[cell.depth & 1][cell.begin];
+  const uint32_t* order = vertices(cell);
   const uint32_t n = cell.end - cell.begin;
+  const int shift = octantShift(cell.depth);
   block_counts_.resize(n / kBlock + 1);
   for (int c = 0; c < 8; ++c) count[c] = 0;
 #if ANIMC_AVX2_PATH
-  if (cpuHasAvx2()) return countAvx2(key, n, block_counts_.data(), count);
+  if (cpuHasAvx2()) return countAvx2(key_.data(), order, n, shift, block_counts_.data(), count);
 #endif
-  countPortable(key, n, block_counts_.data(), count);
+  countPortable(key_.data(), order, n, shift, block_counts_.data(), count);
 }
 
 void OctreePartition::scatter(const Cell& cell, const uint32_t start[8]) {
   const uint32_t n = cell.end - cell.begin;
-  const int from = cell.depth & 1;
-  const uint64_t* key = &key_[from][cell.begin];
-  const uint32_t* order = &order_[from][cell.begin];
-  uint64_t* key_out = &key_[from ^ 1][cell.begin];
-  uint32_t* order_out = &order_[from ^ 1][cell.begin];
+  const uint32_t* order = vertices(cell);
+  uint32_t* order_out = &order_[(cell.depth & 1) ^ 1][cell.begin];
+  const int shift = octantShift(cell.depth);
 #if ANIMC_AVX2_PATH
-  if (cpuHasAvx2()) return scatterAvx2(key, order, n, block_counts_.data(), start, key_out, order_out);
+  if (cpuHasAvx2()) return scatterAvx2(key_.data(), order, n, shift, block_counts_.data(), start, order_out);
 #endif
-  scatterPortable(key, order, n, block_counts_.data(), start, key_out, order_out);
+  scatterPortable(key_.data(), order, n, shift, block_counts_.data(), start, order_out);
 }
 
 }  // namespace animc

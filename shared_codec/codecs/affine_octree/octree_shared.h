@@ -34,19 +34,18 @@ struct Cell {
 
 // The octree over a reference frame's normalised positions, as both sides walk it. Each
 // vertex's cell at every depth comes from its 16-bit grid coordinates (computed once per
-// frame) interleaved into one Morton key, so a split reads three bits of a key kept next to
-// the vertex instead of comparing doubles. A vertex on a split plane goes to the upper child,
-// exactly as the comparison p >= mid would put it. A split is stable, so every cell lists its
-// vertices in increasing index order (the order both sides sum and code them in).
+// frame) interleaved into one Morton key, so a split reads three bits of the vertex's key
+// instead of comparing doubles. A vertex on a split plane goes to the upper child, exactly as
+// the comparison p >= mid would put it. A split is stable, so every cell lists its vertices
+// in increasing index order (the order both sides sum and code them in).
 class OctreePartition {
  public:
   static constexpr int kGridBits = 16;  // >= the deepest allowed octree level
 
   // Takes a new reference frame and returns the root cell holding all its vertices. Cells
-  // split down to depth `levels` at most (the tree's depth limit). `restartable` keeps a copy
-  // of the root's keys for restart(); decoders walk the tree once and need none.
-  Cell reset(const std::vector<double>& unit_xyz, int levels, bool restartable = false);
-  // Back to the root of the last restartable reset (the encoder's second pass).
+  // split down to depth `levels` at most (the tree's depth limit).
+  Cell reset(const std::vector<double>& unit_xyz, int levels);
+  // Back to the root of the last reset (the encoder's second pass).
   Cell restart();
   // Reorders the cell's vertices by child octant (bit 0 = x upper half, bit 1 = y, bit 2 = z)
   // and fills the 8 children; children may be empty.
@@ -57,11 +56,13 @@ class OctreePartition {
   void countOctants(const Cell& cell, uint32_t count[8]);
   void scatter(const Cell& cell, const uint32_t start[8]);
 
-  std::vector<uint64_t> root_key_;  // by vertex index: the root's keys, when restartable
-  // The vertices in partition order, each with its key. A cell at depth d holds its range of
-  // buffer d % 2 and its children are written to the other buffer: the parent's copy is
-  // dead once split, so nothing is copied back.
-  std::vector<uint64_t> key_[2];
+  // By vertex index, never reordered: a split reads its keys through the vertex order, whose
+  // indices increase within a cell, so the reads stream forward through this array, and a
+  // split moves 4 bytes per vertex instead of 12.
+  std::vector<uint64_t> key_;
+  // The vertices in partition order. A cell at depth d holds its range of buffer d % 2 and
+  // its children are written to the other buffer: the parent's copy is dead once split, so
+  // nothing is copied back.
   std::vector<uint32_t> order_[2];
   std::vector<uint64_t> block_counts_;  // of the cell being split: see countOctants()
 };

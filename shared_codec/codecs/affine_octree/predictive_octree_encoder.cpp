@@ -24,7 +24,7 @@ bool PredictiveOctreeEncoder::encode(const PFrameInput& in, std::vector<uint8_t>
   contexts_.beginFrame();
   // Pass 1: choose the tree by estimated cost (the search reorders the partition freely).
   plan_.clear();
-  search(w, partition_.reset(*in.reference, in.max_depth, /*restartable=*/true));
+  search(w, partition_.reset(*in.reference, in.max_depth));
   if (w.overflow) return false;
   // Pass 2: code the chosen tree exactly as the decoder will walk it.
   const Cell root = partition_.restart();
