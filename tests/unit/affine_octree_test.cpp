@@ -4,9 +4,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <random>
 
 #include "api.h"
 #include "codecs/affine_octree/octree_shared.h"
+#include "codecs/affine_octree/options.h"
 #include "codec_test_support.h"
 #include "test_sequences.h"
 
@@ -98,6 +100,56 @@ TEST(AffineOctree, RandomAccessEqualsFullDecode) {
   EXPECT_EQ(ams.value()->info().sections.size(), 4u + 5u);  // HEAD CONN INDX END + 5 groups
   ASSERT_NO_FATAL_FAILURE(expectSeeksMatch(*ams.value(), full, {39, 0, 17, 8, 23, 7}));
   std::remove(path.c_str());
+}
+
+// Every cell a walk reaches lists, in increasing order, the vertices of its parent in its
+// octant: split() copies in chunks that may write before a child's range, which must never
+// reach a cell the walk has yet to visit. Clustered points make many empty and one-vertex
+// children; the walk stops at random cells, as the coders' walks do.
+struct PartitionWalk {
+  OctreePartition partition;
+  std::vector<double> unit;
+  int levels = 10;
+  std::mt19937 rng{7};
+
+  static int octantAt(const double* p, int depth) {
+    int o = 0;
+    for (int a = 0; a < 3; ++a) {
+      const uint32_t g = uint32_t(std::min(65535.0, std::max(0.0, p[a] * 65536.0)));
+      o |= int((g >> (15 - depth)) & 1) << a;
+    }
+    return o;
+  }
+  void walk(const Cell& cell, const std::vector<uint32_t>& expected) {
+    const uint32_t* v = partition.vertices(cell);
+    ASSERT_EQ(std::vector<uint32_t>(v, v + (cell.end - cell.begin)), expected) << "depth " << cell.depth;
+    if (cell.depth >= levels || expected.size() < 2 || rng() % 4 == 0) return;
+    Cell children[8];
+    partition.split(cell, children);
+    for (int c = 0; c < 8; ++c) {
+      std::vector<uint32_t> inside;
+      for (uint32_t i : expected)
+        if (octantAt(&unit[3 * size_t(i)], cell.depth) == c) inside.push_back(i);
+      ASSERT_NO_FATAL_FAILURE(walk(children[c], inside));
+    }
+  }
+};
+
+TEST(OctreePartition, SplitsAreStablePartitionsByOctant) {
+  PartitionWalk w;
+  std::uniform_real_distribution<double> uniform(0, 1);
+  for (int trial = 0; trial < 60; ++trial) {
+    const uint32_t n = 1 + w.rng() % (trial % 2 ? 2000 : 300);
+    const int clusters = 1 + int(w.rng() % 4);
+    w.unit.resize(3 * size_t(n));
+    for (double& x : w.unit)
+      x = clusters == 1 ? uniform(w.rng) : std::floor(uniform(w.rng) * clusters) / clusters + 0.01 * uniform(w.rng);
+    w.levels = 1 + int(w.rng() % kMaxDepthLimit);
+    std::vector<uint32_t> all(n);
+    for (uint32_t i = 0; i < n; ++i) all[i] = i;
+    ASSERT_NO_FATAL_FAILURE(w.walk(w.partition.reset(w.unit, w.levels), all));
+    ASSERT_NO_FATAL_FAILURE(w.walk(w.partition.restart(), all));
+  }
 }
 
 }  // namespace

@@ -50,12 +50,9 @@ class OctreePartition {
   // Reorders the cell's vertices by child octant (bit 0 = x upper half, bit 1 = y, bit 2 = z)
   // and fills the 8 children; children may be empty.
   void split(const Cell& cell, Cell children[8]);
-  const uint32_t* vertices(const Cell& cell) const { return order_[cell.depth & 1].data() + cell.begin; }
+  const uint32_t* vertices(const Cell& cell) const { return order_[cell.depth & 1].data() + kPadding + cell.begin; }
 
  private:
-  void countOctants(const Cell& cell, uint32_t count[8]);
-  void scatter(const Cell& cell, const uint32_t start[8]);
-
   // By vertex index, never reordered: a split reads its keys through the vertex order, whose
   // indices increase within a cell, so the reads stream forward through this array, and a
   // split moves 4 bytes per vertex instead of 12.
@@ -64,7 +61,10 @@ class OctreePartition {
   // its children are written to the other buffer: the parent's copy is dead once split, so
   // nothing is copied back.
   std::vector<uint32_t> order_[2];
-  std::vector<uint64_t> block_counts_;  // of the cell being split: see countOctants()
+  // Scratch of split(): eight buckets, each as large as the root.
+  std::vector<uint32_t> buckets_;
+  // Slots in front of the vertex lists and the buckets, which split() may overwrite.
+  static constexpr uint32_t kPadding = 8;
 };
 
 }  // namespace animc
