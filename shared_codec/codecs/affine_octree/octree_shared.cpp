@@ -109,7 +109,8 @@ Cell OctreePartition::reset(const std::vector<double>& unit_xyz, int levels) {
 
 Cell OctreePartition::restart() {
   const uint32_t n = uint32_t(key_.size());
-  for (uint32_t i = 0; i < n; ++i) order_[0][kPadding + i] = i;
+  uint32_t* order = &order_[0][kPadding];
+  for (uint32_t i = 0; i < n; ++i) order[i] = i;
   return Cell{0, n, 0};
 }
 

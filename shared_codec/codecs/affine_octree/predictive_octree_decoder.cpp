@@ -46,8 +46,7 @@ void PredictiveOctreeDecoder::decodeLeaf(Walk& w, const Cell& cell) {
   const LeafModel m = leafModel(points_);
   const CentredAffine a = codedAffine(m, coded, w.step);
   predictPoints(points_.reference.data(), n, m.frame.centroid, a, idx, w.recon.data());
-  if (w.rc.decode(pm.residuals_zero[n <= kMinLinearVertices])) contexts_.setZero(idx, n);
-  else decodeResiduals(w, idx, n);
+  if (!w.rc.decode(pm.residuals_zero[n <= kMinLinearVertices])) decodeResiduals(w, idx, n);
 }
 
 namespace {
@@ -68,7 +67,11 @@ __attribute__((always_inline)) inline void parametersLoop(RangeDecoder& decoder,
   decoder = rc;
 }
 
-// The hot loop of busy frames: one adaptive integer per coordinate, added onto the prediction.
+// The hot loop of busy frames: one adaptive integer per coordinate (decodeIntInline() written
+// out), added onto the prediction. A zero residual, the usual one, changes nothing: the
+// context is already zero (ResidualContexts::beginFrame()), and adding +0.0 would only turn
+// a -0.0 prediction into +0.0, which denormalize() maps to the same coordinate (the frame's
+// minimum is never -0.0: frame_passes.cpp).
 __attribute__((always_inline)) inline void residualsLoop(RangeDecoder& decoder, IntModels& ints,
                                                          ResidualContexts& contexts, const uint32_t* vertices,
                                                          uint32_t n, double step, double* recon) {
@@ -76,7 +79,9 @@ __attribute__((always_inline)) inline void residualsLoop(RangeDecoder& decoder, 
   for (uint32_t i = 0; i < n; ++i) {
     const size_t v = 3 * size_t(vertices[i]);
     for (size_t c = v; c < v + 3; ++c) {
-      const int64_t r = decodeIntInline(rc, ints, kCtxResidual + contexts.contextAt(c));
+      const int ctx = kCtxResidual + contexts.contextAt(c);
+      if (!rc.decode(ints.zero[ctx])) continue;
+      const int64_t r = decodeMagnitudeAndSign(rc, ints, ctx);
       recon[c] += double(r) * step;
       contexts.setAt(c, r);
     }

@@ -153,10 +153,7 @@ void PredictiveOctreeEncoder::codeLeaf(Walk& w, const Cell& cell, const Node& no
     }
   }
   rc.encode(pm.residuals_zero[n <= kMinLinearVertices], all_zero);
-  if (all_zero) {
-    contexts_.setZero(idx, n);
-    return;
-  }
+  if (all_zero) return;
   for (uint32_t i = 0; i < n; ++i) {
     const size_t v = 3 * size_t(idx[i]);
     for (int ax = 0; ax < 3; ++ax) {

@@ -22,18 +22,18 @@ class ResidualContexts {
     std::fill(now_.begin(), now_.end(), 0);
     std::fill(before_.begin(), before_.end(), 0);
   }
-  // The frame just coded becomes the history.
-  void beginFrame() { before_.swap(now_); }
+  // The frame just coded becomes the history, and the new frame starts with no residual
+  // anywhere: a leaf without residuals then has nothing to record, which is cheaper than
+  // recording three zeros per vertex (most leaves have none).
+  void beginFrame() {
+    before_.swap(now_);
+    std::fill(now_.begin(), now_.end(), 0);
+  }
 
   // By coordinate index (3·v + axis): the context its residual is coded in this frame, and
-  // its residual, recorded for the next.
+  // its residual, recorded for the next (a zero needs no recording).
   int contextAt(size_t coordinate) const { return before_[coordinate]; }
   void setAt(size_t coordinate, int64_t r) { now_[coordinate] = contextOf(r); }
-  // A leaf without residuals: its vertices had none.
-  void setZero(const uint32_t* vertices, size_t n) {
-    for (size_t i = 0; i < n; ++i)
-      for (int a = 0; a < 3; ++a) now_[3 * size_t(vertices[i]) + a] = 0;
-  }
 
  private:
   // 0: the residual was zero, 1: it was ±1, 2: it was larger.
