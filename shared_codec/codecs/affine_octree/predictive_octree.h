@@ -138,7 +138,7 @@ class PredictiveOctreeDecoder {
 
  private:
   struct Walk;
-  Status decodeCell(Walk& w, const Cell& cell);
+  void decodeCell(Walk& w, const Cell& cell);
   void decodeLeaf(Walk& w, const Cell& cell);
   void decodeParameters(Walk& w, uint32_t n, int64_t coded[12]);
   void decodeResiduals(Walk& w, const uint32_t* vertices, uint32_t n);

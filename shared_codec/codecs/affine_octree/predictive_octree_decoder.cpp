@@ -17,23 +17,24 @@ Status PredictiveOctreeDecoder::decode(const PFrameInput& in, ByteReader payload
   recon.resize(in.reference->size());
   contexts_.beginFrame();
   Walk w{in, residualStep(in.max_error), RangeDecoder(payload.cursor(), payload.remaining()), recon};
-  ANIMC_RETURN_IF_ERROR(decodeCell(w, partition_.reset(*in.reference, in.max_depth)));
+  decodeCell(w, partition_.reset(*in.reference, in.max_depth));
   if (w.rc.overran()) return corrupt("octree frame: coded data ends early or is damaged");
   return Status();
 }
 
-Status PredictiveOctreeDecoder::decodeCell(Walk& w, const Cell& cell) {
-  const uint32_t n = cell.end - cell.begin;
-  if (n == 0) return Status();
-  if (w.rc.overran()) return corrupt("octree frame: coded data ends early or is damaged");
+// Damaged data is found once the frame is decoded, not cell by cell: the walk is as short
+// whatever the data (at most 8 children for each of the at most max_depth · n splits, n the
+// vertex count, since the non-empty cells of a depth hold distinct vertices), and a decoder
+// that reads past its input gets zeros.
+void PredictiveOctreeDecoder::decodeCell(Walk& w, const Cell& cell) {
+  if (cell.end == cell.begin) return;
   if (canSplit(cell, w.in.max_depth) && w.rc.decode(models_->split[cell.depth])) {
     Cell children[8];
     partition_.split(cell, children);
-    for (const Cell& child : children) ANIMC_RETURN_IF_ERROR(decodeCell(w, child));
-    return Status();
+    for (const Cell& child : children) decodeCell(w, child);
+    return;
   }
   decodeLeaf(w, cell);
-  return Status();
 }
 
 void PredictiveOctreeDecoder::decodeLeaf(Walk& w, const Cell& cell) {
