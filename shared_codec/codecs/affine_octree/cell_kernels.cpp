@@ -17,8 +17,11 @@ CellFrame frameOf(const double sum[3], const double lo[3], const double hi[3], s
 }
 
 // ---- Portable versions: x and y through a Pair, z alone. ----
+// Not inlined into the dispatching functions at the end: a dispatcher would then save the
+// registers the portable loop needs on every call, the AVX2 calls included (~20 instructions
+// per call, several calls per leaf).
 
-CellFrame gatherPointsPortable(const double* frame, const uint32_t* idx, size_t n, double* out) {
+__attribute__((noinline)) CellFrame gatherPointsPortable(const double* frame, const uint32_t* idx, size_t n, double* out) {
   PointBox box(&frame[3 * size_t(idx[0])]);
   Pair sum_xy = splat(0);
   double sum_z = 0;
@@ -37,7 +40,7 @@ CellFrame gatherPointsPortable(const double* frame, const uint32_t* idx, size_t 
   return frameOf(sum, lo, hi, n);
 }
 
-void copyPointsPortable(const double* frame, const uint32_t* idx, size_t n, double* out) {
+__attribute__((noinline)) void copyPointsPortable(const double* frame, const uint32_t* idx, size_t n, double* out) {
   for (size_t i = 0; i < n; ++i) {
     const double* p = &frame[3 * size_t(idx[i])];
     storePair(&out[kPointStride * i], loadPair(p));
@@ -95,14 +98,14 @@ void sumCross(const double* u, const double* q, size_t n, const double c[3], Fit
   std::copy(cross, cross + 9, s.cross);
 }
 
-FitSums fitSumsPortable(const double* u, const double* q, size_t n, const double c[3]) {
+__attribute__((noinline)) FitSums fitSumsPortable(const double* u, const double* q, size_t n, const double c[3]) {
   FitSums s;
   sumMotionAndSpread(u, q, n, c, s);
   sumCross(u, q, n, c, s);
   return s;
 }
 
-void predictPointsPortable(const double* u, size_t n, const double c[3], const CentredAffine& a,
+__attribute__((noinline)) void predictPointsPortable(const double* u, size_t n, const double c[3], const CentredAffine& a,
                            const uint32_t* idx, double* recon) {
   for (size_t i = 0; i < n; ++i) applyCentred(a, c, &u[kPointStride * i], &recon[3 * size_t(idx[i])]);
 }

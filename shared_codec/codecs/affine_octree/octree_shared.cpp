@@ -142,7 +142,8 @@ __attribute__((always_inline)) inline void fillBucketsLoop(const uint64_t* key, 
   for (int c = 0; c < 8; ++c) count[c] = uint32_t(base[c] - size_t(c) * n);
 }
 
-void fillBucketsPortable(const uint64_t* key, const uint32_t* order, uint32_t n, int shift, uint32_t* buckets,
+// noinline: see cell_kernels.cpp (portable versions).
+__attribute__((noinline)) void fillBucketsPortable(const uint64_t* key, const uint32_t* order, uint32_t n, int shift, uint32_t* buckets,
                          uint32_t count[8]) {
   fillBucketsLoop(key, order, n, shift, buckets, count);
 }

@@ -90,10 +90,11 @@ __attribute__((always_inline)) inline void residualsLoop(RangeDecoder& decoder, 
   decoder = rc;
 }
 
-void parametersPortable(RangeDecoder& rc, IntModels& ints, bool linear, int64_t coded[12]) {
+// noinline: see cell_kernels.cpp (portable versions).
+__attribute__((noinline)) void parametersPortable(RangeDecoder& rc, IntModels& ints, bool linear, int64_t coded[12]) {
   parametersLoop(rc, ints, linear, coded);
 }
-void residualsPortable(RangeDecoder& rc, IntModels& ints, ResidualContexts& contexts, const uint32_t* vertices,
+__attribute__((noinline)) void residualsPortable(RangeDecoder& rc, IntModels& ints, ResidualContexts& contexts, const uint32_t* vertices,
                        uint32_t n, double step, double* recon) {
   residualsLoop(rc, ints, contexts, vertices, n, step, recon);
 }
