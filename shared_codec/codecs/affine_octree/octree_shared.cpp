@@ -52,14 +52,14 @@ void gridCoordinates(const double* p, uint32_t g[3]) {
 // the root.
 constexpr int kTopOctantShift = 3 * (OctreePartition::kGridBits - 1);
 int octantShift(int depth) { return kTopOctantShift - 3 * depth; }
-int octant(uint64_t key, int shift) { return int((key >> shift) & 7); }
+uint32_t octant(uint64_t key, int shift) { return uint32_t(key >> shift) & 7; }
 
 // Splits run through the cell in blocks of at most kBlock vertices, so that eight 8-bit
 // cursors fit one register: cursors in memory would make each increment wait for the
 // previous one whenever neighbouring vertices share an octant, which they usually do.
 constexpr uint32_t kBlock = 255;
 
-uint32_t lane(uint64_t packed, int c) { return uint32_t(packed >> (8 * c)) & 0xFF; }
+uint32_t lane(uint64_t packed, uint32_t c) { return uint32_t(packed >> (8 * c)) & 0xFF; }
 
 void mortonKeysPortable(const double* unit, size_t n, bool deep, uint64_t* keys) {
   for (size_t v = 0; v < n; ++v) {
@@ -133,7 +133,7 @@ __attribute__((always_inline)) inline void fillBucketsLoop(const uint64_t* key, 
     uint64_t cursors = 0;
     for (; i < block_end; ++i) {
       const uint32_t v = order[i];
-      const int o = octant(key[v], shift);
+      const uint32_t o = octant(key[v], shift);
       buckets[base[o] + lane(cursors, o)] = v;
       cursors += uint64_t(1) << (8 * o);
     }
