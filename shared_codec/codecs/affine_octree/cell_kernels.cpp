@@ -21,23 +21,44 @@ CellFrame frameOf(const double sum[3], const double lo[3], const double hi[3], s
 // registers the portable loop needs on every call, the AVX2 calls included (~20 instructions
 // per call, several calls per leaf).
 
-__attribute__((noinline)) CellFrame gatherPointsPortable(const double* frame, const uint32_t* idx, size_t n, double* out) {
-  PointBox box(&frame[3 * size_t(idx[0])]);
+// Copies points out and keeps their running sum and box, starting from the first point's.
+struct PointGatherer {
+  PointBox box;
   Pair sum_xy = splat(0);
   double sum_z = 0;
-  for (size_t i = 0; i < n; ++i) {
-    const double* p = &frame[3 * size_t(idx[i])];
+
+  explicit PointGatherer(const double* first) : box(first) {}
+  void add(const double* p, double* out) {
     const Pair xy = loadPair(p);
     const double z = p[2];
-    storePair(&out[kPointStride * i], xy);
-    storePair(&out[kPointStride * i + 2], Pair{z, 0.0});
+    storePair(out, xy);
+    storePair(out + 2, Pair{z, 0.0});
     sum_xy += xy;
     sum_z += z;
     box.add(xy, z);
   }
-  const double sum[3] = {sum_xy[0], sum_xy[1], sum_z};
-  const double lo[3] = {box.lo_xy[0], box.lo_xy[1], box.lo_z}, hi[3] = {box.hi_xy[0], box.hi_xy[1], box.hi_z};
-  return frameOf(sum, lo, hi, n);
+  CellFrame frame(size_t n) const {
+    const double sum[3] = {sum_xy[0], sum_xy[1], sum_z};
+    const double lo[3] = {box.lo_xy[0], box.lo_xy[1], box.lo_z}, hi[3] = {box.hi_xy[0], box.hi_xy[1], box.hi_z};
+    return frameOf(sum, lo, hi, n);
+  }
+};
+
+__attribute__((noinline)) CellFrame gatherPointsPortable(const double* frame, const uint32_t* idx, size_t n, double* out) {
+  PointGatherer g(&frame[3 * size_t(idx[0])]);
+  for (size_t i = 0; i < n; ++i) g.add(&frame[3 * size_t(idx[i])], &out[kPointStride * i]);
+  return g.frame(n);
+}
+
+__attribute__((noinline)) TwoCellFrames gatherPointsTwicePortable(const double* first, const double* second,
+                                                                  const uint32_t* idx, size_t n, double* out_first,
+                                                                  double* out_second) {
+  PointGatherer a(&first[3 * size_t(idx[0])]), b(&second[3 * size_t(idx[0])]);
+  for (size_t i = 0; i < n; ++i) {
+    a.add(&first[3 * size_t(idx[i])], &out_first[kPointStride * i]);
+    b.add(&second[3 * size_t(idx[i])], &out_second[kPointStride * i]);
+  }
+  return TwoCellFrames{a.frame(n), b.frame(n)};
 }
 
 __attribute__((noinline)) void copyPointsPortable(const double* frame, const uint32_t* idx, size_t n, double* out) {
@@ -113,19 +134,53 @@ __attribute__((noinline)) void predictPointsPortable(const double* u, size_t n, 
 #if ANIMC_AVX2_PATH
 // ---- AVX2 versions: a whole point per Quad (lane 3 unused). ----
 
-ANIMC_TARGET_AVX2 Quad loadPoint3(const double* p) { return Quad{p[0], p[1], p[2], 0.0}; }
+// Two loads joined (x y, then z and a zero): GCC builds Quad{p[0], p[1], p[2], 0.0} from
+// scalar loads instead, sometimes with a register-to-register vmovq that valgrind 3.19
+// cannot decode.
+ANIMC_TARGET_AVX2 Quad loadPoint3(const double* p) {
+  return __builtin_shufflevector(loadPair(p), Pair{p[2], 0.0}, 0, 1, 2, 3);
+}
 
-ANIMC_TARGET_AVX2 CellFrame gatherPointsAvx2(const double* frame, const uint32_t* idx, size_t n, double* out) {
-  Quad sum = splatQuad(0), lo = loadPoint3(&frame[3 * size_t(idx[0])]), hi = lo;
-  for (size_t i = 0; i < n; ++i) {
-    const Quad p = loadPoint3(&frame[3 * size_t(idx[i])]);
-    storeQuad(&out[kPointStride * i], p);
+// PointGatherer with a whole point per Quad. The constructor adds the first point: the box of
+// one point is that point, the same values as adding it to a box started from it, with one
+// load less.
+struct QuadGatherer {
+  Quad sum, lo, hi;
+
+  ANIMC_TARGET_AVX2 QuadGatherer(const double* first, double* out) {
+    const Quad p = loadPoint3(first);
+    storeQuad(out, p);
+    sum = splatQuad(0) + p;
+    lo = hi = p;
+  }
+  ANIMC_TARGET_AVX2 void add(const double* point, double* out) {
+    const Quad p = loadPoint3(point);
+    storeQuad(out, p);
     sum += p;
     lo = minQuad(lo, p);
     hi = maxQuad(hi, p);
   }
-  const double s[3] = {sum[0], sum[1], sum[2]}, l[3] = {lo[0], lo[1], lo[2]}, h[3] = {hi[0], hi[1], hi[2]};
-  return frameOf(s, l, h, n);
+  ANIMC_TARGET_AVX2 CellFrame frame(size_t n) const {
+    const double s[3] = {sum[0], sum[1], sum[2]}, l[3] = {lo[0], lo[1], lo[2]}, h[3] = {hi[0], hi[1], hi[2]};
+    return frameOf(s, l, h, n);
+  }
+};
+
+ANIMC_TARGET_AVX2 CellFrame gatherPointsAvx2(const double* frame, const uint32_t* idx, size_t n, double* out) {
+  QuadGatherer g(&frame[3 * size_t(idx[0])], out);
+  for (size_t i = 1; i < n; ++i) g.add(&frame[3 * size_t(idx[i])], &out[kPointStride * i]);
+  return g.frame(n);
+}
+
+ANIMC_TARGET_AVX2 TwoCellFrames gatherPointsTwiceAvx2(const double* first, const double* second,
+                                                      const uint32_t* idx, size_t n, double* out_first,
+                                                      double* out_second) {
+  QuadGatherer a(&first[3 * size_t(idx[0])], out_first), b(&second[3 * size_t(idx[0])], out_second);
+  for (size_t i = 1; i < n; ++i) {
+    a.add(&first[3 * size_t(idx[i])], &out_first[kPointStride * i]);
+    b.add(&second[3 * size_t(idx[i])], &out_second[kPointStride * i]);
+  }
+  return TwoCellFrames{a.frame(n), b.frame(n)};
 }
 
 ANIMC_TARGET_AVX2 void copyPointsAvx2(const double* frame, const uint32_t* idx, size_t n, double* out) {
@@ -181,6 +236,14 @@ CellFrame gatherPoints(const double* frame, const uint32_t* idx, size_t n, doubl
   if (cpuHasAvx2()) return gatherPointsAvx2(frame, idx, n, out);
 #endif
   return gatherPointsPortable(frame, idx, n, out);
+}
+
+TwoCellFrames gatherPointsTwice(const double* first, const double* second, const uint32_t* idx, size_t n,
+                                double* out_first, double* out_second) {
+#if ANIMC_AVX2_PATH
+  if (cpuHasAvx2()) return gatherPointsTwiceAvx2(first, second, idx, n, out_first, out_second);
+#endif
+  return gatherPointsTwicePortable(first, second, idx, n, out_first, out_second);
 }
 
 void copyPoints(const double* frame, const uint32_t* idx, size_t n, double* out) {

@@ -17,6 +17,12 @@ constexpr size_t kPointStride = 4;
 // Copies the points idx[0..n) (n >= 1) of an xyz-interleaved frame to out
 // (n·kPointStride doubles) and returns their centroid and radius.
 CellFrame gatherPoints(const double* frame, const uint32_t* idx, size_t n, double* out);
+// gatherPoints() from two frames in one pass over the indices.
+struct TwoCellFrames {
+  CellFrame first, second;
+};
+TwoCellFrames gatherPointsTwice(const double* first, const double* second, const uint32_t* idx, size_t n,
+                                double* out_first, double* out_second);
 // The same without measuring them.
 void copyPoints(const double* frame, const uint32_t* idx, size_t n, double* out);
 

@@ -16,8 +16,14 @@ void CellPoints::gather(const PFrameInput& in, const uint32_t* idx, size_t n) {
   }
   count = n;
   has_before = in.before != nullptr;
-  reference_frame = gatherPoints(in.reference->data(), idx, n, reference.data());
-  if (in.before) before_frame = gatherPoints(in.before->data(), idx, n, before.data());
+  if (in.before) {
+    const TwoCellFrames f =
+        gatherPointsTwice(in.reference->data(), in.before->data(), idx, n, reference.data(), before.data());
+    reference_frame = f.first;
+    before_frame = f.second;
+  } else {
+    reference_frame = gatherPoints(in.reference->data(), idx, n, reference.data());
+  }
   if (in.target) copyPoints(in.target->data(), idx, n, target.data());
 }
 
