@@ -45,6 +45,9 @@ bool fitAffinePaper(const std::vector<double>& u, const std::vector<double>& q, 
 // encoder's search visits and every leaf the decoder reads.
 void fitCentred(const double* u, const double* q, size_t n, const CellFrame& frame,
                 const double prior_L[9], CentredAffine& out) {
+#if ANIMC_AVX2_PATH
+  if (cpuHasAvx2()) return fitCentredAvx2(u, q, n, frame, prior_L, out);
+#endif
   const FitSums s = fitSums(u, q, n, frame.centroid);
   const double inv_n = 1.0 / double(n);
   const double lambda = kRidge * double(n) * frame.radius * frame.radius;

@@ -190,7 +190,10 @@ ANIMC_TARGET_AVX2 void copyPointsAvx2(const double* frame, const uint32_t* idx, 
 // One pass: the 21 sums fit in seven Quads. Σ d·dᵀ comes from d·d (the diagonal) and d·d'
 // with d' = (d1, d2, d0) (the three products off it); Σ m·dᵀ from m·d, m·d' and m·d''
 // with d'' = (d2, d0, d1). Each entry is the same product the scalar formula sums.
-ANIMC_TARGET_AVX2 FitSums fitSumsAvx2(const double* u, const double* q, size_t n, const double c[3]) {
+struct QuadFitSums {
+  Quad m, d, dd, dd1, md, md1, md2;
+};
+ANIMC_TARGET_AVX2 inline QuadFitSums quadFitSums(const double* u, const double* q, size_t n, const double c[3]) {
   const Quad c4 = {c[0], c[1], c[2], 0.0};
   Quad m = splatQuad(0), d = m, dd = m, dd1 = m, md = m, md1 = m, md2 = m;
   for (size_t i = 0; i < n; ++i) {
@@ -207,10 +210,25 @@ ANIMC_TARGET_AVX2 FitSums fitSumsAvx2(const double* u, const double* q, size_t n
     md1 += mi * di1;
     md2 += mi * di2;
   }
-  return FitSums{{m[0], m[1], m[2]},
-                 {d[0], d[1], d[2]},
-                 {dd[0], dd1[0], dd1[2], dd1[0], dd[1], dd1[1], dd1[2], dd1[1], dd[2]},
-                 {md[0], md1[0], md2[0], md2[1], md[1], md1[1], md1[2], md2[2], md[2]}};
+  return QuadFitSums{m, d, dd, dd1, md, md1, md2};
+}
+
+ANIMC_TARGET_AVX2 FitSums fitSumsAvx2(const double* u, const double* q, size_t n, const double c[3]) {
+  const QuadFitSums s = quadFitSums(u, q, n, c);
+  return FitSums{{s.m[0], s.m[1], s.m[2]},
+                 {s.d[0], s.d[1], s.d[2]},
+                 {s.dd[0], s.dd1[0], s.dd1[2], s.dd1[0], s.dd[1], s.dd1[1], s.dd1[2], s.dd1[1], s.dd[2]},
+                 {s.md[0], s.md1[0], s.md2[0], s.md2[1], s.md[1], s.md1[1], s.md1[2], s.md2[2], s.md[2]}};
+}
+
+// (v1, v2, v0) and (v2, v0, v1).
+ANIMC_TARGET_AVX2 inline Quad yzx(Quad v) { return __builtin_shufflevector(v, v, 1, 2, 0, 3); }
+ANIMC_TARGET_AVX2 inline Quad zxy(Quad v) { return __builtin_shufflevector(v, v, 2, 0, 1, 3); }
+
+// The first three lanes of v to out[0..2].
+ANIMC_TARGET_AVX2 inline void storePoint3(double* out, Quad v) {
+  storePair(out, Pair{v[0], v[1]});
+  out[2] = v[2];
 }
 
 ANIMC_TARGET_AVX2 void predictPointsAvx2(const double* u, size_t n, const double c[3], const CentredAffine& a,
@@ -230,6 +248,45 @@ ANIMC_TARGET_AVX2 void predictPointsAvx2(const double* u, size_t n, const double
 #endif
 
 }  // namespace
+
+#if ANIMC_AVX2_PATH
+// fitCentred() (affine_fit.cpp) with a row of each 3x3 matrix per Quad. Each entry is the
+// same IEEE expression as there: products commute exactly, and the cofactors are taken as
+// cross products of rows, which equal the columns bit for bit (the sums make Σ d·dᵀ
+// symmetric, and the ridge adds 0.0 off the diagonal on both sides).
+ANIMC_TARGET_AVX2 void fitCentredAvx2(const double* u, const double* q, size_t n, const CellFrame& frame,
+                                      const double prior_L[9], CentredAffine& out) {
+  const QuadFitSums s = quadFitSums(u, q, n, frame.centroid);
+  const double inv_n = 1.0 / double(n);
+  const double lambda = kRidge * double(n) * frame.radius * frame.radius;
+  const Quad t = s.m * splatQuad(inv_n);
+  // Rows of Σ d·dᵀ + λ·I and of Σ m·dᵀ (fitSumsAvx2() lists their entries).
+  const Quad a[3] = {__builtin_shufflevector(s.dd, s.dd1, 0, 4, 6, 3) + Quad{lambda, 0.0, 0.0, 0.0},
+                     __builtin_shufflevector(s.dd, s.dd1, 4, 1, 5, 3) + Quad{0.0, lambda, 0.0, 0.0},
+                     __builtin_shufflevector(s.dd, s.dd1, 6, 5, 2, 3) + Quad{0.0, 0.0, lambda, 0.0}};
+  const Quad md_md1 = __builtin_shufflevector(s.md, s.md1, 0, 4, 1, 5);  // md0 md1_0 md_1 md1_1
+  const Quad cross[3] = {__builtin_shufflevector(md_md1, s.md2, 0, 1, 4, 3),
+                         __builtin_shufflevector(md_md1, s.md2, 5, 2, 3, 3),
+                         __builtin_shufflevector(__builtin_shufflevector(s.md1, s.md2, 2, 6, 2, 3), s.md, 0, 1, 6, 3)};
+  // b = Σ (m - m̄)·dᵀ + λ·prior, as in fitCentred().
+  Quad b[3];
+  for (int r = 0; r < 3; ++r)
+    b[r] = (cross[r] - splatQuad(t[r]) * s.d) + splatQuad(lambda) * loadPoint3(&prior_L[3 * r]);
+  // Rows of the cofactor matrix: inv row 0 = a₁ × a₂, row 1 = a₂ × a₀, row 2 = a₀ × a₁.
+  Quad inv[3];
+  for (int r = 0; r < 3; ++r) {
+    const Quad& x = a[(r + 1) % 3];
+    const Quad& y = a[(r + 2) % 3];
+    inv[r] = yzx(x) * zxy(y) - zxy(x) * yzx(y);
+  }
+  const double det = a[0][0] * inv[0][0] + a[0][1] * inv[1][0] + a[0][2] * inv[2][0];
+  storePoint3(out.t, t);
+  for (int r = 0; r < 3; ++r) {
+    const Quad numerator = (splatQuad(b[r][0]) * inv[0] + splatQuad(b[r][1]) * inv[1]) + splatQuad(b[r][2]) * inv[2];
+    storePoint3(&out.L[3 * r], numerator / splatQuad(det));
+  }
+}
+#endif
 
 CellFrame gatherPoints(const double* frame, const uint32_t* idx, size_t n, double* out) {
 #if ANIMC_AVX2_PATH

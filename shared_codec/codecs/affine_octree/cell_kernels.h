@@ -34,6 +34,13 @@ struct FitSums {
 };
 FitSums fitSums(const double* u, const double* q, size_t n, const double c[3]);
 
+#if ANIMC_AVX2_PATH
+// fitCentred() for CPUs with AVX2 (it calls this itself): the sums above, then the solve with
+// a row of each matrix per Quad.
+void fitCentredAvx2(const double* u, const double* q, size_t n, const CellFrame& frame, const double prior_L[9],
+                    CentredAffine& out);
+#endif
+
 // applyCentred() of every gathered point, written to recon at the point's vertex idx[i].
 void predictPoints(const double* u, size_t n, const double c[3], const CentredAffine& a,
                    const uint32_t* idx, double* recon);
