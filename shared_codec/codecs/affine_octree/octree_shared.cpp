@@ -155,6 +155,44 @@ ANIMC_TARGET_AVX2 void fillBucketsAvx2(const uint64_t* key, const uint32_t* orde
 }
 #endif
 
+// Cells of at most kSmallCell vertices (most splits: leaves hold a few vertices) skip the
+// buckets, whose eight copies cost ~200 instructions per split: a count pass, then each
+// vertex straight to its child's next slot, the slots of all eight children as the 8-bit
+// lanes of one register (their starts are a prefix sum of the counts, one multiplication).
+// This costs ~8 instructions more per vertex than the buckets, so only small cells take it.
+constexpr uint32_t kSmallCell = 32;
+static_assert(kSmallCell <= kBlock, "counts and slots of a small cell fit 8-bit lanes");
+
+// Lane c: the sum of the lanes below c (no sum exceeds 255 here, so no lane carries).
+uint64_t lanesBelow(uint64_t packed) { return (packed << 8) * 0x0101010101010101u; }
+
+// Returns the children's sizes, packed.
+__attribute__((always_inline)) inline uint64_t splitSmallLoop(const uint64_t* key, const uint32_t* order, uint32_t n,
+                                                              int shift, uint32_t* out) {
+  uint64_t counts = 0;
+  for (uint32_t i = 0; i < n; ++i) counts += uint64_t(1) << (8 * octant(key[order[i]], shift));
+  uint64_t slots = lanesBelow(counts);
+  for (uint32_t i = 0; i < n; ++i) {
+    const uint32_t v = order[i];
+    const uint32_t o = octant(key[v], shift);
+    out[lane(slots, o)] = v;
+    slots += uint64_t(1) << (8 * o);
+  }
+  return counts;
+}
+
+__attribute__((noinline)) uint64_t splitSmallPortable(const uint64_t* key, const uint32_t* order, uint32_t n,
+                                                      int shift, uint32_t* out) {
+  return splitSmallLoop(key, order, n, shift, out);
+}
+
+#if ANIMC_AVX2_PATH
+ANIMC_TARGET_AVX2 uint64_t splitSmallAvx2(const uint64_t* key, const uint32_t* order, uint32_t n, int shift,
+                                          uint32_t* out) {
+  return splitSmallLoop(key, order, n, shift, out);
+}
+#endif
+
 // Copies n indices in chunks of kCopyChunk from the back, and always at least one chunk: the
 // copy may begin up to kCopyChunk - 1 indices (a whole chunk when n = 0) before the ranges,
 // in both arrays, but has no branch that depends on n when n <= kCopyChunk, the usual case
@@ -181,6 +219,7 @@ void copyBackwards(const uint32_t* from, uint32_t n, uint32_t* to) {
 // kPadding slots in front for that.
 void OctreePartition::split(const Cell& cell, Cell children[8]) {
   const uint32_t n = cell.end - cell.begin;
+  if (n <= kSmallCell) return splitSmall(cell, children);
   const uint32_t* order = vertices(cell);
   const int shift = octantShift(cell.depth);
   static_assert(kCopyChunk <= kPadding, "a copy may reach kCopyChunk slots before its range");
@@ -197,6 +236,24 @@ void OctreePartition::split(const Cell& cell, Cell children[8]) {
     end -= count[c];
     children[c] = Cell{cell.begin + end, cell.begin + end + count[c], cell.depth + 1};
     copyBackwards(buckets + size_t(c) * n, count[c], out + end);
+  }
+}
+
+void OctreePartition::splitSmall(const Cell& cell, Cell children[8]) {
+  const uint32_t n = cell.end - cell.begin;
+  const uint32_t* order = vertices(cell);
+  const int shift = octantShift(cell.depth);
+  uint32_t* out = &order_[(cell.depth & 1) ^ 1][kPadding + cell.begin];
+#if ANIMC_AVX2_PATH
+  const uint64_t counts = cpuHasAvx2() ? splitSmallAvx2(key_.data(), order, n, shift, out)
+                                       : splitSmallPortable(key_.data(), order, n, shift, out);
+#else
+  const uint64_t counts = splitSmallPortable(key_.data(), order, n, shift, out);
+#endif
+  const uint64_t starts = lanesBelow(counts);
+  for (int c = 0; c < 8; ++c) {
+    const uint32_t begin = cell.begin + lane(starts, c);
+    children[c] = Cell{begin, begin + lane(counts, c), cell.depth + 1};
   }
 }
 

@@ -61,6 +61,9 @@ class OctreePartition {
   // its children are written to the other buffer: the parent's copy is dead once split, so
   // nothing is copied back.
   std::vector<uint32_t> order_[2];
+  // split() of a cell of a few vertices.
+  void splitSmall(const Cell& cell, Cell children[8]);
+
   // Scratch of split(): eight buckets, each as large as the root.
   std::vector<uint32_t> buckets_;
   // Slots in front of the vertex lists and the buckets, which split() may overwrite.
