@@ -17,7 +17,8 @@ Status PredictiveOctreeDecoder::decode(const PFrameInput& in, ByteReader payload
   recon.resize(in.reference->size());
   contexts_.beginFrame();
   Walk w{in, residualStep(in.max_error), RangeDecoder(payload.cursor(), payload.remaining()), recon};
-  decodeCell(w, partition_.reset(*in.reference, in.max_depth));
+  const Cell root = partition_.reset(*in.reference, in.max_depth);
+  if (root.end != root.begin) decodeCell(w, root);
   if (w.rc.overran()) return corrupt("octree frame: coded data ends early or is damaged");
   return Status();
 }
@@ -26,12 +27,13 @@ Status PredictiveOctreeDecoder::decode(const PFrameInput& in, ByteReader payload
 // whatever the data (at most 8 children for each of the at most max_depth · n splits, n the
 // vertex count, since the non-empty cells of a depth hold distinct vertices), and a decoder
 // that reads past its input gets zeros.
+// (The cell is never empty: empty children are skipped before the call.)
 void PredictiveOctreeDecoder::decodeCell(Walk& w, const Cell& cell) {
-  if (cell.end == cell.begin) return;
   if (canSplit(cell, w.in.max_depth) && w.rc.decode(models_->split[cell.depth])) {
     Cell children[8];
     partition_.split(cell, children);
-    for (const Cell& child : children) decodeCell(w, child);
+    for (const Cell& child : children)
+      if (child.end != child.begin) decodeCell(w, child);
     return;
   }
   decodeLeaf(w, cell);
