@@ -21,18 +21,30 @@ struct SpreadTable {
 constexpr SpreadTable kSpread;
 
 constexpr int kLowBits = OctreePartition::kGridBits - kSpreadBits;
-// A unit coordinate times kGridScale, clamped to [0, kGridTop], is its grid coordinate.
-constexpr double kGridScale = double(1u << OctreePartition::kGridBits);
-constexpr double kGridTop = double((1u << OctreePartition::kGridBits) - 1);
+
+// A unit coordinate times scale, clamped to [0, top], is its grid coordinate: on a grid of
+// 2^16 for deep trees, else of 2^kSpreadBits, whose coordinates are the 16-bit ones shifted
+// right by kLowBits (the scalings are exact, and the clamps agree) without the shift.
+struct Grid {
+  double scale, top;
+  explicit Grid(bool deep) {
+    const int bits = deep ? OctreePartition::kGridBits : kSpreadBits;
+    scale = double(1u << bits);
+    top = double((1u << bits) - 1);
+  }
+};
 
 // Interleaved top kSpreadBits bits of the three coordinates, then (for trees deeper than
 // kSpreadBits levels) the low bits.
 uint64_t mortonKey(const uint32_t g[3], bool deep) {
   uint64_t key = 0;
+  if (!deep) {
+    for (int a = 0; a < 3; ++a) key |= uint64_t(kSpread.bits[g[a]]) << a;
+    return key << (3 * kLowBits);
+  }
   for (int a = 0; a < 3; ++a) key |= uint64_t(kSpread.bits[g[a] >> kLowBits]) << a;
   key <<= 3 * kLowBits;
-  if (deep)
-    for (int a = 0; a < 3; ++a) key |= uint64_t(kSpread.bits[g[a] & ((1u << kLowBits) - 1)]) << a;
+  for (int a = 0; a < 3; ++a) key |= uint64_t(kSpread.bits[g[a] & ((1u << kLowBits) - 1)]) << a;
   return key;
 }
 
@@ -40,9 +52,9 @@ uint64_t mortonKey(const uint32_t g[3], bool deep) {
 // bounds are dyadic, so both are exact); p = 1 clamps into the last cell, as does anything
 // beyond, and anything below 0 (or NaN) into the first. x and y go through one Pair; the
 // clamps are lane-wise std::max(0, g) and std::min(top, g).
-void gridCoordinates(const double* p, uint32_t g[3]) {
-  const Pair xy = minPair(splat(kGridTop), maxPair(splat(0.0), loadPair(p) * splat(kGridScale)));
-  const double z = std::min(kGridTop, std::max(0.0, p[2] * kGridScale));
+void gridCoordinates(const double* p, const Grid& grid, uint32_t g[3]) {
+  const Pair xy = minPair(splat(grid.top), maxPair(splat(0.0), loadPair(p) * splat(grid.scale)));
+  const double z = std::min(grid.top, std::max(0.0, p[2] * grid.scale));
   g[0] = uint32_t(xy[0]);  // truncation = floor here
   g[1] = uint32_t(xy[1]);
   g[2] = uint32_t(z);
@@ -62,9 +74,10 @@ constexpr uint32_t kBlock = 255;
 uint32_t lane(uint64_t packed, uint32_t c) { return uint32_t(packed >> (8 * c)) & 0xFF; }
 
 void mortonKeysPortable(const double* unit, size_t n, bool deep, uint64_t* keys) {
+  const Grid grid(deep);
   for (size_t v = 0; v < n; ++v) {
     uint32_t g[3];
-    gridCoordinates(&unit[3 * v], g);
+    gridCoordinates(&unit[3 * v], grid, g);
     keys[v] = mortonKey(g, deep);
   }
 }
@@ -75,7 +88,8 @@ typedef int Int4 __attribute__((vector_size(16)));
 // Four vertices (twelve coordinates, three Quads) at a time through the grid conversion,
 // whose clamps are the lane-wise forms of gridCoordinates()'.
 ANIMC_TARGET_AVX2 void mortonKeysAvx2(const double* unit, size_t n, bool deep, uint64_t* keys) {
-  const Quad scale = splatQuad(kGridScale), top = splatQuad(kGridTop), zero = splatQuad(0);
+  const Grid grid(deep);
+  const Quad scale = splatQuad(grid.scale), top = splatQuad(grid.top), zero = splatQuad(0);
   size_t v = 0;
   for (; v + 4 <= n; v += 4) {
     uint32_t g[12];
