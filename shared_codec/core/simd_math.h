@@ -8,6 +8,7 @@
 // with -ffp-contract=off), whichever version runs.
 #pragma once
 #include <algorithm>
+#include <cstdint>
 
 namespace animc {
 
@@ -49,6 +50,10 @@ namespace animc {
 
 typedef double Quad __attribute__((vector_size(32)));
 typedef double UnalignedQuad __attribute__((vector_size(32), aligned(8)));
+// The 64-bit integer lanes of a Quad (comparison results, masks, bit patterns), and four
+// 32-bit integers (one per lane, converted to or from a Quad).
+typedef long long QuadMask __attribute__((vector_size(32)));
+typedef int32_t IntQuad __attribute__((vector_size(16)));
 
 // Four consecutive doubles anywhere in a double array (as loadPair and storePair).
 ANIMC_TARGET_AVX2 inline Quad loadQuad(const double* p) { return *reinterpret_cast<const UnalignedQuad*>(p); }

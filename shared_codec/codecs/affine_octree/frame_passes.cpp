@@ -105,7 +105,6 @@ struct BlockPattern {
 
 // With the alignment of a float, to store four floats anywhere in a float array.
 typedef float UnalignedFloatQuad __attribute__((vector_size(16), aligned(4)));
-typedef long long QuadMask __attribute__((vector_size(32)));
 
 ANIMC_TARGET_AVX2 bool toFloatsAvx2(const double* frame, size_t size, float* out) {
   QuadMask in_range = {-1, -1, -1, -1};

@@ -83,7 +83,6 @@ void mortonKeysPortable(const double* unit, size_t n, bool deep, uint64_t* keys)
 }
 
 #if ANIMC_AVX2_PATH
-typedef int Int4 __attribute__((vector_size(16)));
 
 // Four vertices (twelve coordinates, three Quads) at a time through the grid conversion,
 // whose clamps are the lane-wise forms of gridCoordinates()'.
@@ -96,7 +95,7 @@ ANIMC_TARGET_AVX2 void mortonKeysAvx2(const double* unit, size_t n, bool deep, u
     for (int k = 0; k < 3; ++k) {
       const Quad scaled = loadQuad(&unit[3 * v + 4 * k]) * scale;
       const Quad clamped = minQuad(top, maxQuad(zero, scaled));  // NaN to 0
-      const Int4 grid = __builtin_convertvector(clamped, Int4);  // truncation = floor here
+      const IntQuad grid = __builtin_convertvector(clamped, IntQuad);  // truncation = floor here
       for (int l = 0; l < 4; ++l) g[4 * k + l] = uint32_t(grid[l]);
     }
     for (int j = 0; j < 4; ++j) keys[v + j] = mortonKey(&g[3 * j], deep);

@@ -35,11 +35,9 @@ void reconstructPortable(const uint32_t* k, const uint8_t* negative, size_t n, i
 }
 
 #if ANIMC_AVX2_PATH
-typedef int32_t IntQuad __attribute__((vector_size(16)));
 typedef int32_t IntOctet __attribute__((vector_size(32)));
 typedef uint8_t ByteQuad __attribute__((vector_size(4)));
 typedef uint8_t Bytes16 __attribute__((vector_size(16)));
-typedef long long LongQuad __attribute__((vector_size(32)));
 
 // Four coefficients at a time, the same operations lane by lane.
 ANIMC_TARGET_AVX2 void reconstructAvx2(const uint32_t* k, const uint8_t* negative, size_t n, int q, double scale,
@@ -53,11 +51,11 @@ ANIMC_TARGET_AVX2 void reconstructAvx2(const uint32_t* k, const uint8_t* negativ
     std::memcpy(&kq, k + i, sizeof kq);  // k < 2^31: as signed, the same values
     std::memcpy(&nq, negative + i, sizeof nq);
     const Quad dk = __builtin_convertvector(kq, Quad);
-    const LongQuad one = __builtin_convertvector(kq == 1, LongQuad);
-    const LongQuad nonzero = __builtin_convertvector(kq != 0, LongQuad);
-    const LongQuad sign = __builtin_convertvector(nq != 0, LongQuad) << 63;
+    const QuadMask one = __builtin_convertvector(kq == 1, QuadMask);
+    const QuadMask nonzero = __builtin_convertvector(kq != 0, QuadMask);
+    const QuadMask sign = __builtin_convertvector(nq != 0, QuadMask) << 63;
     const Quad magnitude = (dk + (one ? fresh : refined)) * scales;
-    const LongQuad bits = (LongQuad(magnitude) & nonzero) ^ sign;
+    const QuadMask bits = (QuadMask(magnitude) & nonzero) ^ sign;
     storeQuad(out + i, Quad(bits));
     if (bit_lengths) {
       const IntOctet halves = IntOctet(dk);
