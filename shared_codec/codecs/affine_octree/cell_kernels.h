@@ -23,7 +23,7 @@ struct TwoCellFrames {
 };
 TwoCellFrames gatherPointsTwice(const double* first, const double* second, const uint32_t* idx, size_t n,
                                 double* out_first, double* out_second);
-// The same without measuring them.
+// gatherPoints() without measuring them.
 void copyPoints(const double* frame, const uint32_t* idx, size_t n, double* out);
 
 // Over n gathered points, d = u − c and m = q − u: Σ m, Σ d, Σ d·dᵀ and Σ m·dᵀ (row-major),
