@@ -23,11 +23,11 @@ struct BitModel {
     constexpr uint16_t kLearned = sizeof(kShift) - 1;  // from here on the rate stays 1/32
     const int shift = kShift[seen];
     seen += seen < kLearned;
-    // Both updates computed and one selected: the bit is close to random for many models,
-    // and the next use of this model waits for the result.
-    const uint32_t down = p0 - (p0 >> shift);
-    const uint32_t up = p0 + ((kProbOne - p0) >> shift);
-    p0 = uint16_t(up ^ ((up ^ down) & maskOf(bit)));
+    // p0 moves towards kProbOne after a 0 and towards 2^shift - 1 after a 1, by an arithmetic
+    // shift: p0 + floor((2^shift - 1 - p0) / 2^shift) = p0 - floor(p0 / 2^shift), the same
+    // rounding both ways as the two-sided form, with one shift instead of two.
+    const int32_t target = bit ? (1 << shift) - 1 : int32_t(kProbOne);
+    p0 = uint16_t(int32_t(p0) + ((target - int32_t(p0)) >> shift));
   }
   static uint32_t maskOf(int bit) { return 0u - uint32_t(bit); }
 };

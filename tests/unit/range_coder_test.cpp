@@ -1,7 +1,8 @@
 // The range coder's two decoding paths: decodeData (masks, for near-random data bits) must
-// give exactly what decode (which may branch) gives.
+// give exactly what decode (which may branch) gives; and the models' update rule.
 #include <gtest/gtest.h>
 
+#include <iterator>
 #include <random>
 #include <vector>
 
@@ -40,6 +41,26 @@ TEST(RangeCoder, DecodeDataMatchesDecode) {
       ASSERT_EQ(branching_models[m].seen, masked_models[m].seen);
     }
     EXPECT_EQ(branching.overran(), masked.overran()) << "trial " << trial;
+  }
+}
+
+// The model's update, against its definition: after a 0, p0 += (2^15 - p0) >> shift; after a
+// 1, p0 -= p0 >> shift; the shift following the schedule 2, 3, 3, 4, 4, 4, then 5 for good.
+// Every reachable probability, every step of the schedule, both bits.
+TEST(RangeCoder, ModelUpdateFollowsItsDefinition) {
+  constexpr int kSchedule[] = {2, 3, 3, 4, 4, 4, 5, 5, 5, 5, 5, 5, 5, 5, 5};
+  for (int step = 0; step < int(std::size(kSchedule)); ++step) {
+    const int shift = kSchedule[step];
+    for (uint32_t p0 = 0; p0 <= kProbOne; ++p0) {
+      for (int bit = 0; bit < 2; ++bit) {
+        BitModel m;
+        for (int i = 0; i < step; ++i) m.update(i & 1);  // walk the schedule
+        m.p0 = uint16_t(p0);
+        m.update(bit);
+        const uint32_t expected = bit ? p0 - (p0 >> shift) : p0 + ((kProbOne - p0) >> shift);
+        ASSERT_EQ(m.p0, expected) << "step " << step << " p0 " << p0 << " bit " << bit;
+      }
+    }
   }
 }
 
