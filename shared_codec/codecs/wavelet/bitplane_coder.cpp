@@ -114,6 +114,7 @@ struct EncoderIo {
     rc->encodeRaw(uint32_t(bit), 1);
     return bit;
   }
+  int codeOrRaw(BitModel& m, bool modelled, int bit) { return modelled ? code(m, bit) : raw(bit); }
 };
 
 // Holds the decoder by value: the walk copies it into a local for each plane, where its
@@ -123,7 +124,7 @@ struct DecoderIo {
   static constexpr bool kEncodes = false;
   RangeDecoder rc;
   int code(BitModel& m, int) { return rc.decodeData(m); }
-  int raw(int) { return int(rc.decodeRaw(1)); }
+  int codeOrRaw(BitModel& m, bool modelled, int) { return rc.decodeDataOrRaw(m, modelled); }
 };
 
 // Local owner when the caller passes no workspace.

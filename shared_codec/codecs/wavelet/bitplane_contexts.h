@@ -319,8 +319,7 @@ struct PlaneWalk {
   // models for them cost up to 0.4 % more bits (docs/wavelet.md) and a slower decision.
   void refine(BitModel& first, size_t j) {
     const uint32_t k = known[j];
-    const int bit = k == 1 ? io.code(first, magnitudeBit(j)) : io.raw(magnitudeBit(j));
-    known[j] = (k << 1) | uint32_t(bit);
+    known[j] = (k << 1) | uint32_t(io.codeOrRaw(first, k == 1, magnitudeBit(j)));
   }
 
   void becomeSignificant(size_t j, int cls) {
