@@ -178,13 +178,16 @@ class BitplaneState {
   // Largest bit length per vertex and per block (raw pointers: the byte stores would make
   // the compiler reload a vector's data pointer after each one).
   void summarise(const uint8_t* bits, std::vector<uint8_t>& per_vertex, std::vector<uint8_t>& per_block) const {
-    per_vertex.resize(vertices_);
-    per_block.assign(blocks_, 0);
+    const size_t n = vertices_;  // a local: after a byte store vertices_ would be reloaded
+    per_vertex.resize(n);
+    per_block.resize(blocks_);
     uint8_t* const vertex = per_vertex.data();
     uint8_t* const block = per_block.data();
-    for (size_t v = 0; v < vertices_; ++v) {
-      vertex[v] = std::max({bits[3 * v], bits[3 * v + 1], bits[3 * v + 2]});
-      block[v / kBlockVertices] = std::max(block[v / kBlockVertices], vertex[v]);
+    for (size_t v = 0; v < n; ++v) vertex[v] = std::max({bits[3 * v], bits[3 * v + 1], bits[3 * v + 2]});
+    for (size_t b = 0; b < blocks_; ++b) {
+      uint8_t largest = 0;
+      for (size_t v = b * kBlockVertices; v < std::min(n, (b + 1) * kBlockVertices); ++v) largest = std::max(largest, vertex[v]);
+      block[b] = largest;
     }
   }
 
