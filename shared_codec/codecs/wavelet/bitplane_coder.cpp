@@ -254,7 +254,14 @@ Status decodeBitplanes(ByteReader& in, const BitplaneLayout& layout,
   for (int i = 0; i < planes; ++i) {
     const int p = top - 1 - i;
     const size_t end = i + 1 == planes ? size_t(stop) : blocks;
-    s.codePlane(io, ws.models, p, end, [](size_t) { return false; });
+    const auto never = [](size_t) { return false; };
+#if ANIMC_AVX2_PATH
+    if (cpuHasAvx2()) {
+      s.codePlaneAvx2(io, ws.models, p, end, never);
+      continue;
+    }
+#endif
+    s.codePlane(io, ws.models, p, end, never);
   }
   if (!cut && planes == int(coded) && io.rc.overran()) return corrupt("bitplanes: coded data ends early");
   ANIMC_RETURN_IF_ERROR(in.skip(available, "Bitplane_Data"));

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "codecs/wavelet/bitplane_coder.h"
+#include "core/simd_math.h"
 #include "entropy/range_coder.h"
 
 namespace animc {
@@ -117,12 +118,18 @@ class BitplaneState {
   // registers (angelyss at 8 bpv: 288 M instructions in the walk inlined, 277 M not).
   template <class Io, class Stop>
   __attribute__((noinline)) size_t codePlane(Io& io, BitplaneContexts& m, int p, size_t end, Stop stop) {
-    PlaneWalk<Io> walk{io, m, p, *this};
-    size_t b = 0;
-    for (; b < end && !stop(b); ++b) walk.codeBlock(b);
-    io = walk.io;
-    return b;
+    return walkPlane(io, m, p, end, stop);
   }
+#if ANIMC_AVX2_PATH
+  // codePlane for CPUs with AVX2 and BMI2 (the decoder's choice when cpuHasAvx2()): the
+  // walk's shifts by a variable amount (contexts, model rates) then take one instruction and
+  // no count register, 2 % off the decoding time at 8 bpv. The same decisions.
+  template <class Io, class Stop>
+  ANIMC_TARGET_AVX2 __attribute__((noinline)) size_t codePlaneAvx2(Io& io, BitplaneContexts& m, int p, size_t end,
+                                                                  Stop stop) {
+    return walkPlane(io, m, p, end, stop);
+  }
+#endif
   // The decoder's view after `planes` planes from `top`, the last one stopping before block
   // `stop`, and what it leaves for the next frame's temporal contexts.
   void finish(int top, int planes, size_t stop, double step, std::vector<double>& decoded,
@@ -143,6 +150,15 @@ class BitplaneState {
  private:
   template <class Io>
   friend struct PlaneWalk;
+
+  template <class Io, class Stop>
+  __attribute__((always_inline)) size_t walkPlane(Io& io, BitplaneContexts& m, int p, size_t end, Stop stop) {
+    PlaneWalk<Io> walk{io, m, p, *this};
+    size_t b = 0;
+    for (; b < end && !stop(b); ++b) walk.codeBlock(b);
+    io = walk.io;
+    return b;
+  }
 
   // A cut leaves the coefficients of the blocks before the stop known down to plane q, the
   // others one plane less (none received: every magnitude is below 2^top, so it reads 0).
@@ -251,7 +267,7 @@ struct PlaneWalk {
   int magnitudeBit(size_t j) const { return Io::kEncodes ? int((magnitude[j] >> p) & 1) : 0; }
   int newlySignificant(const uint8_t* bits, size_t i) const { return Io::kEncodes ? bits[i] == p + 1 : 0; }
 
-  void codeBlock(size_t b) {
+  __attribute__((always_inline)) void codeBlock(size_t b) {  // inlined in each codePlane version
     const size_t first = b * kBlockVertices, last = std::min(first + kBlockVertices, vertices);
     if (!block_significant[b]) {
       BitModel& model = m.block[p][classes[first]][temporal(previous_block_bits[b])];
