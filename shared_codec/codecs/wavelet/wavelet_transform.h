@@ -26,6 +26,7 @@ class WaveletTransform {
   void inverse(const std::vector<double>& coefficients, std::vector<double>& xyz) const;
 
   const ProgressiveMesh& hierarchy() const { return pm_; }
+  const PredictionStencils& stencils() const { return stencils_; }
   // sqrt(one-ring area where the vertex is removed (base vertices: on the base mesh) / its
   // one-ring area on the full mesh), on the parametric mesh: the paper's L2 normalisation,
   // measured in vertices rather than area because the codec is judged per vertex (KG).
@@ -45,6 +46,9 @@ class WaveletTransform {
   ProgressiveMesh pm_;
   PredictionStencils stencils_;
   std::vector<uint32_t> stencil_offset_;  // 3 * stencils_.vertex: the x of each stencil vertex
+  std::vector<uint32_t> collapse_offset_;  // 3 * the vertex of each collapse
+  std::vector<uint8_t> reads_last_;        // whether a collapse's stencil holds the last vertex
+  std::vector<uint32_t> kept_offset_;      // 3 * each vertex no collapse removes (the base)
   std::vector<double> cosines_, sines_;  // tangent masks, aligned with pm_.ring
   std::vector<double> weights_;
   std::vector<int> level_of_;
