@@ -53,6 +53,15 @@ void WaveletFrameModel::setParametric(const std::vector<double>& parametric_xyz)
     group_.push_back(classes_.back() == 0 ? 0 : 1);
     parents_.push_back(target[v] == kNoVertex ? kNoParent : position[target[v]]);
   }
+  runs_.clear();
+  for (uint32_t begin = 0, end; begin < order_.size(); begin = end) {
+    for (end = begin + 1; end < order_.size() && group_[end] == group_[begin];) ++end;
+    runs_.push_back({begin, end, group_[begin]});
+  }
+  if (!order_.empty()) {
+    quad_stops_ = {position[pm.vertex_count - 1], uint32_t(order_.size() - 1)};
+    std::sort(quad_stops_.begin(), quad_stops_.end());
+  }
   context_.reset(coefficientCount());
   const double diagonal = boxDiagonal(parametric_xyz);
   step_ = options_.step * (diagonal > 0 ? diagonal : 1.0);
@@ -109,28 +118,107 @@ Prediction WaveletFrameModel::choosePrediction(const std::vector<double>& coeffi
   return best;
 }
 
-template <class PerVertex>
-void WaveletFrameModel::forEachPrediction(const Prediction& prediction, PerVertex f) const {
-  // Groups are runs of coding positions (base vertices first): one selector per run.
-  const size_t n = order_.size();
-  for (size_t begin = 0, end; begin < n; begin = end) {
-    for (end = begin + 1; end < n && group_[end] == group_[begin];) ++end;
-    const uint8_t s = prediction.selector[group_[begin]];
-    const double damping = double(s) / kDampingSteps;
-    const double* const previous = previous_.data();
-    const double* const before = before_previous_.data();
-    const double* const intra = intra_reference_.data();
-    for (size_t i = begin; i < end; ++i) {
-      const size_t v = order_[i];
-      const double *const now = previous + 3 * v, *const then = before + 3 * v, *const reference = intra + 3 * v;
-      // s = 0: the previous frame; s in 1..8: damped extrapolation; 9: the I-frame reference.
-      if (s == kIntraSelector)
-        f(i, v, loadPair(reference), reference[2]);
-      else if (s == 0)
-        f(i, v, loadPair(now), now[2]);
-      else
-        f(i, v, loadPair(now) + splat(damping) * (loadPair(now) - loadPair(then)), now[2] + damping * (now[2] - then[2]));
-    }
+namespace {
+
+// The prediction of a run of coding positions (Prediction::selector, one per run): the
+// I-frame reference, the previous frame, or previous + damping * (previous - the one before).
+enum class Predictor { kReference, kPrevious, kExtrapolation };
+template <Predictor kPredictor>
+using PredictorTag = std::integral_constant<Predictor, kPredictor>;
+
+// The coefficients predictions read (all vertex indexed, 3 per vertex).
+struct References {
+  const double* intra;
+  const double* previous;
+  const double* before;
+  double damping;
+};
+
+// The prediction of the point at offset o (3 * vertex): x and y as a Pair, then z.
+template <Predictor kPredictor>
+inline void predictPoint(const References& r, size_t o, Pair& xy, double& z) {
+  if constexpr (kPredictor == Predictor::kReference) {
+    xy = loadPair(r.intra + o);
+    z = r.intra[o + 2];
+  } else if constexpr (kPredictor == Predictor::kPrevious) {
+    xy = loadPair(r.previous + o);
+    z = r.previous[o + 2];
+  } else {
+    const double *const now = r.previous + o, *const then = r.before + o;
+    xy = loadPair(now) + splat(r.damping) * (loadPair(now) - loadPair(then));
+    z = now[2] + r.damping * (now[2] - then[2]);
+  }
+}
+
+// What addResidual reads, in coding order: vertices, their residuals.
+struct ResidualInputs {
+  const uint32_t* order;
+  const double* weights;   // vertex indexed
+  const double* residual;  // coding order, 3 per vertex
+  References references;
+};
+
+// coefficients = prediction + residual / weight at coding positions [begin, end), x and y as
+// a Pair.
+template <Predictor kPredictor>
+void addResidualPortable(const ResidualInputs& in, size_t begin, size_t end, double* coefficients) {
+  for (size_t i = begin; i < end; ++i) {
+    const size_t o = 3 * size_t(in.order[i]);
+    const double* const r = in.residual + 3 * i;
+    const double w = in.weights[o / 3];
+    Pair xy;
+    double z;
+    predictPoint<kPredictor>(in.references, o, xy, z);
+    storePair(coefficients + o, xy + loadPair(r) / splat(w));
+    coefficients[o + 2] = z + r[2] / w;
+  }
+}
+
+#if ANIMC_AVX2_PATH
+// predictPoint with x, y and z as lanes 0-2 of a Quad (lane 3: whatever follows, unused).
+template <Predictor kPredictor>
+ANIMC_TARGET_AVX2 inline Quad predictPointQuad(const References& r, size_t o) {
+  if constexpr (kPredictor == Predictor::kReference) {
+    return loadQuad(r.intra + o);
+  } else if constexpr (kPredictor == Predictor::kPrevious) {
+    return loadQuad(r.previous + o);
+  } else {
+    const Quad now = loadQuad(r.previous + o);
+    return now + splatQuad(r.damping) * (now - loadQuad(r.before + o));
+  }
+}
+
+// addResidualPortable with x, y and z as lanes of one Quad: the same operations per
+// component. Each load reads one double past its point: the caller keeps the last coding
+// position and the last vertex's out of [begin, end).
+template <Predictor kPredictor>
+ANIMC_TARGET_AVX2 void addResidualAvx2(const ResidualInputs& in, size_t begin, size_t end, double* coefficients) {
+  const References references = in.references;  // a copy: the stores below cannot change it
+  for (size_t i = begin; i < end; ++i) {
+    const size_t o = 3 * size_t(in.order[i]);
+    const Quad c = predictPointQuad<kPredictor>(references, o) +
+                   loadQuad(in.residual + 3 * i) / splatQuad(in.weights[o / 3]);
+    storePair(coefficients + o, Pair{c[0], c[1]});  // not lane 3: the next vertex's x
+    coefficients[o + 2] = c[2];
+  }
+}
+#endif
+
+}  // namespace
+
+template <class Run>
+void WaveletFrameModel::forEachRun(const Prediction& prediction, Run run) const {
+  for (const PredictionRun& r : runs_) {
+    const uint8_t s = prediction.selector[r.group];
+    // s = 0: the previous frame; s in 1..8: damped extrapolation; 9: the I-frame reference.
+    const References references{intra_reference_.data(), previous_.data(), before_previous_.data(),
+                                double(s) / kDampingSteps};
+    if (s == kIntraSelector)
+      run(r.begin, r.end, references, PredictorTag<Predictor::kReference>());
+    else if (s == 0)
+      run(r.begin, r.end, references, PredictorTag<Predictor::kPrevious>());
+    else
+      run(r.begin, r.end, references, PredictorTag<Predictor::kExtrapolation>());
   }
 }
 
@@ -140,21 +228,38 @@ void WaveletFrameModel::residual(const std::vector<double>& coefficients, const 
   out.resize(coefficientCount());
   double* const r = out.data();
   const double* const c = coefficients.data();
-  forEachPrediction(prediction, [&](size_t i, size_t v, Pair p_xy, double p_z) {
-    storePair(r + 3 * i, splat(weights[v]) * (loadPair(c + 3 * v) - p_xy));
-    r[3 * i + 2] = weights[v] * (c[3 * v + 2] - p_z);
+  forEachRun(prediction, [&](size_t begin, size_t end, const References& references, auto predictor) {
+    for (size_t i = begin; i < end; ++i) {
+      const size_t v = order_[i];
+      Pair p_xy;
+      double p_z;
+      predictPoint<predictor()>(references, 3 * v, p_xy, p_z);
+      storePair(r + 3 * i, splat(weights[v]) * (loadPair(c + 3 * v) - p_xy));
+      r[3 * i + 2] = weights[v] * (c[3 * v + 2] - p_z);
+    }
   });
 }
 
 void WaveletFrameModel::addResidual(const std::vector<double>& decoded_residual, const Prediction& prediction,
                                     std::vector<double>& coefficients) const {
-  const double* const weights = transform_->weights().data();
   coefficients.resize(previous_.size());
   double* const c = coefficients.data();
-  const double* const r = decoded_residual.data();
-  forEachPrediction(prediction, [&](size_t i, size_t v, Pair p_xy, double p_z) {
-    storePair(c + 3 * v, p_xy + loadPair(r + 3 * i) / splat(weights[v]));
-    c[3 * v + 2] = p_z + r[3 * i + 2] / weights[v];
+  forEachRun(prediction, [&](size_t begin, size_t end, const References& references, auto predictor) {
+    const ResidualInputs in{order_.data(), transform_->weights().data(), decoded_residual.data(), references};
+#if ANIMC_AVX2_PATH
+    if (cpuHasAvx2()) {
+      // Around the two positions whose Quads would read past the end of an array.
+      size_t next = begin;
+      for (size_t stop : {quad_stops_[0], quad_stops_[1]}) {
+        if (stop < next || stop >= end) continue;
+        addResidualAvx2<predictor()>(in, next, stop, c);
+        addResidualPortable<predictor()>(in, stop, stop + 1, c);
+        next = stop + 1;
+      }
+      return addResidualAvx2<predictor()>(in, next, end, c);
+    }
+#endif
+    addResidualPortable<predictor()>(in, begin, end, c);
   });
 }
 

@@ -82,9 +82,10 @@ class WaveletFrameModel {
                              std::vector<double>& xyz);
 
  private:
-  // f(coding index, vertex, prediction of its x and y, of its z) for every vertex.
-  template <class PerVertex>
-  void forEachPrediction(const Prediction& prediction, PerVertex f) const;
+  // run(begin, end, references, predictor) for each run of coding positions that share a
+  // selector; predictor: a PredictorTag (frame_model.cpp), the selector's kind of prediction.
+  template <class Run>
+  void forEachRun(const Prediction& prediction, Run run) const;
   void addResidual(const std::vector<double>& decoded_residual, const Prediction& prediction,
                    std::vector<double>& coefficients) const;
 
@@ -97,6 +98,14 @@ class WaveletFrameModel {
   BitplaneHistory context_, next_context_;
   BitplaneWorkspacePtr workspace_ = makeBitplaneWorkspace();
   std::vector<uint8_t> group_;      // prediction group of each vertex, in coding order
+  struct PredictionRun {
+    uint32_t begin, end;
+    uint8_t group;
+  };
+  std::vector<PredictionRun> runs_;  // the runs of coding positions of one group
+  // The coding positions of the last vertex and the last coding position, ascending: the
+  // points where reading a Quad (one double past the point) would pass an array's end.
+  std::array<uint32_t, 2> quad_stops_{};
   std::vector<double> intra_reference_, previous_, before_previous_, next_, reconstruction_;
   std::vector<double> preview_;
   int history_ = 0;  // reconstructed frames since the last parametric frame (capped at 2)
