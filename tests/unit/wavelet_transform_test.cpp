@@ -48,31 +48,54 @@ INSTANTIATE_TEST_SUITE_P(Wavelet, WaveletTransformRoundTrip, ::testing::Values(f
                            return info.param ? std::string("LocalFrames") : std::string("WorldAxes");
                          });
 
-// The inverse transform as plainly as it can be written: the vertices in reverse removal
-// order, each its stencil's sum of weight * position (x, y, z alike, in stencil order) plus
-// its detail taken out of its local frame or the world axes.
+// The transform as plainly as it can be written. Collapse i's prediction from positions
+// xyz: its stencil's sum of weight * position, x, y, z alike, in stencil order.
+Eigen::Vector3d plainPrediction(const WaveletTransform& transform, size_t i, const std::vector<double>& xyz) {
+  const PredictionStencils& stencils = transform.stencils();
+  Eigen::Vector3d p(0, 0, 0);
+  for (uint32_t s = stencils.first[i]; s < stencils.first[i + 1]; ++s)
+    for (int a = 0; a < 3; ++a) p[a] += stencils.weight[s] * xyz[3 * size_t(stencils.vertex[s]) + a];
+  return p;
+}
+
+// Collapse i's frame: the world axes, or the local frame of its ring's positions in xyz.
+LocalFrame plainFrame(const WaveletTransform& transform, bool local_frames, size_t i, const std::vector<double>& xyz) {
+  if (!local_frames) return LocalFrame();
+  const ProgressiveMesh& pm = transform.hierarchy();
+  const Collapse& c = pm.collapses[i];
+  std::vector<double> cosines, sines;
+  for (uint32_t k = 0; k < c.ring_size; ++k) {
+    cosines.push_back(std::cos(2 * 3.14159265358979323846 * k / c.ring_size));
+    sines.push_back(std::sin(2 * 3.14159265358979323846 * k / c.ring_size));
+  }
+  return localFrame(xyz.data(), &pm.ring[c.ring_begin], cosines.data(), sines.data(), c.ring_size);
+}
+
+// Each removed vertex's detail: its position - its prediction, in its frame.
+std::vector<double> plainForward(const WaveletTransform& transform, bool local_frames, const std::vector<double>& xyz) {
+  const ProgressiveMesh& pm = transform.hierarchy();
+  std::vector<double> coefficients = xyz;
+  for (size_t i = 0; i < pm.collapses.size(); ++i) {
+    const size_t v = pm.collapses[i].vertex;
+    const Eigen::Vector3d d = Eigen::Vector3d(&xyz[3 * v]) - plainPrediction(transform, i, xyz);
+    const Eigen::Vector3d local = plainFrame(transform, local_frames, i, xyz).toLocal(d);
+    for (int a = 0; a < 3; ++a) coefficients[3 * v + a] = local[a];
+  }
+  return coefficients;
+}
+
+// The vertices in reverse removal order, each its prediction plus its detail taken out of its
+// frame.
 std::vector<double> plainInverse(const WaveletTransform& transform, bool local_frames,
                                  const std::vector<double>& coefficients) {
   const ProgressiveMesh& pm = transform.hierarchy();
-  const PredictionStencils& stencils = transform.stencils();
   std::vector<double> xyz = coefficients;
   for (size_t i = pm.collapses.size(); i-- > 0;) {
-    const Collapse& c = pm.collapses[i];
-    double p[3] = {0, 0, 0};
-    for (uint32_t s = stencils.first[i]; s < stencils.first[i + 1]; ++s)
-      for (int a = 0; a < 3; ++a) p[a] += stencils.weight[s] * xyz[3 * size_t(stencils.vertex[s]) + a];
-    LocalFrame f;
-    if (local_frames) {
-      std::vector<double> cosines, sines;
-      for (uint32_t k = 0; k < c.ring_size; ++k) {
-        cosines.push_back(std::cos(2 * 3.14159265358979323846 * k / c.ring_size));
-        sines.push_back(std::sin(2 * 3.14159265358979323846 * k / c.ring_size));
-      }
-      f = localFrame(xyz.data(), &pm.ring[c.ring_begin], cosines.data(), sines.data(), c.ring_size);
-    }
-    const double* d = &coefficients[3 * size_t(c.vertex)];
-    for (int a = 0; a < 3; ++a)
-      xyz[3 * size_t(c.vertex) + a] = p[a] + ((d[0] * f.normal[a] + d[1] * f.tangent[a]) + d[2] * f.bitangent[a]);
+    const size_t v = pm.collapses[i].vertex;
+    const Eigen::Vector3d p = plainPrediction(transform, i, xyz);
+    const LocalFrame f = plainFrame(transform, local_frames, i, xyz);
+    const double* d = &coefficients[3 * v];
+    for (int a = 0; a < 3; ++a) xyz[3 * v + a] = p[a] + ((d[0] * f.normal[a] + d[1] * f.tangent[a]) + d[2] * f.bitangent[a]);
   }
   return xyz;
 }
@@ -81,10 +104,10 @@ bool sameBits(const std::vector<double>& a, const std::vector<double>& b) {
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
 }
 
-// The inverse kernel this build and CPU run (AVX2 or portable) against plainInverse, bit for
-// bit: on random coefficients, and on zeros of random signs, whose sums keep or lose the sign
-// of zero depending on the order and kind of each operation.
-TEST_P(WaveletTransformRoundTrip, InverseMatchesThePlainFormulaBitForBit) {
+// The kernels this build and CPU run (AVX2 or portable) against the plain formulas, bit for
+// bit: on random values, and on zeros of random signs, whose sums keep or lose the sign of
+// zero depending on the order and kind of each operation.
+TEST_P(WaveletTransformRoundTrip, KernelsMatchThePlainFormulasBitForBit) {
   for (const MemorySequence& seq :
        {testing_support::gridSequence(18, 18, 1, 1.0, 0.0), sharedSequence("sydney_md2", 1)}) {
     SCOPED_TRACE(testing::Message() << seq.topology().vertex_count << " vertices");
@@ -94,12 +117,14 @@ TEST_P(WaveletTransformRoundTrip, InverseMatchesThePlainFormulaBitForBit) {
     EXPECT_NE(std::count(stencil_vertices.begin(), stencil_vertices.end(), seq.topology().vertex_count - 1), 0);
     std::mt19937_64 random(7);
     std::normal_distribution<double> normal;
-    std::vector<double> coefficients(3 * size_t(seq.topology().vertex_count)), xyz;
+    std::vector<double> values(3 * size_t(seq.topology().vertex_count)), out;
     for (bool zeros : {false, true}) {
       SCOPED_TRACE(zeros ? "signed zeros" : "random");
-      for (double& c : coefficients) c = zeros ? (random() & 1 ? -0.0 : 0.0) : normal(random);
-      transform.inverse(coefficients, xyz);
-      EXPECT_TRUE(sameBits(xyz, plainInverse(transform, GetParam(), coefficients)));
+      for (double& c : values) c = zeros ? (random() & 1 ? -0.0 : 0.0) : normal(random);
+      transform.inverse(values, out);
+      EXPECT_TRUE(sameBits(out, plainInverse(transform, GetParam(), values))) << "inverse";
+      transform.forward(values.data(), out);
+      EXPECT_TRUE(sameBits(out, plainForward(transform, GetParam(), values))) << "forward";
     }
   }
 }

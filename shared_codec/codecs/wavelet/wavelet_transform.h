@@ -13,6 +13,8 @@
 
 namespace animc {
 
+struct CollapseTables;  // wavelet_transform.cpp
+
 class WaveletTransform {
  public:
   // local_frames = false keeps details in world axes (docs/wavelet.md: local frames turn
@@ -37,8 +39,9 @@ class WaveletTransform {
  private:
   void computeWeights(const Topology& topology, const std::vector<double>& xyz);
   void flattenStencils();
-  // The anisotropic prediction of collapse i's vertex from the positions in xyz.
-  void predictCollapse(size_t i, const double* xyz, double p[3]) const;
+  CollapseTables tables() const;
+  // The positions (or coefficients) of the vertices no collapse removes, from -> to.
+  void copyKept(const double* from, double* to) const;
 
   LocalFrame frameOf(const Collapse& c, const double* xyz) const;
 
@@ -47,7 +50,7 @@ class WaveletTransform {
   PredictionStencils stencils_;
   std::vector<uint32_t> stencil_offset_;  // 3 * stencils_.vertex: the x of each stencil vertex
   std::vector<uint32_t> collapse_offset_;  // 3 * the vertex of each collapse
-  std::vector<uint8_t> reads_last_;        // whether a collapse's stencil holds the last vertex
+  std::vector<uint8_t> near_end_;          // whether a collapse reads the last vertex
   std::vector<uint32_t> kept_offset_;      // 3 * each vertex no collapse removes (the base)
   std::vector<double> cosines_, sines_;  // tangent masks, aligned with pm_.ring
   std::vector<double> weights_;
