@@ -62,6 +62,14 @@ ANIMC_TARGET_AVX2 inline Quad splatQuad(double x) { return Quad{x, x, x, x}; }
 // Lane-wise std::min / std::max, as minPair and maxPair.
 ANIMC_TARGET_AVX2 inline Quad minQuad(Quad a, Quad b) { return b < a ? b : a; }
 ANIMC_TARGET_AVX2 inline Quad maxQuad(Quad a, Quad b) { return a < b ? b : a; }
+// A point's x, y, z as lanes 0-2 of a Quad and back, touching those three doubles only:
+// loadQuad would read the double after the point (past the end of an array, for its last
+// point) and storeQuad would overwrite it. loadXyz leaves lane 3 at 0.
+ANIMC_TARGET_AVX2 inline Quad loadXyz(const double* p) { return Quad{p[0], p[1], p[2], 0.0}; }
+ANIMC_TARGET_AVX2 inline void storeXyz(double* p, Quad v) {
+  storePair(p, Pair{v[0], v[1]});
+  p[2] = v[2];
+}
 
 // Whether this CPU runs the AVX2 versions: found once, at load time, rather than through a
 // function-local static, whose guard is tested on every call and whose slow path (a call)

@@ -95,7 +95,8 @@ std::vector<double> plainInverse(const WaveletTransform& transform, bool local_f
     const Eigen::Vector3d p = plainPrediction(transform, i, xyz);
     const LocalFrame f = plainFrame(transform, local_frames, i, xyz);
     const double* d = &coefficients[3 * v];
-    for (int a = 0; a < 3; ++a) xyz[3 * v + a] = p[a] + ((d[0] * f.normal[a] + d[1] * f.tangent[a]) + d[2] * f.bitangent[a]);
+    for (int a = 0; a < 3; ++a)
+      xyz[3 * v + a] = p[a] + ((d[0] * f.normal[a] + d[1] * f.tangent[a]) + d[2] * f.bitangent[a]);
   }
   return xyz;
 }

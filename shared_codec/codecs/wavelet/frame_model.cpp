@@ -32,6 +32,20 @@ uint8_t classOf(int level, int level_count) {
   return uint8_t(8 + std::min(level_count - 1 - level, 7));
 }
 
+// Runs quad(from, to) over [begin, end) except at the coding positions `stops`, where
+// point(stop, stop + 1) runs instead: quad reads one double past each point.
+template <class QuadRange, class PointRange>
+void aroundStops(size_t begin, size_t end, const std::array<uint32_t, 2>& stops, QuadRange quad, PointRange point) {
+  size_t next = begin;
+  for (size_t stop : stops) {  // ascending
+    if (stop < next || stop >= end) continue;
+    quad(next, stop);
+    point(stop, stop + 1);
+    next = stop + 1;
+  }
+  quad(next, end);
+}
+
 }  // namespace
 
 WaveletFrameModel::WaveletFrameModel(const WaveletOptions& options, const Topology& topology)
@@ -80,30 +94,108 @@ bool WaveletFrameModel::canPredict(const Prediction& prediction) const {
   return true;
 }
 
+namespace {
+
+// The sums choosePrediction() weighs predictions with, per group: of w^2 d^2, w^2 d g, w^2 g^2
+// and w^2 e^2 over the group's coefficients, with d = c - previous, g = previous - before and
+// e = c - the I-frame reference.
+struct EnergySums {
+  double dd = 0, dg = 0, gg = 0, intra = 0;
+};
+
+// What they read: vertices in coding order, then vertex-indexed arrays.
+struct EnergyInputs {
+  const uint32_t* order;
+  const double* weights;
+  const double* coefficients;
+  const double* previous;
+  const double* before;  // unread without kTwo references (g = 0)
+  const double* intra;
+};
+
+// Adds coding positions [begin, end) to s, coefficient after coefficient: s.dd += w2 * d * d
+// and so on.
+template <bool kTwo>
+void addEnergiesPortable(const EnergyInputs& in, size_t begin, size_t end, EnergySums& s) {
+  EnergySums sums = s;
+  for (size_t i = begin; i < end; ++i) {
+    const size_t v = in.order[i];
+    const double w2 = in.weights[v] * in.weights[v];
+    for (size_t j = 3 * v; j < 3 * v + 3; ++j) {
+      const double d = in.coefficients[j] - in.previous[j], g = kTwo ? in.previous[j] - in.before[j] : 0.0;
+      const double e = in.coefficients[j] - in.intra[j];
+      sums.dd += w2 * d * d;
+      sums.dg += w2 * d * g;
+      sums.gg += w2 * g * g;
+      sums.intra += w2 * e * e;
+    }
+  }
+  s = sums;
+}
+
+#if ANIMC_AVX2_PATH
+// Columns 0, 1 and 2 of the 4 x 4 matrix with rows a, b, c, e: (a[j], b[j], c[j], e[j]).
+ANIMC_TARGET_AVX2 inline void transposeColumns(Quad a, Quad b, Quad c, Quad e, Quad columns[3]) {
+  const Quad ab_even = __builtin_shufflevector(a, b, 0, 4, 2, 6), ab_odd = __builtin_shufflevector(a, b, 1, 5, 3, 7);
+  const Quad ce_even = __builtin_shufflevector(c, e, 0, 4, 2, 6), ce_odd = __builtin_shufflevector(c, e, 1, 5, 3, 7);
+  columns[0] = __builtin_shufflevector(ab_even, ce_even, 0, 1, 4, 5);
+  columns[1] = __builtin_shufflevector(ab_odd, ce_odd, 0, 1, 4, 5);
+  columns[2] = __builtin_shufflevector(ab_even, ce_even, 2, 3, 6, 7);
+}
+
+// addEnergiesPortable with the four sums as the lanes of one Quad: per coefficient, lanes
+// (w2 * d, w2 * d, w2 * g, w2 * e) times (d, g, g, e) are added, the same operations in the
+// same order. A vertex's d, g and e are computed as Quads (x, y, z, and lane 3 from the next
+// point, unused), then transposed into one Quad per coefficient. The caller keeps the last
+// vertex's coding position out of [begin, end) (its Quads would read past the arrays).
+template <bool kTwo>
+ANIMC_TARGET_AVX2 void addEnergiesAvx2(const EnergyInputs& in, size_t begin, size_t end, EnergySums& s) {
+  Quad sums = {s.dd, s.dg, s.gg, s.intra};
+  for (size_t i = begin; i < end; ++i) {
+    const size_t v = in.order[i], o = 3 * v;
+    const Quad w2 = splatQuad(in.weights[v] * in.weights[v]);
+    const Quad c = loadQuad(in.coefficients + o), p = loadQuad(in.previous + o);
+    const Quad d = c - p, g = kTwo ? p - loadQuad(in.before + o) : splatQuad(0.0), e = c - loadQuad(in.intra + o);
+    Quad weighted[3], plain[3];
+    transposeColumns(w2 * d, w2 * d, w2 * g, w2 * e, weighted);
+    transposeColumns(d, g, g, e, plain);
+    for (int j = 0; j < 3; ++j) sums += weighted[j] * plain[j];
+  }
+  s = {sums[0], sums[1], sums[2], sums[3]};
+}
+#endif
+
+template <bool kTwo>
+void addEnergies(const EnergyInputs& in, size_t begin, size_t end,
+                 [[maybe_unused]] const std::array<uint32_t, 2>& stops, EnergySums& s) {
+#if ANIMC_AVX2_PATH
+  if (cpuHasAvx2())
+    return aroundStops(
+        begin, end, stops, [&](size_t from, size_t to) { addEnergiesAvx2<kTwo>(in, from, to, s); },
+        [&](size_t from, size_t to) { addEnergiesPortable<kTwo>(in, from, to, s); });
+#endif
+  addEnergiesPortable<kTwo>(in, begin, end, s);
+}
+
+}  // namespace
+
 Prediction WaveletFrameModel::choosePrediction(const std::vector<double>& coefficients, bool temporal) const {
   if (!temporal) return Prediction::intra();
   // Residual energy against previous + a * (previous - before) is quadratic in a:
   // sum (d - a g)^2 with d = c - previous, g = previous - before.
-  struct Sums { double dd = 0, dg = 0, gg = 0, intra = 0; };
-  std::array<Sums, kPredictionGroups> sums;
-  const std::vector<double>& weights = transform_->weights();
+  std::array<EnergySums, kPredictionGroups> sums;
   const bool two = history_ >= 2;
-  for (size_t i = 0; i < order_.size(); ++i) {
-    const size_t v = order_[i];
-    const double w2 = weights[v] * weights[v];
-    Sums& s = sums[group_[i]];
-    for (size_t j = 3 * v; j < 3 * v + 3; ++j) {
-      const double d = coefficients[j] - previous_[j], g = two ? previous_[j] - before_previous_[j] : 0.0;
-      const double e = coefficients[j] - intra_reference_[j];
-      s.dd += w2 * d * d;
-      s.dg += w2 * d * g;
-      s.gg += w2 * g * g;
-      s.intra += w2 * e * e;
-    }
+  const EnergyInputs in{order_.data(), transform_->weights().data(), coefficients.data(),
+                        previous_.data(), before_previous_.data(), intra_reference_.data()};
+  for (const PredictionRun& r : runs_) {
+    if (two)
+      addEnergies<true>(in, r.begin, r.end, quad_stops_, sums[r.group]);
+    else
+      addEnergies<false>(in, r.begin, r.end, quad_stops_, sums[r.group]);
   }
   Prediction best;
   for (int group = 0; group < kPredictionGroups; ++group) {
-    const Sums& s = sums[group];
+    const EnergySums& s = sums[group];
     double best_energy = s.intra;
     best.selector[group] = kIntraSelector;
     for (uint8_t k = 0; k <= (two ? kDampingSteps : 0); ++k) {
@@ -150,21 +242,36 @@ inline void predictPoint(const References& r, size_t o, Pair& xy, double& z) {
   }
 }
 
-// What addResidual reads, in coding order: vertices, their residuals.
-struct ResidualInputs {
+// What residual() and addResidual() read besides the coefficients and the residual: the
+// vertices in coding order, the weights and the references of the prediction.
+struct CodingInputs {
   const uint32_t* order;
-  const double* weights;   // vertex indexed
-  const double* residual;  // coding order, 3 per vertex
+  const double* weights;  // vertex indexed
   References references;
 };
 
-// coefficients = prediction + residual / weight at coding positions [begin, end), x and y as
-// a Pair.
+// residual = weight * (coefficients - prediction) at coding positions [begin, end) (residual
+// in coding order, coefficients vertex indexed), x and y as a Pair.
 template <Predictor kPredictor>
-void addResidualPortable(const ResidualInputs& in, size_t begin, size_t end, double* coefficients) {
+void residualPortable(const CodingInputs& in, const double* coefficients, size_t begin, size_t end, double* residual) {
   for (size_t i = begin; i < end; ++i) {
     const size_t o = 3 * size_t(in.order[i]);
-    const double* const r = in.residual + 3 * i;
+    const double w = in.weights[o / 3];
+    Pair xy;
+    double z;
+    predictPoint<kPredictor>(in.references, o, xy, z);
+    storePair(residual + 3 * i, splat(w) * (loadPair(coefficients + o) - xy));
+    residual[3 * i + 2] = w * (coefficients[o + 2] - z);
+  }
+}
+
+// Its inverse: coefficients = prediction + residual / weight.
+template <Predictor kPredictor>
+void addResidualPortable(const CodingInputs& in, const double* residual, size_t begin, size_t end,
+                         double* coefficients) {
+  for (size_t i = begin; i < end; ++i) {
+    const size_t o = 3 * size_t(in.order[i]);
+    const double* const r = residual + 3 * i;
     const double w = in.weights[o / 3];
     Pair xy;
     double z;
@@ -188,18 +295,28 @@ ANIMC_TARGET_AVX2 inline Quad predictPointQuad(const References& r, size_t o) {
   }
 }
 
-// addResidualPortable with x, y and z as lanes of one Quad: the same operations per
-// component. Each load reads one double past its point: the caller keeps the last coding
-// position and the last vertex's out of [begin, end).
+// residualPortable and addResidualPortable with x, y and z as lanes of one Quad: the same
+// operations per component. Each load reads one double past its point: the caller keeps the
+// last coding position and the last vertex's out of [begin, end).
 template <Predictor kPredictor>
-ANIMC_TARGET_AVX2 void addResidualAvx2(const ResidualInputs& in, size_t begin, size_t end, double* coefficients) {
+ANIMC_TARGET_AVX2 void residualAvx2(const CodingInputs& in, const double* coefficients, size_t begin, size_t end,
+                                    double* residual) {
   const References references = in.references;  // a copy: the stores below cannot change it
   for (size_t i = begin; i < end; ++i) {
     const size_t o = 3 * size_t(in.order[i]);
-    const Quad c = predictPointQuad<kPredictor>(references, o) +
-                   loadQuad(in.residual + 3 * i) / splatQuad(in.weights[o / 3]);
-    storePair(coefficients + o, Pair{c[0], c[1]});  // not lane 3: the next vertex's x
-    coefficients[o + 2] = c[2];
+    storeXyz(residual + 3 * i, splatQuad(in.weights[o / 3]) *
+                                         (loadQuad(coefficients + o) - predictPointQuad<kPredictor>(references, o)));
+  }
+}
+
+template <Predictor kPredictor>
+ANIMC_TARGET_AVX2 void addResidualAvx2(const CodingInputs& in, const double* residual, size_t begin, size_t end,
+                                       double* coefficients) {
+  const References references = in.references;
+  for (size_t i = begin; i < end; ++i) {
+    const size_t o = 3 * size_t(in.order[i]);
+    storeXyz(coefficients + o, predictPointQuad<kPredictor>(references, o) +
+                                         loadQuad(residual + 3 * i) / splatQuad(in.weights[o / 3]));
   }
 }
 #endif
@@ -224,19 +341,18 @@ void WaveletFrameModel::forEachRun(const Prediction& prediction, Run run) const 
 
 void WaveletFrameModel::residual(const std::vector<double>& coefficients, const Prediction& prediction,
                                  std::vector<double>& out) const {
-  const double* const weights = transform_->weights().data();
   out.resize(coefficientCount());
   double* const r = out.data();
   const double* const c = coefficients.data();
   forEachRun(prediction, [&](size_t begin, size_t end, const References& references, auto predictor) {
-    for (size_t i = begin; i < end; ++i) {
-      const size_t v = order_[i];
-      Pair p_xy;
-      double p_z;
-      predictPoint<predictor()>(references, 3 * v, p_xy, p_z);
-      storePair(r + 3 * i, splat(weights[v]) * (loadPair(c + 3 * v) - p_xy));
-      r[3 * i + 2] = weights[v] * (c[3 * v + 2] - p_z);
-    }
+    const CodingInputs in{order_.data(), transform_->weights().data(), references};
+#if ANIMC_AVX2_PATH
+    if (cpuHasAvx2())
+      return aroundStops(
+          begin, end, quad_stops_, [&](size_t from, size_t to) { residualAvx2<predictor()>(in, c, from, to, r); },
+          [&](size_t from, size_t to) { residualPortable<predictor()>(in, c, from, to, r); });
+#endif
+    residualPortable<predictor()>(in, c, begin, end, r);
   });
 }
 
@@ -244,22 +360,16 @@ void WaveletFrameModel::addResidual(const std::vector<double>& decoded_residual,
                                     std::vector<double>& coefficients) const {
   coefficients.resize(previous_.size());
   double* const c = coefficients.data();
+  const double* const r = decoded_residual.data();
   forEachRun(prediction, [&](size_t begin, size_t end, const References& references, auto predictor) {
-    const ResidualInputs in{order_.data(), transform_->weights().data(), decoded_residual.data(), references};
+    const CodingInputs in{order_.data(), transform_->weights().data(), references};
 #if ANIMC_AVX2_PATH
-    if (cpuHasAvx2()) {
-      // Around the two positions whose Quads would read past the end of an array.
-      size_t next = begin;
-      for (size_t stop : {quad_stops_[0], quad_stops_[1]}) {
-        if (stop < next || stop >= end) continue;
-        addResidualAvx2<predictor()>(in, next, stop, c);
-        addResidualPortable<predictor()>(in, stop, stop + 1, c);
-        next = stop + 1;
-      }
-      return addResidualAvx2<predictor()>(in, next, end, c);
-    }
+    if (cpuHasAvx2())
+      return aroundStops(
+          begin, end, quad_stops_, [&](size_t from, size_t to) { addResidualAvx2<predictor()>(in, r, from, to, c); },
+          [&](size_t from, size_t to) { addResidualPortable<predictor()>(in, r, from, to, c); });
 #endif
-    addResidualPortable<predictor()>(in, begin, end, c);
+    addResidualPortable<predictor()>(in, r, begin, end, c);
   });
 }
 

@@ -65,7 +65,8 @@ void forwardPortable(const CollapseTables& t, const double* xyz, double* coeffic
     const uint32_t v = t.vertex_offset[i];
     double p[3];
     predictCollapse(t, i, xyz, p);
-    const Eigen::Vector3d local = frame_of(i, xyz).toLocal(Eigen::Vector3d(xyz + v) - Eigen::Vector3d(p[0], p[1], p[2]));
+    const Eigen::Vector3d d = Eigen::Vector3d(xyz + v) - Eigen::Vector3d(p[0], p[1], p[2]);
+    const Eigen::Vector3d local = frame_of(i, xyz).toLocal(d);
     for (int a = 0; a < 3; ++a) coefficients[v + a] = local[a];
   }
 }
@@ -83,17 +84,10 @@ void inversePortable(const CollapseTables& t, const double* coefficients, double
 }
 
 #if ANIMC_AVX2_PATH
-// A point as lanes 0-2 of a Quad, from three loads (lane 3 is 0), where the one load of
-// loadQuad would read past the end of the array.
-ANIMC_TARGET_AVX2 inline Quad loadPointQuad(const double* p) { return Quad{p[0], p[1], p[2], 0.0}; }
-// A point as lanes 0-2 of a Quad (lane 3: the next double), or by loadPointQuad when kNearEnd.
+// A point as lanes 0-2 of a Quad (lane 3: the next double), or by loadXyz when kNearEnd: the
+// point may be the last one, whose next double does not exist.
 template <bool kNearEnd>
-ANIMC_TARGET_AVX2 inline Quad loadPoint(const double* p) { return kNearEnd ? loadPointQuad(p) : loadQuad(p); }
-// Lanes 0-2 of a Quad as a point (lane 3 would overwrite the next point's x).
-ANIMC_TARGET_AVX2 inline void storePointQuad(double* p, Quad v) {
-  storePair(p, Pair{v[0], v[1]});
-  p[2] = v[2];
-}
+ANIMC_TARGET_AVX2 inline Quad loadPoint(const double* p) { return kNearEnd ? loadXyz(p) : loadQuad(p); }
 
 // Term s of a stencil: weight * position.
 template <bool kNearEnd>
@@ -156,7 +150,7 @@ ANIMC_TARGET_AVX2 inline void forwardCollapseAvx2(const CollapseTables& t, size_
                                                   double* coefficients, FrameOf frame_of) {
   const uint32_t v = t.vertex_offset[i];
   const Quad d = loadPoint<kNearEnd>(xyz + v) - predictCollapseQuad<kNearEnd>(t, i, xyz);
-  storePointQuad(coefficients + v, toLocalQuad(frame_of(i, xyz), d));
+  storeXyz(coefficients + v, toLocalQuad(frame_of(i, xyz), d));
 }
 
 template <class FrameOf>
@@ -177,7 +171,7 @@ ANIMC_TARGET_AVX2 void inverseAvx2(const CollapseTables& t, const double* coeffi
   for (size_t i = t.collapse_count; i-- > 0;) {
     const uint32_t v = t.vertex_offset[i];
     const Quad p = t.near_end[i] ? predictCollapseQuad<true>(t, i, xyz) : predictCollapseQuad<false>(t, i, xyz);
-    storePointQuad(xyz + v, p + toWorldQuad(frame_of(i, xyz), coefficients + v));
+    storeXyz(xyz + v, p + toWorldQuad(frame_of(i, xyz), coefficients + v));
   }
 }
 #endif
@@ -232,8 +226,9 @@ void WaveletTransform::flattenStencils() {
     const uint32_t v = pm_.collapses[i].vertex;
     removed[v] = true;
     collapse_offset_.push_back(3 * v);
-    const auto first = stencils_.vertex.begin() + stencils_.first[i], end = stencils_.vertex.begin() + stencils_.first[i + 1];
-    near_end_.push_back(v == last || std::find(first, end, last) != end);
+    const auto begin = stencils_.vertex.begin() + stencils_.first[i];
+    const auto end = stencils_.vertex.begin() + stencils_.first[i + 1];
+    near_end_.push_back(v == last || std::find(begin, end, last) != end);
   }
   kept_offset_.clear();
   for (uint32_t v = 0; v < pm_.vertex_count; ++v)
