@@ -70,6 +70,14 @@ ANIMC_TARGET_AVX2 inline void storeXyz(double* p, Quad v) {
   storePair(p, Pair{v[0], v[1]});
   p[2] = v[2];
 }
+// Columns 0, 1 and 2 of the 4 x 4 matrix with rows a, b, c, e: (a[j], b[j], c[j], e[j]).
+ANIMC_TARGET_AVX2 inline void transposeColumns(Quad a, Quad b, Quad c, Quad e, Quad columns[3]) {
+  const Quad ab_even = __builtin_shufflevector(a, b, 0, 4, 2, 6), ab_odd = __builtin_shufflevector(a, b, 1, 5, 3, 7);
+  const Quad ce_even = __builtin_shufflevector(c, e, 0, 4, 2, 6), ce_odd = __builtin_shufflevector(c, e, 1, 5, 3, 7);
+  columns[0] = __builtin_shufflevector(ab_even, ce_even, 0, 1, 4, 5);
+  columns[1] = __builtin_shufflevector(ab_odd, ce_odd, 0, 1, 4, 5);
+  columns[2] = __builtin_shufflevector(ab_even, ce_even, 2, 3, 6, 7);
+}
 
 // Whether this CPU runs the AVX2 versions: found once, at load time, rather than through a
 // function-local static, whose guard is tested on every call and whose slow path (a call)

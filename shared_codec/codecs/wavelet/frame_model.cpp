@@ -134,15 +134,6 @@ void addEnergiesPortable(const EnergyInputs& in, size_t begin, size_t end, Energ
 }
 
 #if ANIMC_AVX2_PATH
-// Columns 0, 1 and 2 of the 4 x 4 matrix with rows a, b, c, e: (a[j], b[j], c[j], e[j]).
-ANIMC_TARGET_AVX2 inline void transposeColumns(Quad a, Quad b, Quad c, Quad e, Quad columns[3]) {
-  const Quad ab_even = __builtin_shufflevector(a, b, 0, 4, 2, 6), ab_odd = __builtin_shufflevector(a, b, 1, 5, 3, 7);
-  const Quad ce_even = __builtin_shufflevector(c, e, 0, 4, 2, 6), ce_odd = __builtin_shufflevector(c, e, 1, 5, 3, 7);
-  columns[0] = __builtin_shufflevector(ab_even, ce_even, 0, 1, 4, 5);
-  columns[1] = __builtin_shufflevector(ab_odd, ce_odd, 0, 1, 4, 5);
-  columns[2] = __builtin_shufflevector(ab_even, ce_even, 2, 3, 6, 7);
-}
-
 // addEnergiesPortable with the four sums as the lanes of one Quad: per coefficient, lanes
 // (w2 * d, w2 * d, w2 * g, w2 * e) times (d, g, g, e) are added, the same operations in the
 // same order. A vertex's d, g and e are computed as Quads (x, y, z, and lane 3 from the next

@@ -43,8 +43,6 @@ class WaveletTransform {
   // The positions (or coefficients) of the vertices no collapse removes, from -> to.
   void copyKept(const double* from, double* to) const;
 
-  LocalFrame frameOf(const Collapse& c, const double* xyz) const;
-
   bool local_frames_;
   ProgressiveMesh pm_;
   PredictionStencils stencils_;
@@ -52,6 +50,7 @@ class WaveletTransform {
   std::vector<uint32_t> collapse_offset_;  // 3 * the vertex of each collapse
   std::vector<uint8_t> near_end_;          // whether a collapse reads the last vertex
   std::vector<uint32_t> kept_offset_;      // 3 * each vertex no collapse removes (the base)
+  std::vector<uint32_t> ring_offset_;      // 3 * pm_.ring
   std::vector<double> cosines_, sines_;  // tangent masks, aligned with pm_.ring
   std::vector<double> weights_;
   std::vector<int> level_of_;
