@@ -244,7 +244,8 @@ struct CodingInputs {
 // residual = weight * (coefficients - prediction) at coding positions [begin, end) (residual
 // in coding order, coefficients vertex indexed), x and y as a Pair.
 template <Predictor kPredictor>
-void residualPortable(const CodingInputs& in, const double* coefficients, size_t begin, size_t end, double* residual) {
+void residualPortable(const CodingInputs& in, const double* coefficients, size_t begin, size_t end,
+                      double* residual) {
   for (size_t i = begin; i < end; ++i) {
     const size_t o = 3 * size_t(in.order[i]);
     const double w = in.weights[o / 3];
@@ -295,8 +296,8 @@ ANIMC_TARGET_AVX2 void residualAvx2(const CodingInputs& in, const double* coeffi
   const References references = in.references;  // a copy: the stores below cannot change it
   for (size_t i = begin; i < end; ++i) {
     const size_t o = 3 * size_t(in.order[i]);
-    storeXyz(residual + 3 * i, splatQuad(in.weights[o / 3]) *
-                                         (loadQuad(coefficients + o) - predictPointQuad<kPredictor>(references, o)));
+    const Quad difference = loadQuad(coefficients + o) - predictPointQuad<kPredictor>(references, o);
+    storeXyz(residual + 3 * i, splatQuad(in.weights[o / 3]) * difference);
   }
 }
 
@@ -306,8 +307,8 @@ ANIMC_TARGET_AVX2 void addResidualAvx2(const CodingInputs& in, const double* res
   const References references = in.references;
   for (size_t i = begin; i < end; ++i) {
     const size_t o = 3 * size_t(in.order[i]);
-    storeXyz(coefficients + o, predictPointQuad<kPredictor>(references, o) +
-                                         loadQuad(residual + 3 * i) / splatQuad(in.weights[o / 3]));
+    const Quad prediction = predictPointQuad<kPredictor>(references, o);
+    storeXyz(coefficients + o, prediction + loadQuad(residual + 3 * i) / splatQuad(in.weights[o / 3]));
   }
 }
 #endif

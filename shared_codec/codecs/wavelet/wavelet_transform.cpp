@@ -322,9 +322,9 @@ void WaveletTransform::flattenStencils() {
 }
 
 CollapseTables WaveletTransform::tables() const {
-  return {stencils_.first.data(), stencil_offset_.data(), stencils_.weight.data(), collapse_offset_.data(),
-          near_end_.data(),       pm_.collapses.size(),   pm_.collapses.data(),    pm_.ring.data(),
-          ring_offset_.data(),    cosines_.data(),        sines_.data()};
+  return {stencils_.first.data(), stencil_offset_.data(), stencils_.weight.data(),
+          collapse_offset_.data(), near_end_.data(), pm_.collapses.size(),
+          pm_.collapses.data(), pm_.ring.data(), ring_offset_.data(), cosines_.data(), sines_.data()};
 }
 
 void WaveletTransform::copyKept(const double* from, double* to) const {
