@@ -22,49 +22,66 @@ struct EdgeStencil {
 
 bool secondDifference(const std::vector<double>& xyz, uint32_t j, uint32_t k, uint32_t l1, uint32_t l2,
                       const AnisotropyParams& params, EdgeStencil& out) {
-  const Vec3 pj = at(xyz, j), pk = at(xyz, k), e = pk - pj;
+  // The four positions once, into locals: out's doubles could alias xyz, which would make
+  // the compiler load them again after every store.
+  const Vec3 pj = at(xyz, j), pk = at(xyz, k), pl[2] = {at(xyz, l1), at(xyz, l2)};
+  const Vec3 e = pk - pj;
   const double length2 = e.squaredNorm();
   if (!(length2 > 0)) return false;
   const double length = std::sqrt(length2);
-  out.vertex[0] = j;
-  out.vertex[1] = k;
-  out.coefficient[0] = out.coefficient[1] = 0;
-  const uint32_t flaps[2] = {l1, l2};
+  double c[4] = {0, 0, 0, 0};
   for (int s = 0; s < 2; ++s) {
-    const Vec3 d = at(xyz, flaps[s]) - pj;
+    const Vec3 d = pl[s] - pj;
     const double alpha = d.dot(e) / length2;
     const double height = (d - alpha * e).norm();
     if (!(height > 1e-9 * length)) return false;
-    out.vertex[2 + s] = flaps[s];
-    out.coefficient[2 + s] = length / height;
-    out.coefficient[0] -= (1 - alpha) * length / height;
-    out.coefficient[1] -= alpha * length / height;
+    c[2 + s] = length / height;
+    c[0] -= (1 - alpha) * length / height;
+    c[1] -= alpha * length / height;
   }
-  const Vec3 n1 = e.cross(at(xyz, l1) - pj), n2 = (pj - pk).cross(at(xyz, l2) - pk);
+  const Vec3 n1 = e.cross(pl[0] - pj), n2 = (pj - pk).cross(pl[1] - pk);
   const double norms = n1.norm() * n2.norm();
-  out.weight = edgeWeight(norms > 0 ? n1.dot(n2) / norms : 1.0, params);
+  out = {{j, k, l1, l2}, {c[0], c[1], c[2], c[3]}, edgeWeight(norms > 0 ? n1.dot(n2) / norms : 1.0, params)};
   return true;
 }
 
+// The terms a_{v,m} of one stencil by vertex m, in the order the vertices first appear (the
+// order the weights are stored and summed in); slot_ finds a vertex's term without a search.
+class StencilTerms {
+ public:
+  explicit StencilTerms(uint32_t vertex_count) : slot_(vertex_count, kNoSlot) {}
+
+  void add(uint32_t vertex, double a) {
+    uint32_t& slot = slot_[vertex];
+    if (slot == kNoSlot) {
+      slot = uint32_t(terms_.size());
+      terms_.emplace_back(vertex, a);
+    } else {
+      terms_[slot].second += a;
+    }
+  }
+  const std::vector<std::pair<uint32_t, double>>& terms() const { return terms_; }
+  // Empties the list for the next stencil, resetting only the slots it used.
+  void clear() {
+    for (const auto& t : terms_) slot_[t.first] = kNoSlot;
+    terms_.clear();
+  }
+
+ private:
+  static constexpr uint32_t kNoSlot = UINT32_MAX;
+  std::vector<uint32_t> slot_;
+  std::vector<std::pair<uint32_t, double>> terms_;
+};
+
 // Accumulates -w_e c_{e,v} c_{e,m} into the stencil of v (a_{v,m} of the paper) and
 // w_e c_{e,v}^2 into the normaliser A_v.
-void accumulate(const EdgeStencil& e, uint32_t v, std::vector<std::pair<uint32_t, double>>& terms,
-                double& normaliser) {
+void accumulate(const EdgeStencil& e, uint32_t v, StencilTerms& terms, double& normaliser) {
   double cv = 0;
   for (int i = 0; i < 4; ++i)
     if (e.vertex[i] == v) cv += e.coefficient[i];
   normaliser += e.weight * cv * cv;
-  for (int i = 0; i < 4; ++i) {
-    if (e.vertex[i] == v) continue;
-    const double a = -e.weight * cv * e.coefficient[i];
-    bool merged = false;
-    for (auto& t : terms)
-      if (t.first == e.vertex[i]) {
-        t.second += a;
-        merged = true;
-      }
-    if (!merged) terms.emplace_back(e.vertex[i], a);
-  }
+  for (int i = 0; i < 4; ++i)
+    if (e.vertex[i] != v) terms.add(e.vertex[i], -e.weight * cv * e.coefficient[i]);
 }
 
 // Boundary vertex v between its boundary neighbours a and b (ring.back(), ring.front()):
@@ -91,23 +108,24 @@ void appendSeamStencil(const Collapse& c, PredictionStencils& out) {
 }
 
 void appendStencil(const ProgressiveMesh& pm, const Collapse& c, const std::vector<double>& xyz,
-                   const AnisotropyParams& params, PredictionStencils& out) {
+                   const AnisotropyParams& params, StencilTerms& stencil, PredictionStencils& out) {
   if (c.kind == CollapseKind::kBoundary) return appendBoundaryStencil(pm, c, xyz, out);
   if (c.kind == CollapseKind::kSeam) return appendSeamStencil(c, out);
   const uint32_t* ring = &pm.ring[c.ring_begin];
   const uint32_t* flap = &pm.flap[c.ring_begin];
   const size_t k = c.ring_size;
-  std::vector<std::pair<uint32_t, double>> terms;
+  stencil.clear();
   double normaliser = 0;
   EdgeStencil e;
   for (size_t i = 0; i < k; ++i) {
     const uint32_t next = ring[(i + 1) % k], previous = ring[(i + k - 1) % k];
     // Spoke (v, ring[i]) between triangles (v, ring[i], next) and (v, previous, ring[i]).
-    if (secondDifference(xyz, c.vertex, ring[i], next, previous, params, e)) accumulate(e, c.vertex, terms, normaliser);
+    if (secondDifference(xyz, c.vertex, ring[i], next, previous, params, e)) accumulate(e, c.vertex, stencil, normaliser);
     // Link edge (ring[i], next) between (v, ring[i], next) and the flap triangle beyond it.
     if (flap[i] != kNoVertex && secondDifference(xyz, ring[i], next, c.vertex, flap[i], params, e))
-      accumulate(e, c.vertex, terms, normaliser);
+      accumulate(e, c.vertex, stencil, normaliser);
   }
+  const std::vector<std::pair<uint32_t, double>>& terms = stencil.terms();
   double sum = 0, l1 = 0;
   for (const auto& t : terms) {
     sum += t.second;
@@ -138,8 +156,10 @@ double edgeWeight(double normal_dot, const AnisotropyParams& params) {
 PredictionStencils buildPredictor(const ProgressiveMesh& pm, const std::vector<double>& parametric_xyz,
                                   const AnisotropyParams& params) {
   PredictionStencils out;
+  out.first.reserve(pm.collapses.size() + 1);
   out.first.push_back(0);
-  for (const Collapse& c : pm.collapses) appendStencil(pm, c, parametric_xyz, params, out);
+  StencilTerms stencil(pm.vertex_count);
+  for (const Collapse& c : pm.collapses) appendStencil(pm, c, parametric_xyz, params, stencil, out);
   return out;
 }
 
