@@ -1,6 +1,7 @@
 #include "codecs/wavelet/collapse_choice.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 
 #include <Eigen/Core>
@@ -12,82 +13,79 @@ namespace {
 using Vec3 = Eigen::Vector3d;
 
 Vec3 at(const std::vector<double>& xyz, uint32_t v) { return Vec3(xyz[3 * size_t(v)], xyz[3 * size_t(v) + 1], xyz[3 * size_t(v) + 2]); }
+const double* point(const std::vector<double>& xyz, uint32_t v) { return &xyz[3 * size_t(v)]; }
 
-// v's triangles (v, ring[i], ring[i+1]): k of them around a closed ring, k - 1 in an open
-// fan, with their normals (twice their area long) from the FanGeometry scratch.
-struct Fan {
-  const std::vector<uint32_t>& ring;
-  bool closed;
-  Vec3 pv;
-  const double* normals;
-  const double* twice_area;
+// Vector3d's dot, squaredNorm and cross on plain arrays, with Eigen's operations in Eigen's
+// order (what this file used before, so the hierarchy is the same bit for bit).
+double dot3(const double* a, const double* b) { return (a[0] * b[0] + a[1] * b[1]) + a[2] * b[2]; }
+double squaredNorm3(const double* a) { return dot3(a, a); }
+void difference3(const double* a, const double* b, double* out) {
+  for (int i = 0; i < 3; ++i) out[i] = a[i] - b[i];
+}
+void cross3(const double* a, const double* b, double* out) {
+  out[0] = a[1] * b[2] - a[2] * b[1];
+  out[1] = a[2] * b[0] - a[0] * b[2];
+  out[2] = a[0] * b[1] - a[1] * b[0];
+}
 
-  size_t triangleCount() const { return closed ? ring.size() : ring.size() - 1; }
-  // The ring position after i (the fan's triangles are (v, ring[i], ring[next(i)])).
-  size_t next(size_t i) const { return i + 1 == ring.size() ? 0 : i + 1; }
-  Eigen::Map<const Vec3> normal(size_t i) const { return Eigen::Map<const Vec3>(normals + 3 * i); }
-};
+// The first n elements of a scratch array that only grows.
+template <class T>
+T* firstOf(std::vector<T>& scratch, size_t n) {
+  if (scratch.size() < n) scratch.resize(n);
+  return scratch.data();
+}
 
 // Whether ring[i] is u = ring[at_u] or next to it along the fan (no wrap-around in an open
 // one). Positions worked out once per target: the checks ask for every ring vertex.
 struct Flanks {
   static constexpr size_t kNone = SIZE_MAX;
   size_t at, before, after;
-  Flanks(const Fan& fan, size_t at_u) : at(at_u) {
-    const size_t k = fan.ring.size();
-    after = fan.closed || at_u + 1 < k ? fan.next(at_u) : kNone;
-    before = fan.closed || at_u > 0 ? (at_u == 0 ? k - 1 : at_u - 1) : kNone;
+  Flanks(size_t ring_size, bool closed, size_t at_u) : at(at_u) {
+    after = closed || at_u + 1 < ring_size ? (at_u + 1 == ring_size ? 0 : at_u + 1) : kNone;
+    before = closed || at_u > 0 ? (at_u == 0 ? ring_size - 1 : at_u - 1) : kNone;
   }
   bool operator()(size_t i) const { return i == at || i == after || i == before; }
 };
 
-// The collapse keeps every surviving triangle of v non-degenerate, turned by less than
-// acos(min_cos), and distinct from the triangles u already has. Called once the link
+// The collapse keeps every surviving triangle (v, a, b) of v non-degenerate, turned by less
+// than acos(min_cos), and distinct from the triangles u already has. Called once the link
 // condition holds: u's triangle {u, a, b} would make a and b neighbours of u, so it can
-// exist only when both flank u.
-bool keepsTrianglesSound(const LevelMesh& mesh, const std::vector<double>& xyz, const Fan& fan,
-                         const Flanks& flanks, double min_cos) {
-  const std::vector<uint32_t>& ring = fan.ring;
+// exist only when both flank u. The offsets of a and b from u carry over from one triangle
+// to the next.
+bool keepsTrianglesSound(const LevelMesh& mesh, const std::vector<double>& xyz, const std::vector<uint32_t>& ring,
+                         const FanGeometry& fan, const Flanks& flanks, double min_cos) {
+  const size_t k = ring.size(), triangles = fan.triangles;
   const uint32_t u = ring[flanks.at];
-  const Vec3 pu = at(xyz, u);
-  for (size_t i = 0; i < fan.triangleCount(); ++i) {
-    const uint32_t a = ring[i], b = ring[fan.next(i)];
-    if (a == u || b == u) continue;  // this triangle disappears
-    if (flanks(i) && flanks(fan.next(i)) && mesh.hasTriangle(u, a, b)) return false;
-    const Vec3 pa = at(xyz, a), pb = at(xyz, b);
-    const Vec3 before = fan.normal(i);
-    const Vec3 after = (pa - pu).cross(pb - pu);
-    const double nb = fan.twice_area[i], na = after.norm();
-    const double scale = (pa - pu).squaredNorm() + (pb - pu).squaredNorm();
-    if (!(na > 1e-12 * scale) || !(nb > 0)) return false;
-    if (before.dot(after) < min_cos * nb * na) return false;
+  const double* pu = point(xyz, u);
+  double from_a[3], from_b[3];  // a - u, b - u
+  difference3(point(xyz, ring[0]), pu, from_a);
+  double a_squared = squaredNorm3(from_a);
+  for (size_t i = 0; i < triangles; ++i) {
+    const size_t next = i + 1 == k ? 0 : i + 1;
+    const uint32_t a = ring[i], b = ring[next];
+    difference3(point(xyz, b), pu, from_b);
+    const double b_squared = squaredNorm3(from_b);
+    if (a != u && b != u) {  // otherwise the triangle disappears
+      if (flanks(i) && flanks(next) && mesh.hasTriangle(u, a, b)) return false;
+      double after[3];
+      cross3(from_a, from_b, after);
+      const double nb = fan.twice_area[i], na = std::sqrt(squaredNorm3(after));
+      if (!(na > 1e-12 * (a_squared + b_squared)) || !(nb > 0)) return false;
+      if (dot3(&fan.normal[3 * i], after) < min_cos * nb * na) return false;
+    }
+    std::copy(from_b, from_b + 3, from_a);
+    a_squared = b_squared;
   }
   return true;
 }
 
 // Link condition: v and u = ring[at_u] share exactly the neighbours flanking the edge (v, u)
 // (two inside, one on a boundary edge, where the fan does not wrap around).
-bool linkConditionHolds(const LevelMesh& mesh, const Fan& fan, const Flanks& flanks) {
-  mesh.markNeighbours(fan.ring[flanks.at]);
-  for (size_t i = 0; i < fan.ring.size(); ++i)
-    if (!flanks(i) && mesh.markedNeighbour(fan.ring[i])) return false;
+bool linkConditionHolds(const LevelMesh& mesh, const std::vector<uint32_t>& ring, const Flanks& flanks) {
+  mesh.markNeighbours(ring[flanks.at]);
+  for (size_t i = 0; i < ring.size(); ++i)
+    if (mesh.markedNeighbour(ring[i]) && !flanks(i)) return false;
   return true;
-}
-
-// Memoryless quadric: squared distances of u's position to the planes of v's current
-// triangles, area weighted, plus a small length term so that flat regions still prefer
-// short edges.
-double collapseCost(const std::vector<double>& xyz, const Fan& fan, uint32_t u) {
-  const Vec3 d = at(xyz, u) - fan.pv;
-  double quadric = 0, area = 0;
-  for (size_t i = 0; i < fan.triangleCount(); ++i) {
-    const double twice_area = fan.twice_area[i];
-    if (twice_area <= 0) continue;
-    const double distance = fan.normal(i).dot(d) / twice_area;
-    quadric += 0.5 * twice_area * distance * distance;
-    area += 0.5 * twice_area;
-  }
-  return quadric + 1e-3 * area * d.squaredNorm();
 }
 
 // What the boundary curve loses when v leaves it: v's squared distance to the chord between
@@ -103,16 +101,18 @@ double boundaryCost(const std::vector<double>& xyz, uint32_t v, uint32_t a, uint
 
 }  // namespace
 
-void VertexCollapses::computeFan(const std::vector<double>& xyz, FanGeometry& scratch) const {
-  const Vec3 pv = at(xyz, vertex_);
-  const Fan shape{ring, closed_, pv, nullptr, nullptr};
-  scratch.vertex = vertex_;
-  scratch.normal.resize(3 * shape.triangleCount());
-  scratch.twice_area.resize(shape.triangleCount());
-  for (size_t i = 0; i < shape.triangleCount(); ++i) {
-    const Vec3 normal = (at(xyz, ring[i]) - pv).cross(at(xyz, ring[shape.next(i)]) - pv);
-    std::copy(normal.data(), normal.data() + 3, &scratch.normal[3 * i]);
-    scratch.twice_area[i] = normal.norm();
+void VertexCollapses::computeFan(const std::vector<double>& xyz, FanGeometry& fan) const {
+  const size_t k = ring.size(), triangles = closed_ ? k : k - 1;
+  const double* pv = point(xyz, vertex_);
+  fan.vertex = vertex_;
+  fan.triangles = triangles;
+  double* const spoke = firstOf(fan.spoke, 3 * k);
+  double* const normal = firstOf(fan.normal, 3 * triangles);
+  double* const twice_area = firstOf(fan.twice_area, triangles);
+  for (size_t i = 0; i < k; ++i) difference3(point(xyz, ring[i]), pv, spoke + 3 * i);
+  for (size_t i = 0; i < triangles; ++i) {
+    cross3(spoke + 3 * i, spoke + 3 * (i + 1 == k ? 0 : i + 1), normal + 3 * i);
+    twice_area[i] = std::sqrt(squaredNorm3(normal + 3 * i));
   }
 }
 
@@ -125,18 +125,56 @@ void VertexCollapses::prepare(const std::vector<double>& xyz, uint32_t v, bool c
   // removing it turns an inner edge into boundary.
   if (!closed && ring.size() < 3) return;
   computeFan(xyz, scratch);
-  const Vec3 pv = at(xyz, v);
-  const Fan fan{ring, closed, pv, scratch.normal.data(), scratch.twice_area.data()};
   const double curve = closed ? 0.0 : boundaryCost(xyz, v, ring.front(), ring.back());
   // Targets: all of a closed ring, the two ends of an open fan.
   const size_t count = closed ? ring.size() : 2;
-  options_.reserve(count);
+  options_.resize(count);
   for (size_t i = 0; i < count; ++i) {
     const uint32_t position = uint32_t(closed || i == 0 ? i : ring.size() - 1);
-    const uint32_t u = ring[position];
-    options_.push_back({{u, position, collapseCost(xyz, fan, u) + curve, (at(xyz, u) - pv).norm()}});
+    options_[i] = {{ring[position], position, 0.0, 0.0}, Validity::kUnknown};
   }
+  computeCosts(scratch, curve);
   sortByCost();
+}
+
+// Memoryless quadric of each option's target u: squared distances of u to the planes of v's
+// current triangles, area weighted, plus a small length term so that flat regions still
+// prefer short edges, plus `curve`; and the length of the edge (v, u). Two targets at a time,
+// one per lane: lane by lane the same IEEE operations as one target at a time.
+void VertexCollapses::computeCosts(FanGeometry& fan, double curve) {
+  Pair* const planes = firstOf(fan.planes, 5 * fan.triangles);
+  Pair* planes_end = planes;
+  double area = 0;
+  for (size_t i = 0; i < fan.triangles; ++i) {
+    const double twice_area = fan.twice_area[i];
+    if (twice_area <= 0) continue;  // no plane
+    const double* n = &fan.normal[3 * i];
+    planes_end[0] = splat(n[0]);
+    planes_end[1] = splat(n[1]);
+    planes_end[2] = splat(n[2]);
+    planes_end[3] = splat(twice_area);
+    planes_end[4] = splat(0.5 * twice_area);
+    planes_end += 5;
+    area += 0.5 * twice_area;
+  }
+  const Pair length_weight = splat(1e-3 * area);
+  for (size_t i = 0; i < options_.size(); i += 2) {
+    const size_t j = i + 1 < options_.size() ? i + 1 : i;  // an odd last option takes both lanes
+    const double* d0 = &fan.spoke[3 * options_[i].choice.ring_position];
+    const double* d1 = &fan.spoke[3 * options_[j].choice.ring_position];
+    const Pair dx = {d0[0], d1[0]}, dy = {d0[1], d1[1]}, dz = {d0[2], d1[2]};
+    Pair quadric = splat(0.0);
+    for (const Pair* plane = planes; plane != planes_end; plane += 5) {
+      const Pair distance = ((plane[0] * dx + plane[1] * dy) + plane[2] * dz) / plane[3];
+      quadric += plane[4] * distance * distance;
+    }
+    const Pair squared_length = (dx * dx + dy * dy) + dz * dz;
+    const Pair cost = (quadric + length_weight * squared_length) + splat(curve);
+    options_[i].choice.cost = cost[0];
+    options_[i].choice.length = std::sqrt(squared_length[0]);
+    options_[j].choice.cost = cost[1];
+    options_[j].choice.length = std::sqrt(squared_length[1]);
+  }
 }
 
 // Insertion sort: a few options, and a total order (positions are distinct), so the result
@@ -146,8 +184,12 @@ void VertexCollapses::sortByCost() {
     const CollapseOption &a = x.choice, &b = y.choice;
     return a.cost < b.cost || (a.cost == b.cost && a.ring_position < b.ring_position);
   };
-  for (size_t i = 1; i < options_.size(); ++i)
-    for (size_t j = i; j > 0 && before(options_[j], options_[j - 1]); --j) std::swap(options_[j], options_[j - 1]);
+  for (size_t i = 1; i < options_.size(); ++i) {
+    const Option moving = options_[i];
+    size_t j = i;
+    for (; j > 0 && before(moving, options_[j - 1]); --j) options_[j] = options_[j - 1];
+    options_[j] = moving;
+  }
 }
 
 void VertexCollapses::forgetValidity(uint32_t target) {
@@ -158,23 +200,23 @@ void VertexCollapses::forgetValidity(uint32_t target) {
     }
 }
 
+// The fan size first (the checks would walk a big fan), then the link condition, which needs
+// no normals, then the triangles.
+bool VertexCollapses::keepsMeshSound(const CollapseOption& option, const LevelMesh& mesh,
+                                     const std::vector<double>& xyz, double min_normal_cosine,
+                                     FanGeometry& scratch) const {
+  if (mesh.triangleCount(option.target) + mesh.triangleCount(vertex_) > kMaxCollapseTriangles + 2) return false;
+  const Flanks flanks(ring.size(), closed_, option.ring_position);
+  if (!linkConditionHolds(mesh, ring, flanks)) return false;
+  if (scratch.vertex != vertex_) computeFan(xyz, scratch);
+  return keepsTrianglesSound(mesh, xyz, ring, scratch, flanks, min_normal_cosine);
+}
+
 bool VertexCollapses::valid(size_t option, const LevelMesh& mesh, const std::vector<double>& xyz,
                             double min_normal_cosine, FanGeometry& scratch) {
   Option& o = options_[option];
-  if (o.validity == Validity::kUnknown &&
-      mesh.triangleCount(o.choice.target) + mesh.triangleCount(vertex_) > kMaxCollapseTriangles + 2)
-    o.validity = Validity::kInvalid;  // before the checks, which would walk the big fan
-  if (o.validity == Validity::kUnknown) {
-    const Fan shape{ring, closed_, at(xyz, vertex_), nullptr, nullptr};
-    const Flanks flanks(shape, o.choice.ring_position);
-    bool ok = linkConditionHolds(mesh, shape, flanks);
-    if (ok) {  // only the triangle checks need the fan's normals
-      if (scratch.vertex != vertex_) computeFan(xyz, scratch);
-      const Fan fan{ring, closed_, shape.pv, scratch.normal.data(), scratch.twice_area.data()};
-      ok = keepsTrianglesSound(mesh, xyz, fan, flanks, min_normal_cosine);
-    }
-    o.validity = ok ? Validity::kValid : Validity::kInvalid;
-  }
+  if (o.validity == Validity::kUnknown)
+    o.validity = keepsMeshSound(o.choice, mesh, xyz, min_normal_cosine, scratch) ? Validity::kValid : Validity::kInvalid;
   return o.validity == Validity::kValid;
 }
 

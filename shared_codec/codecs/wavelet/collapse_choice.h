@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "codecs/wavelet/level_mesh.h"
+#include "core/simd_math.h"
 
 namespace animc {
 
@@ -27,13 +28,20 @@ struct CollapseOption {
   double length = 0;
 };
 
-// Normals (twice their area long) and twice the areas of a vertex's triangles: scratch that
-// VertexCollapses fills when it needs them, shared by all vertices so that the per-vertex
-// entries of a large mesh stay small.
+// A vertex's fan: its spokes (ring vertex minus vertex), the normals (twice their area long)
+// and twice the areas of its triangles. Scratch that VertexCollapses fills when it needs it,
+// shared by all vertices so that the per-vertex entries of a large mesh stay small.
 struct FanGeometry {
   uint32_t vertex = kNoVertex;  // whose fan it holds (its ring as last prepared)
+  size_t triangles = 0;
+  // The arrays only grow (a smaller fan uses their beginning), so that refilling them neither
+  // allocates nor clears.
+  std::vector<double> spoke;    // 3 per ring vertex
   std::vector<double> normal;   // 3 per triangle
   std::vector<double> twice_area;
+  // prepare()'s: the triangles that have a plane (area not <= 0), as five Pairs each, the
+  // normal's x, y, z, twice and half the area, every value in both lanes.
+  std::vector<Pair> planes;
 };
 
 // A vertex's collapse options on the current level. Costs and lengths are computed for every
@@ -73,7 +81,10 @@ class VertexCollapses {
   // Computes the fan into scratch on first need (prepare() left it there for the first checks).
   bool valid(size_t option, const LevelMesh& mesh, const std::vector<double>& xyz, double min_normal_cosine,
              FanGeometry& scratch);
+  bool keepsMeshSound(const CollapseOption& option, const LevelMesh& mesh, const std::vector<double>& xyz,
+                      double min_normal_cosine, FanGeometry& scratch) const;
   void computeFan(const std::vector<double>& xyz, FanGeometry& scratch) const;
+  void computeCosts(FanGeometry& scratch, double curve);
   void sortByCost();
 
   uint32_t vertex_ = kNoVertex;
