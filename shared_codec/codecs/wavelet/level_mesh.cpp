@@ -6,24 +6,18 @@ namespace animc {
 
 LevelMesh::LevelMesh(const Topology& topology)
     : vertex_count_(topology.vertex_count), triangles_(topology.triangles),
-      alive_(topology.triangles.size(), 1), step_to_(topology.vertex_count, kNoVertex),
-      leaves_(topology.vertex_count), entered_(topology.vertex_count), seen_(topology.vertex_count),
+      alive_(topology.triangles.size(), 1), step_from_(topology.vertex_count), entered_(topology.vertex_count),
       neighbours_(topology.vertex_count) {
   rebuildIncidence();
 }
 
-void VertexMarks::clearAll() {
-  if (++current_ == 0) {  // wrapped: old tokens could match again
-    std::fill(token_.begin(), token_.end(), 0);
-    current_ = 1;
-  }
+void VertexMarks::restart() {
+  std::fill(token_.begin(), token_.end(), 0);
+  current_ = 1;
 }
 
 void LevelMesh::rebuildIncidence() {
-  dropDeadTriangles();
-  first_.assign(vertex_count_ + 1, 0);
-  for (const Triangle& tri : triangles_)
-    for (uint32_t v : tri) ++first_[v + 1];
+  dropDeadTrianglesAndCount();
   for (uint32_t v = 0; v < vertex_count_; ++v) first_[v + 1] += first_[v];
   incident_.resize(first_.back() + 1);  // +1 keeps &incident_[first_[v]] valid when empty
   fill_.assign(first_.begin(), first_.end() - 1);
@@ -32,91 +26,113 @@ void LevelMesh::rebuildIncidence() {
 }
 
 // Dead triangles never come back: dropping them (in order, so every vertex still lists its
-// triangles in the same order) keeps each level's rebuild proportional to what is left.
-void LevelMesh::dropDeadTriangles() {
+// triangles in the same order) keeps each level's rebuild proportional to what is left. The
+// same pass counts each vertex's triangles into first_[v + 1].
+void LevelMesh::dropDeadTrianglesAndCount() {
+  first_.assign(vertex_count_ + 1, 0);
   size_t kept = 0;
-  for (size_t t = 0; t < triangles_.size(); ++t)
-    if (alive_[t]) triangles_[kept++] = triangles_[t];
+  for (size_t t = 0; t < triangles_.size(); ++t) {
+    if (!alive_[t]) continue;
+    const Triangle tri = triangles_[t];
+    triangles_[kept++] = tri;
+    for (uint32_t v : tri) ++first_[v + 1];
+  }
   triangles_.resize(kept);
   alive_.assign(kept, 1);
 }
 
-bool LevelMesh::fanSteps(uint32_t v) const {
-  steps_.clear();
-  leaves_.clearAll();
-  for (const uint32_t* t = trianglesBegin(v); t != trianglesEnd(v); ++t) {
-    const Triangle& tri = triangles_[*t];
-    const int at = tri[0] == v ? 0 : (tri[1] == v ? 1 : 2);
-    const uint32_t a = tri[(at + 1) % 3], b = tri[(at + 2) % 3];
-    if (a == v || b == v || a == b) return false;
-    steps_.emplace_back(a, b);
-    step_to_[a] = leaves_.marked(a) ? kNoVertex : b;
-    leaves_.mark(a);
+// Each query takes two tokens (leaving, passed); when they run out, all marks restart.
+void LevelMesh::nextStepToken() const {
+  if (step_token_ >= UINT32_MAX - 2) {
+    std::fill(step_from_.begin(), step_from_.end(), StepMark());
+    step_token_ = 0;
   }
+  step_token_ += 2;
+}
+
+bool LevelMesh::fanSteps(uint32_t v) const {
+  nextStepToken();
+  const size_t triangles = triangleCount(v);
+  if (steps_.size() < triangles) steps_.resize(triangles);
+  // Locals, not members, in the loop: its stores could alias them for the compiler.
+  const uint32_t token = step_token_;
+  std::pair<uint32_t, uint32_t>* const steps = steps_.data();
+  StepMark* const from_vertex = step_from_.data();
+  size_t count = 0;
+  for (const uint32_t *t = trianglesBegin(v), *end = trianglesEnd(v); t != end; ++t) {
+    const Triangle& tri = triangles_[*t];
+    uint32_t a, b;  // the corners after v, in the triangle's orientation
+    if (tri[0] == v) {
+      a = tri[1], b = tri[2];
+    } else if (tri[1] == v) {
+      a = tri[2], b = tri[0];
+    } else {
+      a = tri[0], b = tri[1];
+    }
+    if (a == v || b == v || a == b) return false;
+    steps[count++] = {a, b};
+    StepMark& from = from_vertex[a];
+    from.to = from.token == token ? kNoVertex : b;
+    from.token = token;
+  }
+  step_count_ = count;
   return true;
 }
 
 // Follows the steps from `start` through all of them; false when some vertex has two ways
-// out (non-manifold or inconsistent orientation) or none before the steps are used up.
-// ring receives the vertices visited, start first, then the vertex reached last.
+// out (non-manifold or inconsistent orientation) or none before the steps are used up, or
+// is passed twice. ring receives the vertices passed, start first, then the vertex reached
+// last, which the caller checks.
 bool LevelMesh::walkSteps(uint32_t start, std::vector<uint32_t>& ring) const {
-  const size_t count = steps_.size();
+  const size_t count = step_count_;
   ring.resize(count + 1);
+  const uint32_t token = step_token_, passed = token + 1;
+  StepMark* const from_vertex = step_from_.data();
+  uint32_t* const out = ring.data();
   uint32_t current = start;
   for (size_t i = 0; i < count; ++i) {
-    if (!leaves_.marked(current)) return false;  // a boundary or a flipped neighbour
-    if (step_to_[current] == kNoVertex) return false;  // two triangles leave the same spoke
-    ring[i] = current;
-    current = step_to_[current];
+    StepMark& from = from_vertex[current];
+    if (from.token != token || from.to == kNoVertex) return false;  // a boundary, a flipped or
+    from.token = passed;                                            // non-manifold neighbour
+    out[i] = current;
+    current = from.to;
   }
-  ring[count] = current;
-  return true;
-}
-
-bool LevelMesh::allDistinct(const std::vector<uint32_t>& vertices) const {
-  seen_.clearAll();
-  for (uint32_t w : vertices) {
-    if (seen_.marked(w)) return false;
-    seen_.mark(w);
-  }
+  out[count] = current;
   return true;
 }
 
 bool LevelMesh::orderedRing(uint32_t v, std::vector<uint32_t>& ring) const {
   // A closed fan is one cycle through all the steps.
-  if (!fanSteps(v) || steps_.size() < 3) return false;
+  if (!fanSteps(v) || step_count_ < 3) return false;
   if (!walkSteps(steps_[0].first, ring) || ring.back() != ring.front()) return false;
   ring.pop_back();
-  return allDistinct(ring);
+  return true;
 }
 
 bool LevelMesh::openFan(uint32_t v, std::vector<uint32_t>& ring) const {
   // An open fan is one chain through all the steps, from the one spoke no step enters.
-  if (!fanSteps(v) || steps_.empty()) return false;
+  if (!fanSteps(v) || step_count_ == 0) return false;
   entered_.clearAll();
-  for (const auto& s : steps_) entered_.mark(s.second);
+  for (size_t i = 0; i < step_count_; ++i) entered_.mark(steps_[i].second);
   uint32_t start = kNoVertex;
-  for (const auto& s : steps_) {
-    if (entered_.marked(s.first)) continue;
+  for (size_t i = 0; i < step_count_; ++i) {
+    if (entered_.marked(steps_[i].first)) continue;
     if (start != kNoVertex) return false;  // several fans meet at v
-    start = s.first;
+    start = steps_[i].first;
   }
   if (start == kNoVertex || !walkSteps(start, ring)) return false;
-  return allDistinct(ring);
+  return step_from_[ring.back()].token != step_token_ + 1;  // the chain's end was not passed
 }
 
 uint32_t LevelMesh::flapAcross(uint32_t a, uint32_t b, uint32_t v) const {
   uint32_t found = kNoVertex;
-  for (const uint32_t* t = trianglesBegin(a); t != trianglesEnd(a); ++t) {
+  for (const uint32_t *t = trianglesBegin(a), *end = trianglesEnd(a); t != end; ++t) {
     const Triangle& tri = triangles_[*t];
-    bool has_b = false, has_v = false;
-    uint32_t other = kNoVertex;
-    for (uint32_t w : tri) {
-      if (w == b) has_b = true;
-      else if (w == v) has_v = true;
-      else if (w != a) other = w;
-    }
-    if (!has_b || has_v) continue;
+    if (tri[0] != b && tri[1] != b && tri[2] != b) continue;               // not on the edge
+    if (v != b && (tri[0] == v || tri[1] == v || tri[2] == v)) continue;  // v's side
+    uint32_t other = kNoVertex;  // the last corner that is neither a nor b
+    for (uint32_t w : tri)
+      if (w != a && w != b) other = w;
     if (found != kNoVertex || other == kNoVertex) return kNoVertex;
     found = other;
   }
@@ -143,8 +159,7 @@ bool LevelMesh::adjacent(uint32_t u, uint32_t w) const {
 
 void LevelMesh::markNeighbours(uint32_t u) const {
   neighbours_.clearAll();
-  for (const uint32_t* t = trianglesBegin(u); t != trianglesEnd(u); ++t)
-    for (uint32_t w : triangles_[*t]) neighbours_.mark(w);
+  for (const uint32_t *t = trianglesBegin(u), *end = trianglesEnd(u); t != end; ++t) neighbours_.mark(triangles_[*t]);
 }
 
 void LevelMesh::collapse(uint32_t v, uint32_t u) {

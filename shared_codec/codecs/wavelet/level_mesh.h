@@ -19,11 +19,19 @@ constexpr uint32_t kNoVertex = UINT32_MAX;
 class VertexMarks {
  public:
   explicit VertexMarks(uint32_t vertex_count) : token_(vertex_count, 0) {}
-  void clearAll();
+  void clearAll() {
+    if (++current_ == 0) restart();  // wrapped: old tokens could match again
+  }
   void mark(uint32_t v) { token_[v] = current_; }
+  void mark(const Triangle& t) {
+    const uint32_t current = current_;  // loaded once: the stores could alias it
+    for (uint32_t v : t) token_[v] = current;
+  }
   bool marked(uint32_t v) const { return token_[v] == current_; }
 
  private:
+  void restart();
+
   std::vector<uint32_t> token_;
   uint32_t current_ = 1;
 };
@@ -65,12 +73,20 @@ class LevelMesh {
   std::vector<Triangle> liveTriangles() const;
 
  private:
-  // Each triangle (v, a, b) of v as the step a -> b around v, into steps_ and indexed by a
-  // (step_to_, leaves_); false on a degenerate triangle.
+  // Where the current fan query's steps leave a vertex: `to` while `token` is the query's
+  // step_token_ (kNoVertex when several steps leave it); a walk that passes the vertex sets
+  // `token` to step_token_ + 1, so that a second visit fails.
+  struct StepMark {
+    uint32_t token = 0;
+    uint32_t to = kNoVertex;
+  };
+
+  // Each triangle (v, a, b) of v as the step a -> b around v, into steps_[0, step_count_) and
+  // step_from_[a]; false on a degenerate triangle.
   bool fanSteps(uint32_t v) const;
   bool walkSteps(uint32_t start, std::vector<uint32_t>& ring) const;
-  bool allDistinct(const std::vector<uint32_t>& vertices) const;
-  void dropDeadTriangles();
+  void nextStepToken() const;
+  void dropDeadTrianglesAndCount();
 
   uint32_t vertex_count_;
   std::vector<Triangle> triangles_;
@@ -79,12 +95,12 @@ class LevelMesh {
   std::vector<uint32_t> incident_;
   std::vector<uint32_t> fill_;  // rebuildIncidence's scratch
   // Scratch of the queries, reused so that they do not allocate (one thread per mesh).
-  mutable std::vector<std::pair<uint32_t, uint32_t>> steps_;
-  mutable std::vector<uint32_t> step_to_;  // per vertex left by a step: where to, kNoVertex if several
-  mutable VertexMarks leaves_;             // a step leaves the vertex
-  mutable VertexMarks entered_;            // a step enters it (openFan)
-  mutable VertexMarks seen_;               // allDistinct
-  mutable VertexMarks neighbours_;         // markNeighbours
+  mutable std::vector<std::pair<uint32_t, uint32_t>> steps_;  // grows only; step_count_ are used
+  mutable size_t step_count_ = 0;
+  mutable std::vector<StepMark> step_from_;  // per vertex
+  mutable uint32_t step_token_ = 0;
+  mutable VertexMarks entered_;     // a step enters the vertex (openFan)
+  mutable VertexMarks neighbours_;  // markNeighbours
 };
 
 }  // namespace animc
