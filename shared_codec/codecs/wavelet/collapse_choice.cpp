@@ -15,25 +15,25 @@ using Vec3 = Eigen::Vector3d;
 Vec3 at(const std::vector<double>& xyz, uint32_t v) { return Vec3(xyz[3 * size_t(v)], xyz[3 * size_t(v) + 1], xyz[3 * size_t(v) + 2]); }
 const double* point(const std::vector<double>& xyz, uint32_t v) { return &xyz[3 * size_t(v)]; }
 
-// Vector3d's dot, squaredNorm and cross on plain arrays, with Eigen's operations in Eigen's
-// order (what this file used before, so the hierarchy is the same bit for bit).
-double dot3(const double* a, const double* b) { return (a[0] * b[0] + a[1] * b[1]) + a[2] * b[2]; }
-double squaredNorm3(const double* a) { return dot3(a, a); }
-void difference3(const double* a, const double* b, double* out) {
-  for (int i = 0; i < 3; ++i) out[i] = a[i] - b[i];
-}
-void cross3(const double* a, const double* b, double* out) {
-  out[0] = a[1] * b[2] - a[2] * b[1];
-  out[1] = a[2] * b[0] - a[0] * b[2];
-  out[2] = a[0] * b[1] - a[1] * b[0];
-}
-
 // The first n elements of a scratch array that only grows.
 template <class T>
 T* firstOf(std::vector<T>& scratch, size_t n) {
   if (scratch.size() < n) scratch.resize(n);
   return scratch.data();
 }
+
+// Lane by lane the correctly rounded square root, as std::sqrt, without its errno test.
+Pair sqrtPair(Pair x) {
+#if defined(__SSE2__)
+  return __builtin_ia32_sqrtpd(x);
+#else
+  return Pair{std::sqrt(x[0]), std::sqrt(x[1])};
+#endif
+}
+
+// The arithmetic below is Eigen's Vector3d dot, squaredNorm and cross (what this file used
+// before: the hierarchy is the same bit for bit), written out by axis, on two vectors per
+// Pair: dot (x0 y0 + x1 y1) + x2 y2, cross (a1 b2 - a2 b1, a2 b0 - a0 b2, a0 b1 - a1 b0).
 
 // Whether ring[i] is u = ring[at_u] or next to it along the fan (no wrap-around in an open
 // one). Positions worked out once per target: the checks ask for every ring vertex.
@@ -50,31 +50,31 @@ struct Flanks {
 // The collapse keeps every surviving triangle (v, a, b) of v non-degenerate, turned by less
 // than acos(min_cos), and distinct from the triangles u already has. Called once the link
 // condition holds: u's triangle {u, a, b} would make a and b neighbours of u, so it can
-// exist only when both flank u. The offsets of a and b from u carry over from one triangle
-// to the next.
-bool keepsTrianglesSound(const LevelMesh& mesh, const std::vector<double>& xyz, const std::vector<uint32_t>& ring,
-                         const FanGeometry& fan, const Flanks& flanks, double min_cos) {
-  const size_t k = ring.size(), triangles = fan.triangles;
+// exist only when both flank u, that is in a ring of three. Two triangles at a time, one per
+// lane.
+bool keepsTrianglesSound(const LevelMesh& mesh, const std::vector<uint32_t>& ring, FanGeometry& fan,
+                         const Flanks& flanks, double min_cos) {
   const uint32_t u = ring[flanks.at];
-  const double* pu = point(xyz, u);
-  double from_a[3], from_b[3];  // a - u, b - u
-  difference3(point(xyz, ring[0]), pu, from_a);
-  double a_squared = squaredNorm3(from_a);
-  for (size_t i = 0; i < triangles; ++i) {
-    const size_t next = i + 1 == k ? 0 : i + 1;
-    const uint32_t a = ring[i], b = ring[next];
-    difference3(point(xyz, b), pu, from_b);
-    const double b_squared = squaredNorm3(from_b);
-    if (a != u && b != u) {  // otherwise the triangle disappears
-      if (flanks(i) && flanks(next) && mesh.hasTriangle(u, a, b)) return false;
-      double after[3];
-      cross3(from_a, from_b, after);
-      const double nb = fan.twice_area[i], na = std::sqrt(squaredNorm3(after));
-      if (!(na > 1e-12 * (a_squared + b_squared)) || !(nb > 0)) return false;
-      if (dot3(&fan.normal[3 * i], after) < min_cos * nb * na) return false;
+  const size_t after = flanks.after, before = flanks.before, triangles = fan.triangles;
+  if (after != Flanks::kNone && after < triangles && (after + 1 == ring.size() ? 0 : after + 1) == before &&
+      mesh.hasTriangle(u, ring[after], ring[before]))
+    return false;
+  const double *px = fan.position(0), *py = fan.position(1), *pz = fan.position(2);
+  const Pair ux = splat(px[flanks.at]), uy = splat(py[flanks.at]), uz = splat(pz[flanks.at]);
+  for (size_t i = 0; i < triangles; i += 2) {
+    // a - u and b - u, the triangles' corners after the collapse
+    const Pair ax = loadPair(px + i) - ux, ay = loadPair(py + i) - uy, az = loadPair(pz + i) - uz;
+    const Pair bx = loadPair(px + i + 1) - ux, by = loadPair(py + i + 1) - uy, bz = loadPair(pz + i + 1) - uz;
+    const Pair scale = ((ax * ax + ay * ay) + az * az) + ((bx * bx + by * by) + bz * bz);
+    const Pair cx = ay * bz - az * by, cy = az * bx - ax * bz, cz = ax * by - ay * bx;
+    const Pair na = sqrtPair((cx * cx + cy * cy) + cz * cz), nb = loadPair(fan.twiceArea() + i);
+    const Pair turn = (loadPair(fan.normal(0) + i) * cx + loadPair(fan.normal(1) + i) * cy) +
+                      loadPair(fan.normal(2) + i) * cz;
+    const auto unsound = ~(na > splat(1e-12) * scale) | ~(nb > splat(0.0)) | (turn < splat(min_cos) * nb * na);
+    for (size_t lane = 0; lane < 2; ++lane) {
+      const size_t t = i + lane;  // disappears when it has u as a corner
+      if (unsound[lane] && t < triangles && t != flanks.at && t != before) return false;
     }
-    std::copy(from_b, from_b + 3, from_a);
-    a_squared = b_squared;
   }
   return true;
 }
@@ -101,18 +101,41 @@ double boundaryCost(const std::vector<double>& xyz, uint32_t v, uint32_t a, uint
 
 }  // namespace
 
+void FanGeometry::reserve(size_t k) {
+  if (k + 2 <= stride_) return;
+  stride_ = std::max(k + 2, 2 * stride_);
+  arrays_.resize(10 * stride_);
+}
+
 void VertexCollapses::computeFan(const std::vector<double>& xyz, FanGeometry& fan) const {
   const size_t k = ring.size(), triangles = closed_ ? k : k - 1;
   const double* pv = point(xyz, vertex_);
   fan.vertex = vertex_;
   fan.triangles = triangles;
-  double* const spoke = firstOf(fan.spoke, 3 * k);
-  double* const normal = firstOf(fan.normal, 3 * triangles);
-  double* const twice_area = firstOf(fan.twice_area, triangles);
-  for (size_t i = 0; i < k; ++i) difference3(point(xyz, ring[i]), pv, spoke + 3 * i);
-  for (size_t i = 0; i < triangles; ++i) {
-    cross3(spoke + 3 * i, spoke + 3 * (i + 1 == k ? 0 : i + 1), normal + 3 * i);
-    twice_area[i] = std::sqrt(squaredNorm3(normal + 3 * i));
+  fan.reserve(k);
+  double* const position[3] = {fan.position(0), fan.position(1), fan.position(2)};
+  double* const spoke[3] = {fan.spoke(0), fan.spoke(1), fan.spoke(2)};
+  double* const normal[3] = {fan.normal(0), fan.normal(1), fan.normal(2)};
+  double* const twice_area = fan.twiceArea();
+  for (size_t i = 0; i < k; ++i) {
+    const double* p = point(xyz, ring[i]);
+    for (int a = 0; a < 3; ++a) {
+      position[a][i] = p[a];
+      spoke[a][i] = p[a] - pv[a];
+    }
+  }
+  for (int a = 0; a < 3; ++a) {  // ring[0] again at k
+    position[a][k] = position[a][0];
+    spoke[a][k] = spoke[a][0];
+  }
+  for (size_t i = 0; i < triangles; i += 2) {
+    const Pair ax = loadPair(spoke[0] + i), ay = loadPair(spoke[1] + i), az = loadPair(spoke[2] + i);
+    const Pair bx = loadPair(spoke[0] + i + 1), by = loadPair(spoke[1] + i + 1), bz = loadPair(spoke[2] + i + 1);
+    const Pair nx = ay * bz - az * by, ny = az * bx - ax * bz, nz = ax * by - ay * bx;
+    storePair(normal[0] + i, nx);
+    storePair(normal[1] + i, ny);
+    storePair(normal[2] + i, nz);
+    storePair(twice_area + i, sqrtPair((nx * nx + ny * ny) + nz * nz));
   }
 }
 
@@ -144,25 +167,25 @@ void VertexCollapses::prepare(const std::vector<double>& xyz, uint32_t v, bool c
 void VertexCollapses::computeCosts(FanGeometry& fan, double curve) {
   Pair* const planes = firstOf(fan.planes, 5 * fan.triangles);
   Pair* planes_end = planes;
+  const double *nx = fan.normal(0), *ny = fan.normal(1), *nz = fan.normal(2);
   double area = 0;
   for (size_t i = 0; i < fan.triangles; ++i) {
-    const double twice_area = fan.twice_area[i];
+    const double twice_area = fan.twiceArea()[i];
     if (twice_area <= 0) continue;  // no plane
-    const double* n = &fan.normal[3 * i];
-    planes_end[0] = splat(n[0]);
-    planes_end[1] = splat(n[1]);
-    planes_end[2] = splat(n[2]);
+    planes_end[0] = splat(nx[i]);
+    planes_end[1] = splat(ny[i]);
+    planes_end[2] = splat(nz[i]);
     planes_end[3] = splat(twice_area);
     planes_end[4] = splat(0.5 * twice_area);
     planes_end += 5;
     area += 0.5 * twice_area;
   }
   const Pair length_weight = splat(1e-3 * area);
+  const double *sx = fan.spoke(0), *sy = fan.spoke(1), *sz = fan.spoke(2);
   for (size_t i = 0; i < options_.size(); i += 2) {
-    const size_t j = i + 1 < options_.size() ? i + 1 : i;  // an odd last option takes both lanes
-    const double* d0 = &fan.spoke[3 * options_[i].choice.ring_position];
-    const double* d1 = &fan.spoke[3 * options_[j].choice.ring_position];
-    const Pair dx = {d0[0], d1[0]}, dy = {d0[1], d1[1]}, dz = {d0[2], d1[2]};
+    const bool pair = i + 1 < options_.size();  // else lane 1 repeats lane 0
+    const uint32_t p0 = options_[i].choice.ring_position, p1 = options_[pair ? i + 1 : i].choice.ring_position;
+    const Pair dx = {sx[p0], sx[p1]}, dy = {sy[p0], sy[p1]}, dz = {sz[p0], sz[p1]};
     Pair quadric = splat(0.0);
     for (const Pair* plane = planes; plane != planes_end; plane += 5) {
       const Pair distance = ((plane[0] * dx + plane[1] * dy) + plane[2] * dz) / plane[3];
@@ -170,10 +193,11 @@ void VertexCollapses::computeCosts(FanGeometry& fan, double curve) {
     }
     const Pair squared_length = (dx * dx + dy * dy) + dz * dz;
     const Pair cost = (quadric + length_weight * squared_length) + splat(curve);
-    options_[i].choice.cost = cost[0];
-    options_[i].choice.length = std::sqrt(squared_length[0]);
-    options_[j].choice.cost = cost[1];
-    options_[j].choice.length = std::sqrt(squared_length[1]);
+    const Pair length = sqrtPair(squared_length);
+    for (size_t lane = 0; lane < (pair ? 2 : 1); ++lane) {
+      options_[i + lane].choice.cost = cost[lane];
+      options_[i + lane].choice.length = length[lane];
+    }
   }
 }
 
@@ -209,7 +233,7 @@ bool VertexCollapses::keepsMeshSound(const CollapseOption& option, const LevelMe
   const Flanks flanks(ring.size(), closed_, option.ring_position);
   if (!linkConditionHolds(mesh, ring, flanks)) return false;
   if (scratch.vertex != vertex_) computeFan(xyz, scratch);
-  return keepsTrianglesSound(mesh, xyz, ring, scratch, flanks, min_normal_cosine);
+  return keepsTrianglesSound(mesh, ring, scratch, flanks, min_normal_cosine);
 }
 
 bool VertexCollapses::valid(size_t option, const LevelMesh& mesh, const std::vector<double>& xyz,

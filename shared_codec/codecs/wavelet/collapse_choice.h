@@ -28,20 +28,34 @@ struct CollapseOption {
   double length = 0;
 };
 
-// A vertex's fan: its spokes (ring vertex minus vertex), the normals (twice their area long)
-// and twice the areas of its triangles. Scratch that VertexCollapses fills when it needs it,
-// shared by all vertices so that the per-vertex entries of a large mesh stay small.
+// A vertex's fan: its ring vertices' positions and spokes (ring vertex minus vertex), the
+// normals (twice their area long) and twice the areas of its triangles (v, ring[i],
+// ring[i+1]). Scratch that VertexCollapses fills when it needs it, shared by all vertices so
+// that the per-vertex entries of a large mesh stay small.
 struct FanGeometry {
   uint32_t vertex = kNoVertex;  // whose fan it holds (its ring as last prepared)
   size_t triangles = 0;
-  // The arrays only grow (a smaller fan uses their beginning), so that refilling them neither
+
+  // By axis (structure of arrays), so that ring vertices i and i + 1, or triangles i and
+  // i + 1, load as one Pair. The ring arrays repeat the first vertex after the last (where a
+  // closed fan's last triangle ends) and, like the triangle arrays, have one slot more, which
+  // the lane beyond the last triangle reads and writes (its results are not used).
+  double* position(int axis) { return array(axis); }  // of the ring vertices
+  double* spoke(int axis) { return array(3 + axis); }  // ring vertex minus vertex
+  double* normal(int axis) { return array(6 + axis); }
+  double* twiceArea() { return array(9); }
+  // Room for a ring of k vertices; the arrays only grow, so that refilling them neither
   // allocates nor clears.
-  std::vector<double> spoke;    // 3 per ring vertex
-  std::vector<double> normal;   // 3 per triangle
-  std::vector<double> twice_area;
+  void reserve(size_t k);
+
   // prepare()'s: the triangles that have a plane (area not <= 0), as five Pairs each, the
   // normal's x, y, z, twice and half the area, every value in both lanes.
   std::vector<Pair> planes;
+
+ private:
+  double* array(int i) { return arrays_.data() + i * stride_; }
+  size_t stride_ = 0;
+  std::vector<double> arrays_;  // 10 arrays of stride_ doubles
 };
 
 // A vertex's collapse options on the current level. Costs and lengths are computed for every
