@@ -216,49 +216,36 @@ void VertexCollapses::sortByCost() {
   }
 }
 
-void VertexCollapses::forgetValidity(uint32_t target) {
-  for (size_t i = 0; i < options_.size(); ++i)
-    if (options_[i].choice.target == target) {
-      options_[i].validity = Validity::kUnknown;
-      return;  // targets are distinct ring vertices
-    }
-}
-
 // The fan size first (the checks would walk a big fan), then the link condition, which needs
 // no normals, then the triangles.
-bool VertexCollapses::keepsMeshSound(const CollapseOption& option, const LevelMesh& mesh,
-                                     const std::vector<double>& xyz, double min_normal_cosine,
-                                     FanGeometry& scratch) const {
+bool VertexCollapses::keepsMeshSound(const CollapseOption& option, const CollapseChecks& checks) const {
+  const LevelMesh& mesh = checks.mesh;
   if (mesh.triangleCount(option.target) + mesh.triangleCount(vertex_) > kMaxCollapseTriangles + 2) return false;
   const Flanks flanks(ring.size(), closed_, option.ring_position);
   if (!linkConditionHolds(mesh, ring, flanks)) return false;
-  if (scratch.vertex != vertex_) computeFan(xyz, scratch);
-  return keepsTrianglesSound(mesh, ring, scratch, flanks, min_normal_cosine);
+  if (checks.fan.vertex != vertex_) computeFan(checks.xyz, checks.fan);
+  return keepsTrianglesSound(mesh, ring, checks.fan, flanks, checks.min_normal_cosine);
 }
 
-bool VertexCollapses::valid(size_t option, const LevelMesh& mesh, const std::vector<double>& xyz,
-                            double min_normal_cosine, FanGeometry& scratch) {
-  Option& o = options_[option];
-  if (o.validity == Validity::kUnknown)
-    o.validity = keepsMeshSound(o.choice, mesh, xyz, min_normal_cosine, scratch) ? Validity::kValid : Validity::kInvalid;
+bool VertexCollapses::valid(Option& o, const CollapseChecks& checks) {
+  if (o.validity == Validity::kUnknown || checks.changed_by[o.choice.target] > o.checked_after) {
+    o.validity = keepsMeshSound(o.choice, checks) ? Validity::kValid : Validity::kInvalid;
+    o.checked_after = checks.batches;
+  }
   return o.validity == Validity::kValid;
 }
 
 // The options are in (cost, ring position) order: the first valid one within the bound is the
 // answer, and the options after it need no validity.
-const CollapseOption* VertexCollapses::cheapestWithin(const LevelMesh& mesh, const std::vector<double>& xyz,
-                                                      double max_length, double min_normal_cosine,
-                                                      FanGeometry& scratch) {
-  for (size_t i = 0; i < options_.size(); ++i)
-    if (options_[i].choice.length <= max_length && valid(i, mesh, xyz, min_normal_cosine, scratch))
-      return &options_[i].choice;
+const CollapseOption* VertexCollapses::cheapestWithin(const CollapseChecks& checks, double max_length) {
+  for (Option& o : options_)
+    if (o.choice.length <= max_length && valid(o, checks)) return &o.choice;
   return nullptr;
 }
 
-bool VertexCollapses::anyValid(const LevelMesh& mesh, const std::vector<double>& xyz, double min_normal_cosine,
-                               FanGeometry& scratch) {
-  for (size_t i = 0; i < options_.size(); ++i)
-    if (valid(i, mesh, xyz, min_normal_cosine, scratch)) return true;
+bool VertexCollapses::anyValid(const CollapseChecks& checks) {
+  for (Option& o : options_)
+    if (valid(o, checks)) return true;
   return false;
 }
 

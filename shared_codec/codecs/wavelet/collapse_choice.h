@@ -58,6 +58,21 @@ struct FanGeometry {
   std::vector<double> arrays_;  // 10 arrays of stride_ doubles
 };
 
+// What an option's validity depends on besides the vertex's own ring: the mesh as the level
+// started, the parametric positions, the normal bound, and when each vertex's triangles last
+// changed; and the fan scratch the checks fill.
+struct CollapseChecks {
+  const LevelMesh& mesh;
+  const std::vector<double>& xyz;
+  double min_normal_cosine;
+  // Per vertex: the number of batches applied once the last one that changed its triangles
+  // was (0: none has). A validity found when fewer had been applied than that of the target
+  // is stale: the target's triangles have changed since.
+  const std::vector<uint32_t>& changed_by;
+  uint32_t batches;  // applied so far
+  FanGeometry& fan;
+};
+
 // A vertex's collapse options on the current level. Costs and lengths are computed for every
 // target at once; the validity rules (link condition, no duplicate, degenerate or flipped
 // triangle), which cost several times more, only for the targets a level's choice reaches,
@@ -74,29 +89,26 @@ class VertexCollapses {
   // them (what the boundary curve loses).
   void prepare(const std::vector<double>& xyz, uint32_t v, bool closed, FanGeometry& scratch);
   void clear() { options_.clear(); }  // v cannot be removed on this level
-  // The target's triangles have changed, v's have not: the option onto it (if any) must be
-  // checked again; costs, lengths and the other options stand.
-  void forgetValidity(uint32_t target);
 
   // The cheapest valid option within max_length (the first of equal ones in ring order);
   // null when none fits. The options are kept in that order, so usually only the first one
-  // within the bound has its validity checked.
-  const CollapseOption* cheapestWithin(const LevelMesh& mesh, const std::vector<double>& xyz, double max_length,
-                                       double min_normal_cosine, FanGeometry& scratch);
+  // within the bound has its validity checked. A validity stays known until the target's
+  // triangles change (v's own change calls for prepare()); costs and lengths stand.
+  const CollapseOption* cheapestWithin(const CollapseChecks& checks, double max_length);
   // Whether some option is valid, whatever its length.
-  bool anyValid(const LevelMesh& mesh, const std::vector<double>& xyz, double min_normal_cosine, FanGeometry& scratch);
+  bool anyValid(const CollapseChecks& checks);
 
  private:
   enum class Validity : uint8_t { kUnknown, kValid, kInvalid };
   struct Option {
     CollapseOption choice;
     Validity validity = Validity::kUnknown;
+    uint32_t checked_after = 0;  // CollapseChecks::batches when the validity was found
   };
-  // Computes the fan into scratch on first need (prepare() left it there for the first checks).
-  bool valid(size_t option, const LevelMesh& mesh, const std::vector<double>& xyz, double min_normal_cosine,
-             FanGeometry& scratch);
-  bool keepsMeshSound(const CollapseOption& option, const LevelMesh& mesh, const std::vector<double>& xyz,
-                      double min_normal_cosine, FanGeometry& scratch) const;
+  // Computes the fan into the scratch on first need (prepare() left it there for the first
+  // checks).
+  bool valid(Option& option, const CollapseChecks& checks);
+  bool keepsMeshSound(const CollapseOption& option, const CollapseChecks& checks) const;
   void computeFan(const std::vector<double>& xyz, FanGeometry& scratch) const;
   void computeCosts(FanGeometry& scratch, double curve);
   void sortByCost();

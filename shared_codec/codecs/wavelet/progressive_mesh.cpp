@@ -66,20 +66,20 @@ struct BoundaryLoops {
   }
 
   // Edges (a, b), a < b, held by exactly one live triangle: b appears once among the other
-  // corners of a's triangles.
+  // corners of a's triangles. (Their order does not matter: the loops are the connected
+  // components, whatever the order of the unions.)
   static std::vector<std::pair<uint32_t, uint32_t>> boundaryEdges(const LevelMesh& mesh, uint32_t vertex_count) {
     std::vector<std::pair<uint32_t, uint32_t>> out;
-    std::vector<uint32_t> corners;
+    std::vector<uint32_t> corners;                   // of a's triangles, b > a, each once
+    std::vector<uint32_t> times(vertex_count, 0);  // how often b is a corner; 0 between vertices
     for (uint32_t a = 0; a < vertex_count; ++a) {
       corners.clear();
-      for (const uint32_t* t = mesh.trianglesBegin(a); t != mesh.trianglesEnd(a); ++t)
+      for (const uint32_t *t = mesh.trianglesBegin(a), *end = mesh.trianglesEnd(a); t != end; ++t)
         for (uint32_t b : mesh.triangle(*t))
-          if (b > a) corners.push_back(b);
-      std::sort(corners.begin(), corners.end());
-      for (size_t i = 0; i < corners.size(); ++i) {
-        const bool once = (i == 0 || corners[i - 1] != corners[i]) &&
-                          (i + 1 == corners.size() || corners[i + 1] != corners[i]);
-        if (once) out.emplace_back(a, corners[i]);
+          if (b > a && times[b]++ == 0) corners.push_back(b);
+      for (uint32_t b : corners) {
+        if (times[b] == 1) out.emplace_back(a, b);
+        times[b] = 0;
       }
     }
     return out;
@@ -89,8 +89,9 @@ struct BoundaryLoops {
 // Each vertex's collapse options on the current level. Its ring, costs and lengths depend on
 // its own triangles, an option's validity also on the target's (link condition, duplicate
 // triangles, fan size). A batch changes the triangles of its vertices and their rings only:
-// those vertices are prepared again, and their neighbours forget only the validity of the
-// options onto them (a third of the vertices a batch reaches are such neighbours).
+// those vertices are prepared again, and their neighbours' options onto them see from the
+// batch count (changed_by) that their validity must be found again (a third of the vertices
+// a batch reaches are such neighbours).
 class CollapseOptionCache {
  public:
   struct Entry {
@@ -99,7 +100,7 @@ class CollapseOptionCache {
     VertexCollapses collapses;  // its ring is v's closed ring, or open fan on a boundary
   };
 
-  explicit CollapseOptionCache(uint32_t vertex_count) : entries_(vertex_count) {}
+  explicit CollapseOptionCache(uint32_t vertex_count) : entries_(vertex_count), changed_by_(vertex_count, 0) {}
 
   Entry& at(const LevelMesh& mesh, const std::vector<double>& xyz, uint32_t v, const HierarchySettings& settings) {
     Entry& e = entries_[v];
@@ -123,24 +124,25 @@ class CollapseOptionCache {
   // are applied (they mark every vertex whose ring they change stale).
   const std::vector<uint32_t>& ring(uint32_t v) const { return entries_[v].collapses.ring; }
 
-  // Before a batch is applied: `changed` lists the vertices whose triangles it changes (the
-  // removed ones and their rings), flagged in is_changed.
-  void markChanged(const LevelMesh& mesh, const std::vector<uint32_t>& changed,
-                   const std::vector<uint8_t>& is_changed) {
+  // When a batch is applied: `changed` lists the vertices whose triangles it changes (the
+  // removed ones and their rings).
+  void markChanged(const std::vector<uint32_t>& changed) {
+    ++batches_;
     for (uint32_t x : changed) {
       entries_[x].stale = true;
-      for (const uint32_t* t = mesh.trianglesBegin(x); t != mesh.trianglesEnd(x); ++t)
-        for (uint32_t y : mesh.triangle(*t))
-          if (!is_changed[y] && !entries_[y].stale) entries_[y].collapses.forgetValidity(x);
+      changed_by_[x] = batches_;
     }
   }
 
-  // Fan normals of the vertex being prepared or checked, shared by every entry.
-  FanGeometry& scratch() { return fan_; }
+  CollapseChecks checks(const LevelMesh& mesh, const std::vector<double>& xyz, double min_normal_cosine) {
+    return {mesh, xyz, min_normal_cosine, changed_by_, batches_, fan_};
+  }
 
  private:
   std::vector<Entry> entries_;
-  FanGeometry fan_;
+  std::vector<uint32_t> changed_by_;  // CollapseChecks::changed_by
+  uint32_t batches_ = 0;
+  FanGeometry fan_;  // the fan of the vertex being prepared or checked, shared by every entry
 };
 
 // Every removable vertex's best collapse within the length bound; any_valid tells whether
@@ -151,16 +153,16 @@ std::vector<Candidate> levelCandidates(const LevelMesh& mesh, const std::vector<
                                        CollapseOptionCache& cache, bool& any_valid) {
   std::vector<Candidate> out;
   any_valid = false;
-  const double min_cos = settings.min_normal_cosine;
+  const CollapseChecks checks = cache.checks(mesh, xyz, settings.min_normal_cosine);
   for (uint32_t v = 0; v < removed.size(); ++v) {
     if (removed[v]) continue;
     CollapseOptionCache::Entry& e = cache.at(mesh, xyz, v, settings);
     if (e.kind == CollapseKind::kBoundary && !loops.canLose(v)) continue;
-    if (const CollapseOption* best = e.collapses.cheapestWithin(mesh, xyz, max_length, min_cos, cache.scratch())) {
+    if (const CollapseOption* best = e.collapses.cheapestWithin(checks, max_length)) {
       out.push_back({best->cost, v, best->target, e.kind});
       any_valid = true;
     } else {
-      any_valid = any_valid || e.collapses.anyValid(mesh, xyz, min_cos, cache.scratch());
+      any_valid = any_valid || e.collapses.anyValid(checks);
     }
   }
   // Cost, then vertex index: a total order, so both sides pick the same batch.
@@ -242,7 +244,7 @@ int applyBatch(LevelMesh& mesh, const std::vector<Candidate>& candidates, int le
     ++applied;
   }
   // Apply after choosing, so every record above saw the level as it started.
-  cache.markChanged(mesh, changed, marked);
+  cache.markChanged(changed);
   for (size_t i = pm.collapses.size() - size_t(applied); i < pm.collapses.size(); ++i)
     mesh.collapse(pm.collapses[i].vertex, pm.collapses[i].target);
   return applied;
