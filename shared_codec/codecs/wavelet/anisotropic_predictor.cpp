@@ -4,12 +4,24 @@
 #include <Eigen/Geometry>
 #include <cmath>
 
+#include "core/simd_math.h"
+
 namespace animc {
 namespace {
 
 using Vec3 = Eigen::Vector3d;
 
 Vec3 at(const std::vector<double>& xyz, uint32_t v) { return Vec3(xyz[3 * size_t(v)], xyz[3 * size_t(v) + 1], xyz[3 * size_t(v) + 2]); }
+const double* point(const std::vector<double>& xyz, uint32_t v) { return &xyz[3 * size_t(v)]; }
+
+// Lane by lane the correctly rounded square root, as std::sqrt, without its errno test.
+Pair sqrtPair(Pair x) {
+#if defined(__SSE2__)
+  return __builtin_ia32_sqrtpd(x);
+#else
+  return Pair{std::sqrt(x[0]), std::sqrt(x[1])};
+#endif
+}
 
 // Second difference across edge (j, k) with opposite vertices l1 and l2 (the triangles
 // (j, k, l1) and (k, j, l2) unfolded): the jump of the normal derivative of the piecewise
@@ -20,28 +32,36 @@ struct EdgeStencil {
   double weight;
 };
 
+// The two flaps' terms are computed at once, one per lane, and so are the two normals; the
+// arithmetic is Eigen's Vector3d (what this function used before: the same bits), written out
+// by axis: dot (x0 y0 + x1 y1) + x2 y2, cross (a1 b2 - a2 b1, a2 b0 - a0 b2, a0 b1 - a1 b0).
 bool secondDifference(const std::vector<double>& xyz, uint32_t j, uint32_t k, uint32_t l1, uint32_t l2,
                       const AnisotropyParams& params, EdgeStencil& out) {
-  // The four positions once, into locals: out's doubles could alias xyz, which would make
-  // the compiler load them again after every store.
-  const Vec3 pj = at(xyz, j), pk = at(xyz, k), pl[2] = {at(xyz, l1), at(xyz, l2)};
-  const Vec3 e = pk - pj;
-  const double length2 = e.squaredNorm();
+  const double *pj = point(xyz, j), *pk = point(xyz, k), *p1 = point(xyz, l1), *p2 = point(xyz, l2);
+  const double ex = pk[0] - pj[0], ey = pk[1] - pj[1], ez = pk[2] - pj[2];
+  const double length2 = (ex * ex + ey * ey) + ez * ez;
   if (!(length2 > 0)) return false;
   const double length = std::sqrt(length2);
-  double c[4] = {0, 0, 0, 0};
-  for (int s = 0; s < 2; ++s) {
-    const Vec3 d = pl[s] - pj;
-    const double alpha = d.dot(e) / length2;
-    const double height = (d - alpha * e).norm();
-    if (!(height > 1e-9 * length)) return false;
-    c[2 + s] = length / height;
-    c[0] -= (1 - alpha) * length / height;
-    c[1] -= alpha * length / height;
-  }
-  const Vec3 n1 = e.cross(pl[0] - pj), n2 = (pj - pk).cross(pl[1] - pk);
-  const double norms = n1.norm() * n2.norm();
-  out = {{j, k, l1, l2}, {c[0], c[1], c[2], c[3]}, edgeWeight(norms > 0 ? n1.dot(n2) / norms : 1.0, params)};
+  // Lane s: flap l(s+1) - j, its foot's parameter alpha on the edge and its height over it.
+  const Pair dx = Pair{p1[0], p2[0]} - splat(pj[0]), dy = Pair{p1[1], p2[1]} - splat(pj[1]),
+             dz = Pair{p1[2], p2[2]} - splat(pj[2]);
+  const Pair alpha = ((dx * ex + dy * ey) + dz * ez) / splat(length2);
+  const Pair hx = dx - alpha * ex, hy = dy - alpha * ey, hz = dz - alpha * ez;
+  const Pair height = sqrtPair((hx * hx + hy * hy) + hz * hz);
+  if (!(height[0] > 1e-9 * length) || !(height[1] > 1e-9 * length)) return false;
+  const Pair flap = splat(length) / height;
+  const Pair to_j = (splat(1.0) - alpha) * length / height, to_k = alpha * length / height;
+  // Lane 0: the normal of (j, k, l1), e x (l1 - j); lane 1: that of (k, j, l2), (j - k) x (l2 - k).
+  const Pair ax = {ex, pj[0] - pk[0]}, ay = {ey, pj[1] - pk[1]}, az = {ez, pj[2] - pk[2]};
+  const Pair bx = Pair{p1[0], p2[0]} - Pair{pj[0], pk[0]}, by = Pair{p1[1], p2[1]} - Pair{pj[1], pk[1]},
+             bz = Pair{p1[2], p2[2]} - Pair{pj[2], pk[2]};
+  const Pair nx = ay * bz - az * by, ny = az * bx - ax * bz, nz = ax * by - ay * bx;
+  const Pair norm = sqrtPair((nx * nx + ny * ny) + nz * nz);
+  const double norms = norm[0] * norm[1];
+  const double normal_dot = (nx[0] * nx[1] + ny[0] * ny[1]) + nz[0] * nz[1];
+  out = {{j, k, l1, l2},
+         {(0.0 - to_j[0]) - to_j[1], (0.0 - to_k[0]) - to_k[1], flap[0], flap[1]},
+         edgeWeight(norms > 0 ? normal_dot / norms : 1.0, params)};
   return true;
 }
 
@@ -157,6 +177,8 @@ PredictionStencils buildPredictor(const ProgressiveMesh& pm, const std::vector<d
                                   const AnisotropyParams& params) {
   PredictionStencils out;
   out.first.reserve(pm.collapses.size() + 1);
+  out.vertex.reserve(2 * pm.ring.size());  // about a ring and its flaps per stencil
+  out.weight.reserve(2 * pm.ring.size());
   out.first.push_back(0);
   StencilTerms stencil(pm.vertex_count);
   for (const Collapse& c : pm.collapses) appendStencil(pm, c, parametric_xyz, params, stencil, out);
