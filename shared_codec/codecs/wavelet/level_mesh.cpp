@@ -18,27 +18,37 @@ void VertexMarks::restart() {
 
 void LevelMesh::rebuildIncidence() {
   dropDeadTrianglesAndCount();
-  for (uint32_t v = 0; v < vertex_count_; ++v) first_[v + 1] += first_[v];
-  incident_.resize(first_.back() + 1);  // +1 keeps &incident_[first_[v]] valid when empty
-  fill_.assign(first_.begin(), first_.end() - 1);
+  first_.resize(vertex_count_);
+  uint32_t start = 0;
+  for (uint32_t v = 0; v < vertex_count_; ++v) {
+    first_[v] = start;
+    start += count_[v];
+  }
+  incident_.resize(start);
+  fill_.assign(first_.begin(), first_.end());
   for (size_t t = 0; t < triangles_.size(); ++t)
     for (uint32_t v : triangles_[t]) incident_[fill_[v]++] = uint32_t(t);
+  rebuilt_size_ = incident_.size();
 }
 
 // Dead triangles never come back: dropping them (in order, so every vertex still lists its
-// triangles in the same order) keeps each level's rebuild proportional to what is left. The
-// same pass counts each vertex's triangles into first_[v + 1].
+// triangles in the same order) keeps each rebuild proportional to what is left. The same
+// pass counts each vertex's triangles.
 void LevelMesh::dropDeadTrianglesAndCount() {
-  first_.assign(vertex_count_ + 1, 0);
+  count_.assign(vertex_count_, 0);
   size_t kept = 0;
   for (size_t t = 0; t < triangles_.size(); ++t) {
     if (!alive_[t]) continue;
     const Triangle tri = triangles_[t];
     triangles_[kept++] = tri;
-    for (uint32_t v : tri) ++first_[v + 1];
+    for (uint32_t v : tri) ++count_[v];
   }
   triangles_.resize(kept);
   alive_.assign(kept, 1);
+}
+
+void LevelMesh::reclaimSpace() {
+  if (incident_.size() > 2 * rebuilt_size_) rebuildIncidence();
 }
 
 // Each query takes two tokens (leaving, passed); when they run out, all marks restart.
@@ -163,7 +173,23 @@ void LevelMesh::markNeighbours(uint32_t u) const {
 }
 
 void LevelMesh::collapse(uint32_t v, uint32_t u) {
-  for (const uint32_t* t = trianglesBegin(v); t != trianglesEnd(v); ++t) {
+  for (const uint32_t *t = trianglesBegin(v), *end = trianglesEnd(v); t != end; ++t) {
+    Triangle& tri = triangles_[*t];
+    if (tri[0] == u || tri[1] == u || tri[2] == u) {
+      alive_[*t] = 0;
+      for (uint32_t w : tri)
+        if (w != u && w != v) dropFromList(w, *t);  // u's list is merged below
+      continue;
+    }
+    for (uint32_t& w : tri)
+      if (w == v) w = u;
+  }
+  mergeLists(u, v);
+  count_[v] = 0;
+}
+
+void LevelMesh::weld(uint32_t v, uint32_t u) {
+  for (const uint32_t *t = trianglesBegin(v), *end = trianglesEnd(v); t != end; ++t) {
     Triangle& tri = triangles_[*t];
     if (tri[0] == u || tri[1] == u || tri[2] == u) {
       alive_[*t] = 0;
@@ -172,6 +198,36 @@ void LevelMesh::collapse(uint32_t v, uint32_t u) {
     for (uint32_t& w : tri)
       if (w == v) w = u;
   }
+}
+
+// Removes triangle t (listed once) from v's list, keeping the order.
+void LevelMesh::dropFromList(uint32_t v, uint32_t t) {
+  uint32_t* list = incident_.data() + first_[v];
+  const uint32_t n = count_[v];
+  uint32_t i = 0;
+  while (i < n && list[i] != t) ++i;
+  if (i == n) return;
+  for (; i + 1 < n; ++i) list[i] = list[i + 1];
+  --count_[v];
+}
+
+// u's new list after the collapse of v onto it: the live triangles of both lists, in order,
+// at the end of incident_.
+void LevelMesh::mergeLists(uint32_t u, uint32_t v) {
+  const size_t at = incident_.size();
+  incident_.resize(at + count_[u] + count_[v]);  // before taking pointers: it may move
+  const uint32_t *a = trianglesBegin(u), *a_end = trianglesEnd(u);
+  const uint32_t *b = trianglesBegin(v), *b_end = trianglesEnd(v);
+  uint32_t* out = incident_.data() + at;
+  for (;;) {
+    while (a != a_end && !alive_[*a]) ++a;
+    while (b != b_end && !alive_[*b]) ++b;
+    if (a == a_end && b == b_end) break;
+    *out++ = b == b_end || (a != a_end && *a <= *b) ? *a++ : *b++;
+  }
+  first_[u] = uint32_t(at);
+  count_[u] = uint32_t(out - (incident_.data() + at));
+  incident_.resize(at + count_[u]);
 }
 
 std::vector<Triangle> LevelMesh::liveTriangles() const {

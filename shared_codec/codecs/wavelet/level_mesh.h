@@ -1,8 +1,10 @@
 // The triangle mesh of one simplification level: the live triangles and, per vertex, the
-// triangles that use it, in the order of the input. The incidence is rebuilt once per level
-// (triangle numbers change then: dead ones are dropped); within a level the batch's collapses
-// touch disjoint sets of triangles, so queries made against the level's start stay valid
-// while the batch is applied.
+// triangles that use it, in the order of the input (a triangle with the vertex at two corners
+// twice). A collapse updates the lists it changes; a full rebuild (which renumbers the
+// triangles, dropping dead ones, in order) follows seam welding and reclaims the space the
+// updates leave behind. Within a level the batch's collapses touch disjoint sets of
+// triangles, so queries made against the level's start stay valid while the batch is
+// applied.
 #pragma once
 #include <cstdint>
 #include <utility>
@@ -41,9 +43,9 @@ class LevelMesh {
   explicit LevelMesh(const Topology& topology);
 
   void rebuildIncidence();
-  const uint32_t* trianglesBegin(uint32_t v) const { return &incident_[first_[v]]; }
-  const uint32_t* trianglesEnd(uint32_t v) const { return &incident_[0] + first_[v + 1]; }
-  uint32_t triangleCount(uint32_t v) const { return first_[v + 1] - first_[v]; }
+  const uint32_t* trianglesBegin(uint32_t v) const { return incident_.data() + first_[v]; }
+  const uint32_t* trianglesEnd(uint32_t v) const { return incident_.data() + first_[v] + count_[v]; }
+  uint32_t triangleCount(uint32_t v) const { return count_[v]; }
   const Triangle& triangle(uint32_t t) const { return triangles_[t]; }
 
   // The neighbours of v in cyclic order, following the orientation of its triangles, so that
@@ -68,8 +70,16 @@ class LevelMesh {
   void markNeighbours(uint32_t u) const;
   bool markedNeighbour(uint32_t w) const { return neighbours_.marked(w); }
 
-  // Half-edge collapse v -> u: triangles holding both die, v becomes u in the others.
+  // Half-edge collapse v -> u: triangles holding both die, v becomes u in the others. Updates
+  // the lists of v, u and the dying triangles' third corners; v's triangles must be distinct
+  // and non-degenerate (v has a ring or an open fan).
   void collapse(uint32_t v, uint32_t u);
+  // The same triangle edits for a seam copy v of u, whatever its triangles; the lists are
+  // left as they were until rebuildIncidence(), which must follow.
+  void weld(uint32_t v, uint32_t u);
+  // After a batch: a full rebuild once the lists that collapses moved leave more space behind
+  // than the live lists take.
+  void reclaimSpace();
   std::vector<Triangle> liveTriangles() const;
 
  private:
@@ -87,13 +97,17 @@ class LevelMesh {
   bool walkSteps(uint32_t start, std::vector<uint32_t>& ring) const;
   void nextStepToken() const;
   void dropDeadTrianglesAndCount();
+  void dropFromList(uint32_t v, uint32_t t);
+  void mergeLists(uint32_t u, uint32_t v);
 
   uint32_t vertex_count_;
   std::vector<Triangle> triangles_;
   std::vector<uint8_t> alive_;
-  std::vector<uint32_t> first_;
-  std::vector<uint32_t> incident_;
-  std::vector<uint32_t> fill_;  // rebuildIncidence's scratch
+  std::vector<uint32_t> first_;     // per vertex: where its list starts in incident_
+  std::vector<uint32_t> count_;     // and how long it is
+  std::vector<uint32_t> incident_;  // the lists; a moved list leaves its old place unused
+  size_t rebuilt_size_ = 0;         // incident_'s size at the last rebuild
+  std::vector<uint32_t> fill_;      // rebuildIncidence's scratch
   // Scratch of the queries, reused so that they do not allocate (one thread per mesh).
   mutable std::vector<std::pair<uint32_t, uint32_t>> steps_;  // grows only; step_count_ are used
   mutable size_t step_count_ = 0;

@@ -216,7 +216,7 @@ int weldSeams(LevelMesh& mesh, const std::vector<double>& xyz, const BoundaryLoo
       ++welded;
     }
   }
-  for (const Collapse& c : pm.collapses) mesh.collapse(c.vertex, c.target);
+  for (const Collapse& c : pm.collapses) mesh.weld(c.vertex, c.target);
   return welded;
 }
 
@@ -299,7 +299,7 @@ ProgressiveMesh buildProgressiveMesh(const Topology& topology, const std::vector
     if (!any_valid) break;
     if (applyBatch(mesh, candidates, pm.level_count, loops, removed, cache, pm) == 0) continue;
     ++pm.level_count;
-    mesh.rebuildIncidence();
+    mesh.reclaimSpace();
   }
   for (uint32_t v = 0; v < topology.vertex_count; ++v)
     if (!removed[v]) pm.base.push_back(v);
