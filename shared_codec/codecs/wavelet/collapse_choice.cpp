@@ -52,7 +52,7 @@ struct Flanks {
 // condition holds: u's triangle {u, a, b} would make a and b neighbours of u, so it can
 // exist only when both flank u, that is in a ring of three. Two triangles at a time, one per
 // lane.
-bool keepsTrianglesSound(const LevelMesh& mesh, const std::vector<uint32_t>& ring, FanGeometry& fan,
+bool keepsTrianglesSound(const LevelMesh& mesh, const VertexRing& ring, FanGeometry& fan,
                          const Flanks& flanks, double min_cos) {
   const uint32_t u = ring[flanks.at];
   const size_t after = flanks.after, before = flanks.before, triangles = fan.triangles;
@@ -81,7 +81,7 @@ bool keepsTrianglesSound(const LevelMesh& mesh, const std::vector<uint32_t>& rin
 
 // Link condition: v and u = ring[at_u] share exactly the neighbours flanking the edge (v, u)
 // (two inside, one on a boundary edge, where the fan does not wrap around).
-bool linkConditionHolds(const LevelMesh& mesh, const std::vector<uint32_t>& ring, const Flanks& flanks) {
+bool linkConditionHolds(const LevelMesh& mesh, const VertexRing& ring, const Flanks& flanks) {
   mesh.markNeighbours(ring[flanks.at]);
   for (size_t i = 0; i < ring.size(); ++i)
     if (mesh.markedNeighbour(ring[i]) && !flanks(i)) return false;

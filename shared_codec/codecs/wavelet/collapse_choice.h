@@ -79,9 +79,12 @@ struct CollapseChecks {
 // once each. Valid while the vertex's neighbourhood within two edges is unchanged.
 class VertexCollapses {
  public:
+  // Its arrays are allocated from `arena`.
+  explicit VertexCollapses(std::pmr::memory_resource* arena) : ring(arena), options_(arena) {}
+
   // v's ordered ring (LevelMesh::orderedRing) or open fan (LevelMesh::openFan); fill it,
   // then call prepare().
-  std::vector<uint32_t> ring;
+  VertexRing ring;
 
   // Closed ring: every neighbour is a target. Open fan: only fan.front() and fan.back(), so
   // that the boundary stays a curve and v can be predicted from its two boundary neighbours;
@@ -115,7 +118,7 @@ class VertexCollapses {
 
   uint32_t vertex_ = kNoVertex;
   bool closed_ = true;
-  std::vector<Option> options_;  // by cost, then ring position
+  std::pmr::vector<Option> options_;  // by cost, then ring position
 };
 
 }  // namespace animc

@@ -93,7 +93,7 @@ bool LevelMesh::fanSteps(uint32_t v) const {
 // out (non-manifold or inconsistent orientation) or none before the steps are used up, or
 // is passed twice. ring receives the vertices passed, start first, then the vertex reached
 // last, which the caller checks.
-bool LevelMesh::walkSteps(uint32_t start, std::vector<uint32_t>& ring) const {
+bool LevelMesh::walkSteps(uint32_t start, VertexRing& ring) const {
   const size_t count = step_count_;
   ring.resize(count + 1);
   const uint32_t token = step_token_, passed = token + 1;
@@ -111,7 +111,7 @@ bool LevelMesh::walkSteps(uint32_t start, std::vector<uint32_t>& ring) const {
   return true;
 }
 
-bool LevelMesh::orderedRing(uint32_t v, std::vector<uint32_t>& ring) const {
+bool LevelMesh::orderedRing(uint32_t v, VertexRing& ring) const {
   // A closed fan is one cycle through all the steps.
   if (!fanSteps(v) || step_count_ < 3) return false;
   if (!walkSteps(steps_[0].first, ring) || ring.back() != ring.front()) return false;
@@ -119,7 +119,7 @@ bool LevelMesh::orderedRing(uint32_t v, std::vector<uint32_t>& ring) const {
   return true;
 }
 
-bool LevelMesh::openFan(uint32_t v, std::vector<uint32_t>& ring) const {
+bool LevelMesh::openFan(uint32_t v, VertexRing& ring) const {
   // An open fan is one chain through all the steps, from the one spoke no step enters.
   if (!fanSteps(v) || step_count_ == 0) return false;
   entered_.clearAll();

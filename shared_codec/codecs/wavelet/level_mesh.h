@@ -7,6 +7,7 @@
 // applied.
 #pragma once
 #include <cstdint>
+#include <memory_resource>
 #include <utility>
 #include <vector>
 
@@ -15,6 +16,10 @@
 namespace animc {
 
 constexpr uint32_t kNoVertex = UINT32_MAX;
+
+// A vertex's neighbours in order; with a polymorphic allocator, so that the hierarchy can keep
+// the rings of all its vertices in one arena.
+using VertexRing = std::pmr::vector<uint32_t>;
 
 // A flag per vertex that clearAll() resets at once (a vertex is marked while it holds the
 // current token), so that queries over a few vertices of a large mesh stay cheap.
@@ -52,12 +57,12 @@ class LevelMesh {
   // (v, ring[k], ring[k+1]) are its triangles. False when v is on a boundary, non-manifold,
   // in a degenerate triangle or where its triangles disagree on orientation: such vertices
   // are never removed.
-  bool orderedRing(uint32_t v, std::vector<uint32_t>& ring) const;
+  bool orderedRing(uint32_t v, VertexRing& ring) const;
   // The neighbours of a boundary vertex v whose triangles form one open, consistently
   // oriented fan: (v, ring[k], ring[k+1]) are its triangles, ring.front() and ring.back() its
   // two boundary neighbours (edges with one triangle). False otherwise (interior,
   // non-manifold, several fans, degenerate or inconsistently oriented triangles).
-  bool openFan(uint32_t v, std::vector<uint32_t>& ring) const;
+  bool openFan(uint32_t v, VertexRing& ring) const;
   // The third vertex of the one triangle on edge (a, b) that does not contain v; kNoVertex
   // when the edge has no such triangle or several (boundary, non-manifold).
   uint32_t flapAcross(uint32_t a, uint32_t b, uint32_t v) const;
@@ -94,7 +99,7 @@ class LevelMesh {
   // Each triangle (v, a, b) of v as the step a -> b around v, into steps_[0, step_count_) and
   // step_from_[a]; false on a degenerate triangle.
   bool fanSteps(uint32_t v) const;
-  bool walkSteps(uint32_t start, std::vector<uint32_t>& ring) const;
+  bool walkSteps(uint32_t start, VertexRing& ring) const;
   void nextStepToken() const;
   void dropDeadTrianglesAndCount();
   void dropFromList(uint32_t v, uint32_t t);
