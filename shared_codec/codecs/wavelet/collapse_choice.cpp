@@ -143,6 +143,7 @@ void VertexCollapses::prepare(const std::vector<double>& xyz, uint32_t v, bool c
   vertex_ = v;
   closed_ = closed;
   options_.clear();
+  has_nan_cost_ = false;
   if (scratch.vertex == v) scratch.vertex = kNoVertex;  // v's ring has changed
   // An ear (one triangle) stays: its ring is a single edge, which spans no local frame, and
   // removing it turns an inner edge into boundary.
@@ -151,12 +152,13 @@ void VertexCollapses::prepare(const std::vector<double>& xyz, uint32_t v, bool c
   const double curve = closed ? 0.0 : boundaryCost(xyz, v, ring.front(), ring.back());
   // Targets: all of a closed ring, the two ends of an open fan.
   const size_t count = closed ? ring.size() : 2;
-  options_.resize(count);
+  options_.reserve(count);  // options_ was cleared: appending constructs each option once
   for (size_t i = 0; i < count; ++i) {
     const uint32_t position = uint32_t(closed || i == 0 ? i : ring.size() - 1);
-    options_[i] = {{ring[position], position, 0.0, 0.0}, Validity::kUnknown};
+    options_.push_back({{ring[position], position, 0.0, 0.0}, Validity::kUnknown, 0});
   }
   computeCosts(scratch, curve);
+  for (const Option& o : options_) has_nan_cost_ = has_nan_cost_ || std::isnan(o.choice.cost);
   sortByCost();
 }
 
@@ -227,7 +229,8 @@ bool VertexCollapses::keepsMeshSound(const CollapseOption& option, const Collaps
   return keepsTrianglesSound(mesh, ring, checks.fan, flanks, checks.min_normal_cosine);
 }
 
-bool VertexCollapses::valid(Option& o, const CollapseChecks& checks) {
+bool VertexCollapses::valid(size_t i, const CollapseChecks& checks) {
+  Option& o = options_[i];
   if (o.validity == Validity::kUnknown || checks.changed_by[o.choice.target] > o.checked_after) {
     o.validity = keepsMeshSound(o.choice, checks) ? Validity::kValid : Validity::kInvalid;
     o.checked_after = checks.batches;
@@ -235,17 +238,21 @@ bool VertexCollapses::valid(Option& o, const CollapseChecks& checks) {
   return o.validity == Validity::kValid;
 }
 
-// The options are in (cost, ring position) order: the first valid one within the bound is the
-// answer, and the options after it need no validity.
-const CollapseOption* VertexCollapses::cheapestWithin(const CollapseChecks& checks, double max_length) {
-  for (Option& o : options_)
-    if (o.choice.length <= max_length && valid(o, checks)) return &o.choice;
-  return nullptr;
+size_t VertexCollapses::nextWithin(double max_length, size_t from) const {
+  for (size_t i = from; i < options_.size(); ++i)
+    if (options_[i].choice.length <= max_length) return i;
+  return kNone;
+}
+
+size_t VertexCollapses::nextValidWithin(const CollapseChecks& checks, double max_length, size_t from) {
+  for (size_t i = nextWithin(max_length, from); i != kNone; i = nextWithin(max_length, i + 1))
+    if (valid(i, checks)) return i;
+  return kNone;
 }
 
 bool VertexCollapses::anyValid(const CollapseChecks& checks) {
-  for (Option& o : options_)
-    if (valid(o, checks)) return true;
+  for (size_t i = 0; i < options_.size(); ++i)
+    if (valid(i, checks)) return true;
   return false;
 }
 

@@ -91,13 +91,24 @@ class VertexCollapses {
   // v needs >= 2 triangles, and the cost adds the squared distance of v to the chord between
   // them (what the boundary curve loses).
   void prepare(const std::vector<double>& xyz, uint32_t v, bool closed, FanGeometry& scratch);
-  void clear() { options_.clear(); }  // v cannot be removed on this level
+  void clear() {  // v cannot be removed on this level
+    options_.clear();
+    has_nan_cost_ = false;
+  }
 
-  // The cheapest valid option within max_length (the first of equal ones in ring order);
-  // null when none fits. The options are kept in that order, so usually only the first one
-  // within the bound has its validity checked. A validity stays known until the target's
-  // triangles change (v's own change calls for prepare()); costs and lengths stand.
-  const CollapseOption* cheapestWithin(const CollapseChecks& checks, double max_length);
+  // The options are kept in (cost, ring position) order. The first one at or after `from`
+  // within max_length, or kNone.
+  static constexpr size_t kNone = SIZE_MAX;
+  size_t nextWithin(double max_length, size_t from = 0) const;
+  const CollapseOption& option(size_t i) const { return options_[i].choice; }
+  // Whether some option's cost is NaN (then costs are not totally ordered).
+  bool hasNanCost() const { return has_nan_cost_; }
+
+  // Whether option i keeps the mesh sound: found on first need, then known until the
+  // target's triangles change (v's own change calls for prepare()); costs and lengths stand.
+  bool valid(size_t i, const CollapseChecks& checks);
+  // The first valid option at or after `from` within max_length, or kNone.
+  size_t nextValidWithin(const CollapseChecks& checks, double max_length, size_t from = 0);
   // Whether some option is valid, whatever its length.
   bool anyValid(const CollapseChecks& checks);
 
@@ -110,7 +121,6 @@ class VertexCollapses {
   };
   // Computes the fan into the scratch on first need (prepare() left it there for the first
   // checks).
-  bool valid(Option& option, const CollapseChecks& checks);
   bool keepsMeshSound(const CollapseOption& option, const CollapseChecks& checks) const;
   void computeFan(const std::vector<double>& xyz, FanGeometry& scratch) const;
   void computeCosts(FanGeometry& scratch, double curve);
@@ -118,6 +128,7 @@ class VertexCollapses {
 
   uint32_t vertex_ = kNoVertex;
   bool closed_ = true;
+  bool has_nan_cost_ = false;
   std::pmr::vector<Option> options_;  // by cost, then ring position
 };
 

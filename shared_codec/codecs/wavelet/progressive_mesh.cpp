@@ -125,8 +125,9 @@ class CollapseOptionCache {
     }
     return e;
   }
-  // The ring of a vertex whose fresh entry has options: unchanged until the level's collapses
-  // are applied (they mark every vertex whose ring they change stale).
+  // A vertex's entry as last prepared, and its ring: unchanged until the level's collapses are
+  // applied (they mark every vertex whose ring they change stale).
+  Entry& entry(uint32_t v) { return entries_[v]; }
   const VertexRing& ring(uint32_t v) const { return entries_[v].collapses.ring; }
 
   // When a batch is applied: `changed` lists the vertices whose triangles it changes (the
@@ -153,33 +154,6 @@ class CollapseOptionCache {
   uint32_t batches_ = 0;
   FanGeometry fan_;  // the fan of the vertex being prepared or checked, shared by every entry
 };
-
-// Every removable vertex's best collapse within the length bound; any_valid tells whether
-// relaxing the bound could still find work.
-std::vector<Candidate> levelCandidates(const LevelMesh& mesh, const std::vector<double>& xyz,
-                                       const std::vector<uint8_t>& removed, const BoundaryLoops& loops,
-                                       double max_length, const HierarchySettings& settings,
-                                       CollapseOptionCache& cache, bool& any_valid) {
-  std::vector<Candidate> out;
-  any_valid = false;
-  const CollapseChecks checks = cache.checks(mesh, xyz, settings.min_normal_cosine);
-  for (uint32_t v = 0; v < removed.size(); ++v) {
-    if (removed[v]) continue;
-    CollapseOptionCache::Entry& e = cache.at(mesh, xyz, v, settings);
-    if (e.kind == CollapseKind::kBoundary && !loops.canLose(v)) continue;
-    if (const CollapseOption* best = e.collapses.cheapestWithin(checks, max_length)) {
-      out.push_back({best->cost, v, best->target, e.kind});
-      any_valid = true;
-    } else {
-      any_valid = any_valid || e.collapses.anyValid(checks);
-    }
-  }
-  // Cost, then vertex index: a total order, so both sides pick the same batch.
-  std::sort(out.begin(), out.end(), [](const Candidate& a, const Candidate& b) {
-    return a.cost < b.cost || (a.cost == b.cost && a.vertex < b.vertex);
-  });
-  return out;
-}
 
 Collapse recordCollapse(const LevelMesh& mesh, const Candidate& c, const VertexRing& ring, int level,
                         ProgressiveMesh& pm) {
@@ -229,35 +203,166 @@ int weldSeams(LevelMesh& mesh, const std::vector<double>& xyz, const BoundaryLoo
   return welded;
 }
 
-// Greedy independent set: closed one rings of the batch are vertex-disjoint, so the batch's
-// collapses touch disjoint triangles and no removed vertex is in another's predictor stencil
-// (stencils reach at most one step beyond the ring: flaps, and on a boundary the next
-// boundary vertices, which a disjoint ring cannot remove).
-int applyBatch(LevelMesh& mesh, const std::vector<Candidate>& candidates, int level, BoundaryLoops& loops,
-               std::vector<uint8_t>& removed, CollapseOptionCache& cache, ProgressiveMesh& pm) {
-  std::vector<uint8_t> marked(removed.size(), 0);
-  std::vector<uint32_t> changed;  // the marked vertices
-  int applied = 0;
-  for (const Candidate& c : candidates) {
-    if (marked[c.vertex]) continue;
-    const VertexRing& ring = cache.ring(c.vertex);
-    bool free = true;
-    for (uint32_t w : ring) free = free && !marked[w];
-    if (!free || (c.kind == CollapseKind::kBoundary && !loops.take(c.vertex))) continue;
-    marked[c.vertex] = 1;
-    for (uint32_t w : ring) marked[w] = 1;
-    changed.push_back(c.vertex);
-    changed.insert(changed.end(), ring.begin(), ring.end());
-    pm.collapses.push_back(recordCollapse(mesh, c, ring, level, pm));
-    removed[c.vertex] = 1;
-    ++applied;
+// A vertex's proposal while a batch is chosen: its option `option` (in cost order), the
+// cheapest within the length bound not known to be invalid.
+struct Proposal {
+  double cost;
+  uint32_t vertex;
+  uint32_t option;
+};
+
+// (cost, vertex): a total order when no cost is NaN, so both sides pick the same batch.
+struct Before {
+  bool operator()(const Proposal& a, const Proposal& b) const {
+    return a.cost < b.cost || (a.cost == b.cost && a.vertex < b.vertex);
   }
-  // Apply after choosing, so every record above saw the level as it started.
-  cache.markChanged(changed);
-  for (size_t i = pm.collapses.size() - size_t(applied); i < pm.collapses.size(); ++i)
-    mesh.collapse(pm.collapses[i].vertex, pm.collapses[i].target);
-  return applied;
-}
+};
+struct After {
+  bool operator()(const Proposal& a, const Proposal& b) const { return Before()(b, a); }
+};
+
+// One level's batch, a greedy independent set: the candidates (each vertex's cheapest valid
+// collapse within the length bound) are taken in (cost, vertex) order and accepted when the
+// closed one ring of their vertex shares no vertex with an accepted one. Closed rings of a
+// batch are vertex-disjoint, so its collapses touch disjoint triangles and no removed vertex
+// is in another's predictor stencil (stencils reach at most one step beyond the ring: flaps,
+// and on a boundary the next boundary vertices, which a disjoint ring cannot remove).
+class Batch {
+ public:
+  Batch(LevelMesh& mesh, const std::vector<double>& xyz, double max_length, const HierarchySettings& settings,
+        BoundaryLoops& loops, std::vector<uint8_t>& removed, CollapseOptionCache& cache, ProgressiveMesh& pm)
+      : mesh_(mesh), xyz_(xyz), max_length_(max_length), settings_(settings), loops_(loops), removed_(removed),
+        cache_(cache), pm_(pm), checks_(cache.checks(mesh, xyz, settings.min_normal_cosine)),
+        marked_(removed.size(), 0) {}
+
+  // Chooses and applies the batch; returns the number of collapses. any_valid tells whether,
+  // should there be none, relaxing the bound could still find work.
+  int apply(bool& any_valid) {
+    bool nan_cost = false;
+    std::vector<Proposal> proposals = propose(nan_cost);
+    if (nan_cost)
+      acceptExactOrder(proposals);
+    else
+      acceptLazily(proposals);
+    any_valid = applied_ > 0 || anyValidOption();
+    // Apply after choosing, so every record saw the level as it started.
+    cache_.markChanged(changed_);
+    for (size_t i = pm_.collapses.size() - size_t(applied_); i < pm_.collapses.size(); ++i)
+      mesh_.collapse(pm_.collapses[i].vertex, pm_.collapses[i].target);
+    return applied_;
+  }
+
+ private:
+  // Prepares every removable vertex and proposes its cheapest option within the bound.
+  std::vector<Proposal> propose(bool& nan_cost) {
+    std::vector<Proposal> out;
+    for (uint32_t v = 0; v < removed_.size(); ++v) {
+      const VertexCollapses* c = removable(v);
+      const size_t first = c ? c->nextWithin(max_length_) : VertexCollapses::kNone;
+      if (first == VertexCollapses::kNone) continue;
+      out.push_back({c->option(first).cost, v, uint32_t(first)});
+      nan_cost = nan_cost || c->hasNanCost();
+    }
+    return out;
+  }
+
+  // v's options when v may be removed on this level (prepared if its triangles changed).
+  VertexCollapses* removable(uint32_t v) {
+    if (removed_[v]) return nullptr;
+    CollapseOptionCache::Entry& e = cache_.at(mesh_, xyz_, v, settings_);
+    if (e.kind == CollapseKind::kBoundary && !loops_.canLose(v)) return nullptr;
+    return &e.collapses;
+  }
+
+  // Proposals in (cost, vertex) order, a proposal's cost being a lower bound of its vertex's
+  // candidate cost until its validity is known: the least proposal is the next candidate once
+  // found valid, else its vertex proposes its next option (into a heap merged with the sorted
+  // first proposals). A vertex whose ring an accepted collapse has reached by then is out at
+  // any cost, so its validity is not needed: most proposals never have theirs found. Same
+  // batch as sorting the candidates, when the order is total.
+  void acceptLazily(std::vector<Proposal>& proposals) {
+    std::sort(proposals.begin(), proposals.end(), Before());
+    std::vector<Proposal> retries;  // a heap, least first
+    for (size_t i = 0; i < proposals.size() || !retries.empty();) {
+      Proposal p;
+      if (retries.empty() || (i < proposals.size() && Before()(proposals[i], retries.front()))) {
+        p = proposals[i++];
+      } else {
+        std::pop_heap(retries.begin(), retries.end(), After());
+        p = retries.back();
+        retries.pop_back();
+      }
+      if (blocked(p.vertex)) continue;
+      VertexCollapses& c = cache_.entry(p.vertex).collapses;
+      if (c.valid(p.option, checks_)) {
+        accept(p);
+        continue;
+      }
+      const size_t next = c.nextWithin(max_length_, p.option + 1);
+      if (next == VertexCollapses::kNone) continue;
+      retries.push_back({c.option(next).cost, p.vertex, uint32_t(next)});
+      std::push_heap(retries.begin(), retries.end(), After());
+    }
+  }
+
+  // With a NaN cost the order is not total: the exact candidates are sorted, as they always
+  // were, so that the batch is the same on both sides whatever the sort makes of NaN.
+  void acceptExactOrder(std::vector<Proposal>& proposals) {
+    std::vector<Proposal> candidates;
+    for (const Proposal& p : proposals) {
+      VertexCollapses& c = cache_.entry(p.vertex).collapses;
+      const size_t best = c.nextValidWithin(checks_, max_length_, p.option);
+      if (best != VertexCollapses::kNone) candidates.push_back({c.option(best).cost, p.vertex, uint32_t(best)});
+    }
+    std::sort(candidates.begin(), candidates.end(), Before());
+    for (const Proposal& p : candidates)
+      if (!blocked(p.vertex)) accept(p);
+  }
+
+  bool blocked(uint32_t v) const {
+    if (marked_[v]) return true;
+    for (uint32_t w : cache_.ring(v))
+      if (marked_[w]) return true;
+    return false;
+  }
+
+  void accept(const Proposal& p) {
+    const CollapseOptionCache::Entry& e = cache_.entry(p.vertex);
+    if (e.kind == CollapseKind::kBoundary && !loops_.take(p.vertex)) return;
+    const VertexRing& ring = e.collapses.ring;
+    marked_[p.vertex] = 1;
+    for (uint32_t w : ring) marked_[w] = 1;
+    changed_.push_back(p.vertex);
+    changed_.insert(changed_.end(), ring.begin(), ring.end());
+    const Candidate c{p.cost, p.vertex, e.collapses.option(p.option).target, e.kind};
+    pm_.collapses.push_back(recordCollapse(mesh_, c, ring, pm_.level_count, pm_));
+    removed_[p.vertex] = 1;
+    ++applied_;
+  }
+
+  // Whether some removable vertex has a valid option at any length (needed only when no
+  // candidate was found within the bound).
+  bool anyValidOption() {
+    for (uint32_t v = 0; v < removed_.size(); ++v) {
+      VertexCollapses* c = removable(v);
+      if (c && c->anyValid(checks_)) return true;
+    }
+    return false;
+  }
+
+  LevelMesh& mesh_;
+  const std::vector<double>& xyz_;
+  double max_length_;
+  const HierarchySettings& settings_;
+  BoundaryLoops& loops_;
+  std::vector<uint8_t>& removed_;
+  CollapseOptionCache& cache_;
+  ProgressiveMesh& pm_;
+  const CollapseChecks checks_;
+  std::vector<uint8_t> marked_;   // the closed rings of accepted collapses
+  std::vector<uint32_t> changed_;  // the marked vertices
+  int applied_ = 0;
+};
 
 }  // namespace
 
@@ -303,10 +408,9 @@ ProgressiveMesh buildProgressiveMesh(const Topology& topology, const std::vector
   CollapseOptionCache cache(topology.vertex_count);
   for (int level = 0; level < settings.max_levels; ++level, max_length *= settings.length_growth) {
     bool any_valid = false;
-    const std::vector<Candidate> candidates =
-        levelCandidates(mesh, parametric_xyz, removed, loops, max_length, settings, cache, any_valid);
+    const int applied = Batch(mesh, parametric_xyz, max_length, settings, loops, removed, cache, pm).apply(any_valid);
     if (!any_valid) break;
-    if (applyBatch(mesh, candidates, pm.level_count, loops, removed, cache, pm) == 0) continue;
+    if (applied == 0) continue;
     ++pm.level_count;
     mesh.reclaimSpace();
   }
