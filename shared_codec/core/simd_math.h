@@ -8,6 +8,7 @@
 // with -ffp-contract=off), whichever version runs.
 #pragma once
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 
 namespace animc {
@@ -24,6 +25,14 @@ inline Pair splat(double x) { return Pair{x, x}; }
 // Lane-wise std::min / std::max (first argument kept on ties and unordered values).
 inline Pair minPair(Pair a, Pair b) { return b < a ? b : a; }
 inline Pair maxPair(Pair a, Pair b) { return a < b ? b : a; }
+// Lane by lane the correctly rounded square root, as std::sqrt, without its errno test.
+inline Pair sqrtPair(Pair x) {
+#if defined(__SSE2__)
+  return __builtin_ia32_sqrtpd(x);
+#else
+  return Pair{std::sqrt(x[0]), std::sqrt(x[1])};
+#endif
+}
 
 // The running bounding box of points, x and y through a Pair, z alone.
 struct PointBox {

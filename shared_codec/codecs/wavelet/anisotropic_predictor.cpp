@@ -14,15 +14,6 @@ using Vec3 = Eigen::Vector3d;
 Vec3 at(const std::vector<double>& xyz, uint32_t v) { return Vec3(xyz[3 * size_t(v)], xyz[3 * size_t(v) + 1], xyz[3 * size_t(v) + 2]); }
 const double* point(const std::vector<double>& xyz, uint32_t v) { return &xyz[3 * size_t(v)]; }
 
-// Lane by lane the correctly rounded square root, as std::sqrt, without its errno test.
-Pair sqrtPair(Pair x) {
-#if defined(__SSE2__)
-  return __builtin_ia32_sqrtpd(x);
-#else
-  return Pair{std::sqrt(x[0]), std::sqrt(x[1])};
-#endif
-}
-
 // Second difference across edge (j, k) with opposite vertices l1 and l2 (the triangles
 // (j, k, l1) and (k, j, l2) unfolded): the jump of the normal derivative of the piecewise
 // linear interpolant, times the edge length so that it is scale free.

@@ -22,15 +22,6 @@ T* firstOf(std::vector<T>& scratch, size_t n) {
   return scratch.data();
 }
 
-// Lane by lane the correctly rounded square root, as std::sqrt, without its errno test.
-Pair sqrtPair(Pair x) {
-#if defined(__SSE2__)
-  return __builtin_ia32_sqrtpd(x);
-#else
-  return Pair{std::sqrt(x[0]), std::sqrt(x[1])};
-#endif
-}
-
 // The arithmetic below is Eigen's Vector3d dot, squaredNorm and cross (what this file used
 // before: the hierarchy is the same bit for bit), written out by axis, on two vectors per
 // Pair: dot (x0 y0 + x1 y1) + x2 y2, cross (a1 b2 - a2 b1, a2 b0 - a0 b2, a0 b1 - a1 b0).
