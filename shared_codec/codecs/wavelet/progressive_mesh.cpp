@@ -229,11 +229,22 @@ struct After {
 // and on a boundary the next boundary vertices, which a disjoint ring cannot remove).
 class Batch {
  public:
+  // Which vertices are gone, and the marks every batch uses.
+  struct Vertices {
+    explicit Vertices(const std::vector<uint8_t>& removed_first) : removed(removed_first), marked(removed.size(), 0) {
+      for (uint32_t v = 0; v < removed.size(); ++v)
+        if (!removed[v]) live.push_back(v);
+    }
+    std::vector<uint8_t> removed;
+    std::vector<uint32_t> live;   // the others, ascending
+    std::vector<uint8_t> marked;  // the closed rings of a batch's collapses; clear between batches
+  };
+
   Batch(LevelMesh& mesh, const std::vector<double>& xyz, double max_length, const HierarchySettings& settings,
-        BoundaryLoops& loops, std::vector<uint8_t>& removed, CollapseOptionCache& cache, ProgressiveMesh& pm)
-      : mesh_(mesh), xyz_(xyz), max_length_(max_length), settings_(settings), loops_(loops), removed_(removed),
-        cache_(cache), pm_(pm), checks_(cache.checks(mesh, xyz, settings.min_normal_cosine)),
-        marked_(removed.size(), 0) {}
+        BoundaryLoops& loops, Vertices& vertices, CollapseOptionCache& cache, ProgressiveMesh& pm)
+      : mesh_(mesh), xyz_(xyz), max_length_(max_length), settings_(settings), loops_(loops), vertices_(vertices),
+        removed_(vertices.removed), marked_(vertices.marked), cache_(cache), pm_(pm),
+        checks_(cache.checks(mesh, xyz, settings.min_normal_cosine)) {}
 
   // Chooses and applies the batch; returns the number of collapses. any_valid tells whether,
   // should there be none, relaxing the bound could still find work.
@@ -249,6 +260,9 @@ class Batch {
     cache_.markChanged(changed_);
     for (size_t i = pm_.collapses.size() - size_t(applied_); i < pm_.collapses.size(); ++i)
       mesh_.collapse(pm_.collapses[i].vertex, pm_.collapses[i].target);
+    for (uint32_t x : changed_) marked_[x] = 0;
+    std::vector<uint32_t>& live = vertices_.live;
+    live.erase(std::remove_if(live.begin(), live.end(), [&](uint32_t v) { return removed_[v] != 0; }), live.end());
     return applied_;
   }
 
@@ -256,7 +270,7 @@ class Batch {
   // Prepares every removable vertex and proposes its cheapest option within the bound.
   std::vector<Proposal> propose(bool& nan_cost) {
     std::vector<Proposal> out;
-    for (uint32_t v = 0; v < removed_.size(); ++v) {
+    for (uint32_t v : vertices_.live) {
       const VertexCollapses* c = removable(v);
       const size_t first = c ? c->nextWithin(max_length_) : VertexCollapses::kNone;
       if (first == VertexCollapses::kNone) continue;
@@ -266,9 +280,9 @@ class Batch {
     return out;
   }
 
-  // v's options when v may be removed on this level (prepared if its triangles changed).
+  // The options of v, which is live, when v may be removed on this level (prepared if its
+  // triangles changed).
   VertexCollapses* removable(uint32_t v) {
-    if (removed_[v]) return nullptr;
     CollapseOptionCache::Entry& e = cache_.at(mesh_, xyz_, v, settings_);
     if (e.kind == CollapseKind::kBoundary && !loops_.canLose(v)) return nullptr;
     return &e.collapses;
@@ -343,7 +357,7 @@ class Batch {
   // Whether some removable vertex has a valid option at any length (needed only when no
   // candidate was found within the bound).
   bool anyValidOption() {
-    for (uint32_t v = 0; v < removed_.size(); ++v) {
+    for (uint32_t v : vertices_.live) {
       VertexCollapses* c = removable(v);
       if (c && c->anyValid(checks_)) return true;
     }
@@ -355,11 +369,12 @@ class Batch {
   double max_length_;
   const HierarchySettings& settings_;
   BoundaryLoops& loops_;
+  Vertices& vertices_;
   std::vector<uint8_t>& removed_;
+  std::vector<uint8_t>& marked_;  // the closed rings of accepted collapses
   CollapseOptionCache& cache_;
   ProgressiveMesh& pm_;
   const CollapseChecks checks_;
-  std::vector<uint8_t> marked_;   // the closed rings of accepted collapses
   std::vector<uint32_t> changed_;  // the marked vertices
   int applied_ = 0;
 };
@@ -406,16 +421,16 @@ ProgressiveMesh buildProgressiveMesh(const Topology& topology, const std::vector
     loops = BoundaryLoops(mesh, topology.vertex_count);  // the welded seams are no longer boundary
   }
   CollapseOptionCache cache(topology.vertex_count);
+  Batch::Vertices vertices(removed);
   for (int level = 0; level < settings.max_levels; ++level, max_length *= settings.length_growth) {
     bool any_valid = false;
-    const int applied = Batch(mesh, parametric_xyz, max_length, settings, loops, removed, cache, pm).apply(any_valid);
+    const int applied = Batch(mesh, parametric_xyz, max_length, settings, loops, vertices, cache, pm).apply(any_valid);
     if (!any_valid) break;
     if (applied == 0) continue;
     ++pm.level_count;
     mesh.reclaimSpace();
   }
-  for (uint32_t v = 0; v < topology.vertex_count; ++v)
-    if (!removed[v]) pm.base.push_back(v);
+  pm.base = vertices.live;
   pm.base_triangles = mesh.liveTriangles();
   return pm;
 }
