@@ -93,9 +93,10 @@ double boundaryCost(const std::vector<double>& xyz, uint32_t v, uint32_t a, uint
 }  // namespace
 
 void FanGeometry::reserve(size_t k) {
-  if (k + 2 <= stride_) return;
-  stride_ = std::max(k + 2, 2 * stride_);
-  arrays_.resize(10 * stride_);
+  if (k + 3 <= stride_) return;
+  stride_ = std::max(k + 3, 2 * stride_);
+  arrays_.resize(12 * stride_);
+  order_.resize(stride_);
 }
 
 void VertexCollapses::computeFan(const std::vector<double>& xyz, FanGeometry& fan) const {
@@ -133,31 +134,26 @@ void VertexCollapses::computeFan(const std::vector<double>& xyz, FanGeometry& fa
 void VertexCollapses::prepare(const std::vector<double>& xyz, uint32_t v, bool closed, FanGeometry& scratch) {
   vertex_ = v;
   closed_ = closed;
-  options_.clear();
   has_nan_cost_ = false;
   if (scratch.vertex == v) scratch.vertex = kNoVertex;  // v's ring has changed
   // An ear (one triangle) stays: its ring is a single edge, which spans no local frame, and
   // removing it turns an inner edge into boundary.
-  if (!closed && ring.size() < 3) return;
+  if (!closed && ring.size() < 3) return options_.clear();
   computeFan(xyz, scratch);
   const double curve = closed ? 0.0 : boundaryCost(xyz, v, ring.front(), ring.back());
-  // Targets: all of a closed ring, the two ends of an open fan.
-  const size_t count = closed ? ring.size() : 2;
-  options_.reserve(count);  // options_ was cleared: appending constructs each option once
-  for (size_t i = 0; i < count; ++i) {
-    const uint32_t position = uint32_t(closed || i == 0 ? i : ring.size() - 1);
-    options_.push_back({{ring[position], position, 0.0, 0.0}, Validity::kUnknown, 0});
-  }
   computeCosts(scratch, curve);
-  for (const Option& o : options_) has_nan_cost_ = has_nan_cost_ || std::isnan(o.choice.cost);
-  sortByCost();
+  addOptionsByCost(scratch);
 }
 
 // Memoryless quadric of each option's target u: squared distances of u to the planes of v's
 // current triangles, area weighted, plus a small length term so that flat regions still
-// prefer short edges, plus `curve`; and the length of the edge (v, u). Two targets at a time,
-// one per lane: lane by lane the same IEEE operations as one target at a time.
-void VertexCollapses::computeCosts(FanGeometry& fan, double curve) {
+// prefer short edges, plus `curve`; and the length of the edge (v, u). Into the scratch's
+// cost and length arrays, by option number; several targets at a time, one per lane: lane by
+// lane the same IEEE operations as one target at a time.
+void VertexCollapses::computeCosts(FanGeometry& fan, double curve) const {
+#if ANIMC_AVX2_PATH
+  if (cpuHasAvx2()) return computeCostsAvx2(fan, curve);
+#endif
   Pair* const planes = firstOf(fan.planes, 5 * fan.triangles);
   Pair* planes_end = planes;
   const double *nx = fan.normal(0), *ny = fan.normal(1), *nz = fan.normal(2);
@@ -175,9 +171,8 @@ void VertexCollapses::computeCosts(FanGeometry& fan, double curve) {
   }
   const Pair length_weight = splat(1e-3 * area);
   const double *sx = fan.spoke(0), *sy = fan.spoke(1), *sz = fan.spoke(2);
-  for (size_t i = 0; i < options_.size(); i += 2) {
-    const bool pair = i + 1 < options_.size();  // else lane 1 repeats lane 0
-    const uint32_t p0 = options_[i].choice.ring_position, p1 = options_[pair ? i + 1 : i].choice.ring_position;
+  for (size_t i = 0; i < optionCount(); i += 2) {  // lane 1 beyond the last option: not used
+    const uint32_t p0 = ringPosition(i), p1 = ringPosition(i + 1);
     const Pair dx = {sx[p0], sx[p1]}, dy = {sy[p0], sy[p1]}, dz = {sz[p0], sz[p1]};
     Pair quadric = splat(0.0);
     for (const Pair* plane = planes; plane != planes_end; plane += 5) {
@@ -185,27 +180,62 @@ void VertexCollapses::computeCosts(FanGeometry& fan, double curve) {
       quadric += plane[4] * distance * distance;
     }
     const Pair squared_length = (dx * dx + dy * dy) + dz * dz;
-    const Pair cost = (quadric + length_weight * squared_length) + splat(curve);
-    const Pair length = sqrtPair(squared_length);
-    for (size_t lane = 0; lane < (pair ? 2 : 1); ++lane) {
-      options_[i + lane].choice.cost = cost[lane];
-      options_[i + lane].choice.length = length[lane];
-    }
+    storePair(fan.cost() + i, (quadric + length_weight * squared_length) + splat(curve));
+    storePair(fan.length() + i, sqrtPair(squared_length));
   }
 }
 
-// Insertion sort: a few options, and a total order (positions are distinct), so the result
-// does not depend on the algorithm.
-void VertexCollapses::sortByCost() {
-  auto before = [](const Option& x, const Option& y) {
-    const CollapseOption &a = x.choice, &b = y.choice;
-    return a.cost < b.cost || (a.cost == b.cost && a.ring_position < b.ring_position);
-  };
-  for (size_t i = 1; i < options_.size(); ++i) {
-    const Option moving = options_[i];
-    size_t j = i;
-    for (; j > 0 && before(moving, options_[j - 1]); --j) options_[j] = options_[j - 1];
-    options_[j] = moving;
+#if ANIMC_AVX2_PATH
+// Four targets at a time, one per lane of a Quad, each plane's values broadcast from the fan's
+// arrays (no splatted copies). A closed ring's targets are ring positions i..i+3 in order, so
+// their spokes load as Quads (lanes past the ring read its padding, and their results land in
+// the arrays' spare room); an open fan's two ends are gathered.
+ANIMC_TARGET_AVX2 void VertexCollapses::computeCostsAvx2(FanGeometry& fan, double curve) const {
+  const double *nx = fan.normal(0), *ny = fan.normal(1), *nz = fan.normal(2), *twice_area = fan.twiceArea();
+  double area = 0;
+  for (size_t t = 0; t < fan.triangles; ++t)
+    if (!(twice_area[t] <= 0)) area += 0.5 * twice_area[t];
+  const Quad length_weight = splatQuad(1e-3 * area);
+  const double *sx = fan.spoke(0), *sy = fan.spoke(1), *sz = fan.spoke(2);
+  const size_t last = ring.size() - 1;
+  for (size_t i = 0; i < optionCount(); i += 4) {
+    const Quad dx = closed_ ? loadQuad(sx + i) : Quad{sx[0], sx[last], sx[last], sx[last]};
+    const Quad dy = closed_ ? loadQuad(sy + i) : Quad{sy[0], sy[last], sy[last], sy[last]};
+    const Quad dz = closed_ ? loadQuad(sz + i) : Quad{sz[0], sz[last], sz[last], sz[last]};
+    Quad quadric = splatQuad(0.0);
+    for (size_t t = 0; t < fan.triangles; ++t) {
+      if (twice_area[t] <= 0) continue;  // no plane
+      const Quad distance =
+          ((splatQuad(nx[t]) * dx + splatQuad(ny[t]) * dy) + splatQuad(nz[t]) * dz) / splatQuad(twice_area[t]);
+      quadric += splatQuad(0.5 * twice_area[t]) * distance * distance;
+    }
+    const Quad squared_length = (dx * dx + dy * dy) + dz * dz;
+    storeQuad(fan.cost() + i, (quadric + length_weight * squared_length) + splatQuad(curve));
+    storeQuad(fan.length() + i, __builtin_ia32_sqrtpd256(squared_length));
+  }
+}
+#endif
+
+// The options in (cost, ring position) order: an insertion sort of the option numbers (ring
+// positions grow with them), the same comparisons as sorting the options themselves, so the
+// same order even where a NaN cost leaves the order partial; then each option built once.
+void VertexCollapses::addOptionsByCost(FanGeometry& fan) {
+  const double* cost = fan.cost();
+  uint32_t* order = fan.order();
+  auto before = [cost](uint32_t a, uint32_t b) { return cost[a] < cost[b] || (cost[a] == cost[b] && a < b); };
+  const size_t count = optionCount();
+  for (uint32_t i = 0; i < count; ++i) {
+    uint32_t j = i;
+    for (; j > 0 && before(i, order[j - 1]); --j) order[j] = order[j - 1];
+    order[j] = i;
+    has_nan_cost_ = has_nan_cost_ || std::isnan(cost[i]);
+  }
+  options_.resize(count);  // constructs only the options beyond the previous count
+  Option* const out = options_.data();
+  const double* length = fan.length();
+  for (size_t k = 0; k < count; ++k) {
+    const uint32_t i = order[k], position = ringPosition(i);
+    out[k] = {{ring[position], position, cost[i], length[i]}, Validity::kUnknown, 0};
   }
 }
 

@@ -38,12 +38,16 @@ struct FanGeometry {
 
   // By axis (structure of arrays), so that ring vertices i and i + 1, or triangles i and
   // i + 1, load as one Pair. The ring arrays repeat the first vertex after the last (where a
-  // closed fan's last triangle ends) and, like the triangle arrays, have one slot more, which
-  // the lane beyond the last triangle reads and writes (its results are not used).
+  // closed fan's last triangle ends); every array has room for three values more, which lanes
+  // beyond the last vertex or triangle read or write (their results are not used).
   double* position(int axis) { return array(axis); }  // of the ring vertices
   double* spoke(int axis) { return array(3 + axis); }  // ring vertex minus vertex
   double* normal(int axis) { return array(6 + axis); }
   double* twiceArea() { return array(9); }
+  // prepare()'s: the options' costs and lengths, and the option numbers in cost order.
+  double* cost() { return array(10); }
+  double* length() { return array(11); }
+  uint32_t* order() { return order_.data(); }
   // Room for a ring of k vertices; the arrays only grow, so that refilling them neither
   // allocates nor clears.
   void reserve(size_t k);
@@ -55,7 +59,8 @@ struct FanGeometry {
  private:
   double* array(int i) { return arrays_.data() + i * stride_; }
   size_t stride_ = 0;
-  std::vector<double> arrays_;  // 10 arrays of stride_ doubles
+  std::vector<double> arrays_;  // 12 arrays of stride_ doubles
+  std::vector<uint32_t> order_;  // stride_
 };
 
 // What an option's validity depends on besides the vertex's own ring: the mesh as the level
@@ -123,8 +128,15 @@ class VertexCollapses {
   // checks).
   bool keepsMeshSound(const CollapseOption& option, const CollapseChecks& checks) const;
   void computeFan(const std::vector<double>& xyz, FanGeometry& scratch) const;
-  void computeCosts(FanGeometry& scratch, double curve);
-  void sortByCost();
+  void computeCosts(FanGeometry& scratch, double curve) const;
+#if ANIMC_AVX2_PATH
+  void computeCostsAvx2(FanGeometry& scratch, double curve) const;
+#endif
+  void addOptionsByCost(FanGeometry& scratch);
+  // Option i (before sorting) targets ring position i of a closed ring; those of an open fan
+  // its two ends (i = 0, 1).
+  size_t optionCount() const { return closed_ ? ring.size() : 2; }
+  uint32_t ringPosition(size_t option) const { return uint32_t(closed_ || option == 0 ? option : ring.size() - 1); }
 
   uint32_t vertex_ = kNoVertex;
   bool closed_ = true;
