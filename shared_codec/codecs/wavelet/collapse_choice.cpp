@@ -224,12 +224,14 @@ void VertexCollapses::addOptionsByCost(FanGeometry& fan) {
   uint32_t* order = fan.order();
   auto before = [cost](uint32_t a, uint32_t b) { return cost[a] < cost[b] || (cost[a] == cost[b] && a < b); };
   const size_t count = optionCount();
+  bool nan = false;
   for (uint32_t i = 0; i < count; ++i) {
     uint32_t j = i;
     for (; j > 0 && before(i, order[j - 1]); --j) order[j] = order[j - 1];
     order[j] = i;
-    has_nan_cost_ = has_nan_cost_ || std::isnan(cost[i]);
+    nan |= std::isnan(cost[i]);
   }
+  has_nan_cost_ = nan;
   options_.resize(count);  // constructs only the options beyond the previous count
   Option* const out = options_.data();
   const double* length = fan.length();

@@ -270,6 +270,7 @@ class Batch {
   // Prepares every removable vertex and proposes its cheapest option within the bound.
   std::vector<Proposal> propose(bool& nan_cost) {
     std::vector<Proposal> out;
+    out.reserve(vertices_.live.size());
     for (uint32_t v : vertices_.live) {
       const VertexCollapses* c = removable(v);
       const size_t first = c ? c->nextWithin(max_length_) : VertexCollapses::kNone;
