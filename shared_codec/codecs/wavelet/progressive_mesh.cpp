@@ -51,7 +51,6 @@ struct BoundaryLoops {
     for (uint32_t v = 0; v < vertex_count; ++v) remaining[loop_of[v]] += on_boundary[v];
   }
 
-  bool onBoundary(uint32_t v) const { return remaining[loop_of[v]] > 0; }
   bool canLose(uint32_t v) const { return remaining[loop_of[v]] > 3; }
   // One vertex less on v's loop, if the loop keeps at least 3.
   bool take(uint32_t v) {
@@ -98,6 +97,7 @@ class CollapseOptionCache {
   struct Entry {
     explicit Entry(std::pmr::memory_resource* arena) : collapses(arena) {}
     bool stale = true;
+    bool closed_ring = false;  // the ring is v's closed ring (else an open fan, or unknown)
     CollapseKind kind = CollapseKind::kInterior;
     VertexCollapses collapses;  // its ring is v's closed ring, or open fan on a boundary
   };
@@ -111,11 +111,13 @@ class CollapseOptionCache {
     Entry& e = entries_[v];
     if (!e.stale) return e;
     e.stale = false;
+    e.closed_ring = false;
     e.kind = CollapseKind::kInterior;
     VertexCollapses& c = e.collapses;
     if (mesh.triangleCount(v) > kMaxCollapseTriangles) {
       c.clear();  // not removable; its ring is not even walked
     } else if (mesh.orderedRing(v, c.ring)) {
+      e.closed_ring = true;
       c.prepare(xyz, v, true, fan_);
     } else if (settings.collapse_boundaries && mesh.openFan(v, c.ring)) {
       e.kind = CollapseKind::kBoundary;
@@ -140,6 +142,25 @@ class CollapseOptionCache {
     }
   }
 
+  // LevelMesh::flapAcross(a, b, v) for an edge (a, b) of v's ring: when a's fresh entry holds
+  // its closed ring, whose triangles (a, ring[m-1], ring[m]) and (a, ring[m], ring[m+1]) are
+  // the two that hold b = ring[m], the flap is the one of ring[m-1], ring[m+1] that is not v,
+  // found without walking a's triangles.
+  uint32_t flapAcross(const LevelMesh& mesh, uint32_t a, uint32_t b, uint32_t v) const {
+    const Entry& e = entries_[a];
+    if (e.stale || !e.closed_ring) return mesh.flapAcross(a, b, v);
+    const VertexRing& ring = e.collapses.ring;
+    const size_t k = ring.size();
+    for (size_t m = 0; m < k; ++m) {
+      if (ring[m] != b) continue;
+      const uint32_t previous = ring[m == 0 ? k - 1 : m - 1], next = ring[m + 1 == k ? 0 : m + 1];
+      if (next == v) return previous;
+      if (previous == v) return next;
+      break;
+    }
+    return mesh.flapAcross(a, b, v);
+  }
+
   CollapseChecks checks(const LevelMesh& mesh, const std::vector<double>& xyz, double min_normal_cosine) {
     return {mesh, xyz, min_normal_cosine, changed_by_, batches_, fan_};
   }
@@ -155,8 +176,8 @@ class CollapseOptionCache {
   FanGeometry fan_;  // the fan of the vertex being prepared or checked, shared by every entry
 };
 
-Collapse recordCollapse(const LevelMesh& mesh, const Candidate& c, const VertexRing& ring, int level,
-                        ProgressiveMesh& pm) {
+Collapse recordCollapse(const LevelMesh& mesh, const CollapseOptionCache& cache, const Candidate& c,
+                        const VertexRing& ring, int level, ProgressiveMesh& pm) {
   Collapse record;
   record.vertex = c.vertex;
   record.target = c.target;
@@ -168,9 +189,25 @@ Collapse recordCollapse(const LevelMesh& mesh, const Candidate& c, const VertexR
   for (size_t i = 0; i < k; ++i) {
     pm.ring.push_back(ring[i]);
     const bool wraps = c.kind != CollapseKind::kInterior && i + 1 == k;  // no edge from last to first
-    pm.flap.push_back(wraps ? kNoVertex : mesh.flapAcross(ring[i], ring[(i + 1) % k], c.vertex));
+    pm.flap.push_back(wraps ? kNoVertex : cache.flapAcross(mesh, ring[i], ring[(i + 1) % k], c.vertex));
   }
   return record;
+}
+
+// Whether some edge (v, b) is held by exactly one triangle: b is once among the corners of
+// v's triangles (the test BoundaryLoops makes for all vertices). `times` is all zeros, and
+// left so.
+bool onBoundary(const LevelMesh& mesh, uint32_t v, std::vector<uint32_t>& times, std::vector<uint32_t>& corners) {
+  corners.clear();
+  for (const uint32_t *t = mesh.trianglesBegin(v), *end = mesh.trianglesEnd(v); t != end; ++t)
+    for (uint32_t b : mesh.triangle(*t))
+      if (b != v && times[b]++ == 0) corners.push_back(b);
+  bool once = false;
+  for (uint32_t b : corners) {
+    once = once || times[b] == 1;
+    times[b] = 0;
+  }
+  return once;
 }
 
 // Seams: boundary vertices at exactly the same parametric position (texture seams, split
@@ -179,22 +216,25 @@ Collapse recordCollapse(const LevelMesh& mesh, const Candidate& c, const VertexR
 // above. Only non-adjacent boundary vertices are welded: coincident neighbours (a
 // coarse parametric grid merging close vertices) are degenerate edges, not seams. Exact
 // comparisons and index order keep it deterministic.
-int weldSeams(LevelMesh& mesh, const std::vector<double>& xyz, const BoundaryLoops& loops, std::vector<uint8_t>& removed,
-              ProgressiveMesh& pm) {
+int weldSeams(LevelMesh& mesh, const std::vector<double>& xyz, const CollapseOptionCache& cache,
+              std::vector<uint8_t>& removed, ProgressiveMesh& pm) {
   std::vector<uint32_t> order(removed.size());
   std::iota(order.begin(), order.end(), 0u);
   auto position = [&](uint32_t v) { return std::make_tuple(xyz[3 * size_t(v)], xyz[3 * size_t(v) + 1], xyz[3 * size_t(v) + 2]); };
   std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
     return position(a) < position(b) || (position(a) == position(b) && a < b);
   });
+  std::vector<uint32_t> times(removed.size(), 0), corners;
   int welded = 0;
   for (size_t first = 0, end = 0; first < order.size(); first = end) {
     const uint32_t original = order[first];
     for (end = first + 1; end < order.size() && position(order[end]) == position(original); ++end) {
       const uint32_t copy = order[end];
-      if (!loops.onBoundary(original) || !loops.onBoundary(copy) || mesh.adjacent(copy, original)) continue;
+      if (!onBoundary(mesh, original, times, corners) || !onBoundary(mesh, copy, times, corners) ||
+          mesh.adjacent(copy, original))
+        continue;
       const Candidate seam{0.0, copy, original, CollapseKind::kSeam};
-      pm.collapses.push_back(recordCollapse(mesh, seam, {original}, 0, pm));
+      pm.collapses.push_back(recordCollapse(mesh, cache, seam, {original}, 0, pm));
       removed[copy] = 1;
       ++welded;
     }
@@ -350,7 +390,7 @@ class Batch {
     changed_.push_back(p.vertex);
     changed_.insert(changed_.end(), ring.begin(), ring.end());
     const Candidate c{p.cost, p.vertex, e.collapses.option(p.option).target, e.kind};
-    pm_.collapses.push_back(recordCollapse(mesh_, c, ring, pm_.level_count, pm_));
+    pm_.collapses.push_back(recordCollapse(mesh_, cache_, c, ring, pm_.level_count, pm_));
     removed_[p.vertex] = 1;
     ++applied_;
   }
@@ -415,13 +455,12 @@ ProgressiveMesh buildProgressiveMesh(const Topology& topology, const std::vector
   LevelMesh mesh(topology);
   std::vector<uint8_t> removed(topology.vertex_count, 0);
   double max_length = settings.first_length_factor * meanEdgeLength(topology, parametric_xyz);
-  BoundaryLoops loops(mesh, topology.vertex_count);
-  if (settings.weld_seams && weldSeams(mesh, parametric_xyz, loops, removed, pm) > 0) {
+  CollapseOptionCache cache(topology.vertex_count);
+  if (settings.weld_seams && weldSeams(mesh, parametric_xyz, cache, removed, pm) > 0) {
     pm.level_count = 1;
     mesh.rebuildIncidence();
-    loops = BoundaryLoops(mesh, topology.vertex_count);  // the welded seams are no longer boundary
   }
-  CollapseOptionCache cache(topology.vertex_count);
+  BoundaryLoops loops(mesh, topology.vertex_count);  // the welded seams are no longer boundary
   Batch::Vertices vertices(removed);
   for (int level = 0; level < settings.max_levels; ++level, max_length *= settings.length_growth) {
     bool any_valid = false;
