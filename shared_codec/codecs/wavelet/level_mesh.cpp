@@ -89,34 +89,32 @@ bool LevelMesh::fanSteps(uint32_t v) const {
   return true;
 }
 
-// Follows the steps from `start` through all of them; false when some vertex has two ways
-// out (non-manifold or inconsistent orientation) or none before the steps are used up, or
-// is passed twice. ring receives the vertices passed, start first, then the vertex reached
-// last, which the caller checks.
-bool LevelMesh::walkSteps(uint32_t start, VertexRing& ring) const {
+// Follows the steps from `start` through all of them and returns the vertex reached last;
+// kNoVertex when some vertex has two ways out (non-manifold or inconsistent orientation) or
+// none before the steps are used up, or is passed twice. ring (resized to `size`) receives
+// the vertices passed, start first.
+uint32_t LevelMesh::walkSteps(uint32_t start, VertexRing& ring, size_t size) const {
   const size_t count = step_count_;
-  ring.resize(count + 1);
+  ring.resize(size);  // as a vertex's rings keep their size, usually no change
   const uint32_t token = step_token_, passed = token + 1;
   StepMark* const from_vertex = step_from_.data();
   uint32_t* const out = ring.data();
   uint32_t current = start;
   for (size_t i = 0; i < count; ++i) {
     StepMark& from = from_vertex[current];
-    if (from.token != token || from.to == kNoVertex) return false;  // a boundary, a flipped or
-    from.token = passed;                                            // non-manifold neighbour
+    if (from.token != token || from.to == kNoVertex) return kNoVertex;  // a boundary, a flipped
+    from.token = passed;                                                // or non-manifold neighbour
     out[i] = current;
     current = from.to;
   }
-  out[count] = current;
-  return true;
+  return current;
 }
 
 bool LevelMesh::orderedRing(uint32_t v, VertexRing& ring) const {
-  // A closed fan is one cycle through all the steps.
+  // A closed fan is one cycle through all the steps, back to where it started.
   if (!fanSteps(v) || step_count_ < 3) return false;
-  if (!walkSteps(steps_[0].first, ring) || ring.back() != ring.front()) return false;
-  ring.pop_back();
-  return true;
+  const uint32_t start = steps_[0].first;
+  return walkSteps(start, ring, step_count_) == start;
 }
 
 bool LevelMesh::openFan(uint32_t v, VertexRing& ring) const {
@@ -130,8 +128,11 @@ bool LevelMesh::openFan(uint32_t v, VertexRing& ring) const {
     if (start != kNoVertex) return false;  // several fans meet at v
     start = steps_[i].first;
   }
-  if (start == kNoVertex || !walkSteps(start, ring)) return false;
-  return step_from_[ring.back()].token != step_token_ + 1;  // the chain's end was not passed
+  if (start == kNoVertex) return false;
+  const uint32_t end = walkSteps(start, ring, step_count_ + 1);
+  if (end == kNoVertex || step_from_[end].token == step_token_ + 1) return false;  // the end was passed
+  ring.back() = end;
+  return true;
 }
 
 uint32_t LevelMesh::flapAcross(uint32_t a, uint32_t b, uint32_t v) const {

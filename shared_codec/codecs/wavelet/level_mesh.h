@@ -99,7 +99,7 @@ class LevelMesh {
   // Each triangle (v, a, b) of v as the step a -> b around v, into steps_[0, step_count_) and
   // step_from_[a]; false on a degenerate triangle.
   bool fanSteps(uint32_t v) const;
-  bool walkSteps(uint32_t start, VertexRing& ring) const;
+  uint32_t walkSteps(uint32_t start, VertexRing& ring, size_t size) const;
   void nextStepToken() const;
   void dropDeadTrianglesAndCount();
   void dropFromList(uint32_t v, uint32_t t);

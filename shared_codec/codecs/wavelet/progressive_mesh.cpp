@@ -97,7 +97,9 @@ class CollapseOptionCache {
   struct Entry {
     explicit Entry(std::pmr::memory_resource* arena) : collapses(arena) {}
     bool stale = true;
-    bool closed_ring = false;  // the ring is v's closed ring (else an open fan, or unknown)
+    bool ring_found = false;   // by LevelMesh::orderedRing or openFan
+    bool closed_ring = false;  // by orderedRing
+    bool ring_kept = false;    // stale, but the ring is still v's (see keepRing)
     CollapseKind kind = CollapseKind::kInterior;
     VertexCollapses collapses;  // its ring is v's closed ring, or open fan on a boundary
   };
@@ -111,21 +113,41 @@ class CollapseOptionCache {
     Entry& e = entries_[v];
     if (!e.stale) return e;
     e.stale = false;
-    e.closed_ring = false;
-    e.kind = CollapseKind::kInterior;
     VertexCollapses& c = e.collapses;
+    if (e.ring_kept) {  // same fan shape, new geometry
+      e.ring_kept = false;
+      c.prepare(xyz, v, e.closed_ring, fan_);
+      return e;
+    }
+    e.ring_found = e.closed_ring = false;
+    e.kind = CollapseKind::kInterior;
     if (mesh.triangleCount(v) > kMaxCollapseTriangles) {
       c.clear();  // not removable; its ring is not even walked
     } else if (mesh.orderedRing(v, c.ring)) {
-      e.closed_ring = true;
+      e.ring_found = e.closed_ring = true;
       c.prepare(xyz, v, true, fan_);
     } else if (settings.collapse_boundaries && mesh.openFan(v, c.ring)) {
+      e.ring_found = true;
       e.kind = CollapseKind::kBoundary;
       c.prepare(xyz, v, false, fan_);
     } else {
       c.clear();
     }
     return e;
+  }
+
+  // Before the batch is applied: v collapses onto u, and w is in v's ring without flanking the
+  // edge (v, u). Then w's triangles that hold v become u's and none dies, and u is no neighbour
+  // of w (the link condition), so w's steps stay the same with v replaced by u, from the same
+  // first triangle: its new ring is its ring with v replaced by u, and needs no walk.
+  void keepRing(uint32_t w, uint32_t v, uint32_t u) {
+    Entry& e = entries_[w];
+    if (e.stale || !e.ring_found) return;
+    VertexRing& ring = e.collapses.ring;
+    const auto at = std::find(ring.begin(), ring.end(), v);
+    if (at == ring.end()) return;
+    *at = u;
+    e.ring_kept = true;
   }
   // A vertex's entry as last prepared, and its ring: unchanged until the level's collapses are
   // applied (they mark every vertex whose ring they change stale).
@@ -297,6 +319,7 @@ class Batch {
       acceptLazily(proposals);
     any_valid = applied_ > 0 || anyValidOption();
     // Apply after choosing, so every record saw the level as it started.
+    for (size_t i = pm_.collapses.size() - size_t(applied_); i < pm_.collapses.size(); ++i) keepRings(pm_.collapses[i]);
     cache_.markChanged(changed_);
     for (size_t i = pm_.collapses.size() - size_t(applied_); i < pm_.collapses.size(); ++i)
       mesh_.collapse(pm_.collapses[i].vertex, pm_.collapses[i].target);
@@ -309,15 +332,16 @@ class Batch {
  private:
   // Prepares every removable vertex and proposes its cheapest option within the bound.
   std::vector<Proposal> propose(bool& nan_cost) {
-    std::vector<Proposal> out;
-    out.reserve(vertices_.live.size());
+    std::vector<Proposal> out(vertices_.live.size());  // at most one per live vertex
+    size_t count = 0;
     for (uint32_t v : vertices_.live) {
       const VertexCollapses* c = removable(v);
       const size_t first = c ? c->nextWithin(max_length_) : VertexCollapses::kNone;
       if (first == VertexCollapses::kNone) continue;
-      out.push_back({c->option(first).cost, v, uint32_t(first)});
+      out[count++] = {c->option(first).cost, v, uint32_t(first)};
       nan_cost = nan_cost || c->hasNanCost();
     }
+    out.resize(count);
     return out;
   }
 
@@ -393,6 +417,18 @@ class Batch {
     pm_.collapses.push_back(recordCollapse(mesh_, cache_, c, ring, pm_.level_count, pm_));
     removed_[p.vertex] = 1;
     ++applied_;
+  }
+
+  // CollapseOptionCache::keepRing for the ring vertices of c that do not flank its edge.
+  void keepRings(const Collapse& c) {
+    const uint32_t* ring = &pm_.ring[c.ring_begin];
+    const size_t k = c.ring_size;
+    const size_t at = size_t(std::find(ring, ring + k, c.target) - ring);
+    const bool closed = c.kind == CollapseKind::kInterior;
+    for (size_t i = 0; i < k; ++i) {
+      const bool flank = i + 1 == at || at + 1 == i || (closed && (i + 1 == at + k || at + 1 == i + k));
+      if (i != at && !flank) cache_.keepRing(ring[i], c.vertex, c.target);
+    }
   }
 
   // Whether some removable vertex has a valid option at any length (needed only when no
