@@ -149,6 +149,26 @@ class CollapseOptionCache {
     *at = u;
     e.ring_kept = true;
   }
+
+  // After the batch is applied: v has collapsed onto u, and w, whose ring was closed, flanks
+  // the edge (v, u). w's triangle with v and u died and its other one with v became u's, so
+  // its steps are the same without v: its new ring is its ring without v, started (as a walk
+  // would) at the corner after w in the first triangle of its list. A ring of three would
+  // become two: walked again, and found not to be a ring.
+  void keepFlankRing(const LevelMesh& mesh, uint32_t w, uint32_t v) {
+    Entry& e = entries_[w];
+    if (e.stale || !e.closed_ring || e.collapses.ring.size() < 4) return;
+    VertexRing& ring = e.collapses.ring;
+    const auto at = std::find(ring.begin(), ring.end(), v);
+    if (at == ring.end()) return;
+    ring.erase(at);
+    const Triangle& first = mesh.triangle(*mesh.trianglesBegin(w));
+    const uint32_t start = first[0] == w ? first[1] : (first[1] == w ? first[2] : first[0]);
+    const auto from = std::find(ring.begin(), ring.end(), start);
+    if (from == ring.end()) return;  // cannot happen; then the ring is walked again
+    std::rotate(ring.begin(), from, ring.end());
+    e.ring_kept = true;
+  }
   // A vertex's entry as last prepared, and its ring: unchanged until the level's collapses are
   // applied (they mark every vertex whose ring they change stale).
   Entry& entry(uint32_t v) { return entries_[v]; }
@@ -211,7 +231,7 @@ Collapse recordCollapse(const LevelMesh& mesh, const CollapseOptionCache& cache,
   for (size_t i = 0; i < k; ++i) {
     pm.ring.push_back(ring[i]);
     const bool wraps = c.kind != CollapseKind::kInterior && i + 1 == k;  // no edge from last to first
-    pm.flap.push_back(wraps ? kNoVertex : cache.flapAcross(mesh, ring[i], ring[(i + 1) % k], c.vertex));
+    pm.flap.push_back(wraps ? kNoVertex : cache.flapAcross(mesh, ring[i], ring[i + 1 == k ? 0 : i + 1], c.vertex));
   }
   return record;
 }
@@ -319,10 +339,11 @@ class Batch {
       acceptLazily(proposals);
     any_valid = applied_ > 0 || anyValidOption();
     // Apply after choosing, so every record saw the level as it started.
-    for (size_t i = pm_.collapses.size() - size_t(applied_); i < pm_.collapses.size(); ++i) keepRings(pm_.collapses[i]);
+    const size_t first = pm_.collapses.size() - size_t(applied_);
+    for (size_t i = first; i < pm_.collapses.size(); ++i) keepRings(pm_.collapses[i], false);
+    for (size_t i = first; i < pm_.collapses.size(); ++i) mesh_.collapse(pm_.collapses[i].vertex, pm_.collapses[i].target);
+    for (size_t i = first; i < pm_.collapses.size(); ++i) keepRings(pm_.collapses[i], true);
     cache_.markChanged(changed_);
-    for (size_t i = pm_.collapses.size() - size_t(applied_); i < pm_.collapses.size(); ++i)
-      mesh_.collapse(pm_.collapses[i].vertex, pm_.collapses[i].target);
     for (uint32_t x : changed_) marked_[x] = 0;
     std::vector<uint32_t>& live = vertices_.live;
     live.erase(std::remove_if(live.begin(), live.end(), [&](uint32_t v) { return removed_[v] != 0; }), live.end());
@@ -419,15 +440,20 @@ class Batch {
     ++applied_;
   }
 
-  // CollapseOptionCache::keepRing for the ring vertices of c that do not flank its edge.
-  void keepRings(const Collapse& c) {
+  // CollapseOptionCache::keepRing for the ring vertices of c that do not flank its edge
+  // (before the collapse is applied), or keepFlankRing for those that do (after).
+  void keepRings(const Collapse& c, bool flanks) {
     const uint32_t* ring = &pm_.ring[c.ring_begin];
     const size_t k = c.ring_size;
     const size_t at = size_t(std::find(ring, ring + k, c.target) - ring);
     const bool closed = c.kind == CollapseKind::kInterior;
     for (size_t i = 0; i < k; ++i) {
+      if (i == at) continue;
       const bool flank = i + 1 == at || at + 1 == i || (closed && (i + 1 == at + k || at + 1 == i + k));
-      if (i != at && !flank) cache_.keepRing(ring[i], c.vertex, c.target);
+      if (flank && flanks)
+        cache_.keepFlankRing(mesh_, ring[i], c.vertex);
+      else if (!flank && !flanks)
+        cache_.keepRing(ring[i], c.vertex, c.target);
     }
   }
 
