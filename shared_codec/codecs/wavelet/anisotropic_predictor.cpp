@@ -233,9 +233,12 @@ void appendStencil(const ProgressiveMesh& pm, const Collapse& c, const std::vect
   const bool usable = normaliser > 0 && std::isfinite(normaliser) &&
                       std::fabs(sum - normaliser) <= 1e-6 * normaliser && l1 <= params.max_stencil_l1 * normaliser;
   if (usable) {
-    for (const auto& t : terms) {
-      out.vertex.push_back(t.first);
-      out.weight.push_back(t.second / normaliser);
+    const size_t at = out.vertex.size();
+    out.vertex.resize(at + terms.size());
+    out.weight.resize(at + terms.size());
+    for (size_t j = 0; j < terms.size(); ++j) {
+      out.vertex[at + j] = terms[j].first;
+      out.weight[at + j] = terms[j].second / normaliser;
     }
   } else {  // degenerate geometry: the plain average of the ring
     for (size_t i = 0; i < k; ++i) {
