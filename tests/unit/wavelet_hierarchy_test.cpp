@@ -317,7 +317,8 @@ Topology torusTopology(uint32_t nx, uint32_t ny) {
 std::vector<std::vector<Triangle>> incidence(const LevelMesh& mesh, uint32_t vertex_count) {
   std::vector<std::vector<Triangle>> out(vertex_count);
   for (uint32_t v = 0; v < vertex_count; ++v)
-    for (const uint32_t* t = mesh.trianglesBegin(v); t != mesh.trianglesEnd(v); ++t) out[v].push_back(mesh.triangle(*t));
+    for (const uint32_t* t = mesh.trianglesBegin(v); t != mesh.trianglesEnd(v); ++t)
+      out[v].push_back(mesh.triangle(*t));
   return out;
 }
 

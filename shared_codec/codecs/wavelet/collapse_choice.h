@@ -52,8 +52,8 @@ struct FanGeometry {
   // allocates nor clears.
   void reserve(size_t k);
 
-  // prepare()'s: the triangles that have a plane (area not <= 0), as five Pairs each, the
-  // normal's x, y, z, twice and half the area, every value in both lanes.
+  // The portable cost computation's: the triangles that have a plane (area not <= 0), as five
+  // Pairs each, the normal's x, y, z, twice and half the area, every value in both lanes.
   std::vector<Pair> planes;
 
  private:

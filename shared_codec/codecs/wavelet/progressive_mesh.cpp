@@ -341,7 +341,8 @@ class Batch {
     // Apply after choosing, so every record saw the level as it started.
     const size_t first = pm_.collapses.size() - size_t(applied_);
     for (size_t i = first; i < pm_.collapses.size(); ++i) keepRings(pm_.collapses[i], false);
-    for (size_t i = first; i < pm_.collapses.size(); ++i) mesh_.collapse(pm_.collapses[i].vertex, pm_.collapses[i].target);
+    for (size_t i = first; i < pm_.collapses.size(); ++i)
+      mesh_.collapse(pm_.collapses[i].vertex, pm_.collapses[i].target);
     for (size_t i = first; i < pm_.collapses.size(); ++i) keepRings(pm_.collapses[i], true);
     cache_.markChanged(changed_);
     for (uint32_t x : changed_) marked_[x] = 0;
