@@ -134,9 +134,8 @@ class RangeDecoder {
     const int bit = code_ >= bound;
     const uint32_t mask = BitModel::maskOf(bit);
     code_ -= bound & mask;
-    // After a 1 the range is range_ - bound, or for a raw bit the halved range itself.
-    const uint32_t range_if_one = bound + ((range_ - bound - bound) & use_model);
-    range_ = bound + ((range_if_one - bound) & mask);
+    // The range becomes bound, except after a modelled 1: range_ - bound.
+    range_ = bound + ((range_ - bound - bound) & use_model & mask);
     m.updateIf(bit, use_model);
     normalize();
     return bit;
