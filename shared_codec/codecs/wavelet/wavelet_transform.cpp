@@ -282,7 +282,7 @@ WaveletTransform::WaveletTransform(const Topology& topology, const std::vector<d
     : local_frames_(local_frames), pm_(buildProgressiveMesh(topology, parametric_xyz, settings)),
       stencils_(buildPredictor(pm_, parametric_xyz)),
       level_of_(topology.vertex_count, -1) {
-  flattenStencils();
+  buildCollapseTables();
   if (local_frames_) {  // the tangent masks of the local frames; world axes need none
     cosines_.resize(pm_.ring.size());
     sines_.resize(pm_.ring.size());
@@ -297,7 +297,7 @@ WaveletTransform::WaveletTransform(const Topology& topology, const std::vector<d
   computeWeights(topology, parametric_xyz);
 }
 
-void WaveletTransform::flattenStencils() {
+void WaveletTransform::buildCollapseTables() {
   const uint32_t last = pm_.vertex_count - 1;
   stencil_offset_.resize(stencils_.vertex.size());
   for (size_t s = 0; s < stencils_.vertex.size(); ++s) stencil_offset_[s] = 3 * stencils_.vertex[s];

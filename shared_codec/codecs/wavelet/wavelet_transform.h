@@ -38,7 +38,9 @@ class WaveletTransform {
 
  private:
   void computeWeights(const Topology& topology, const std::vector<double>& xyz);
-  void flattenStencils();
+  // The flat per-collapse arrays (offsets, near-end flags, kept vertices) that tables() hands
+  // to the transform kernels.
+  void buildCollapseTables();
   CollapseTables tables() const;
   // The positions (or coefficients) of the vertices no collapse removes, from -> to.
   void copyKept(const double* from, double* to) const;
