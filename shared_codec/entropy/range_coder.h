@@ -18,19 +18,16 @@ struct BitModel {
   // coders' range and code out of registers after every bit.
   uint16_t seen = 0;
 
-  void update(int bit) { updateIf(bit, ~0u); }
-  // update(bit) where `active` is all ones, nothing where it is 0, without a branch.
-  void updateIf(int bit, uint32_t active) {
+  void update(int bit) {
     static constexpr uint8_t kShift[] = {2, 3, 3, 4, 4, 4, 5, 5, 5, 5, 5, 5, 5};
     constexpr uint16_t kLearned = sizeof(kShift) - 1;  // from here on the rate stays 1/32
     const int shift = kShift[seen];
-    seen += (seen < kLearned) & active;
+    seen += seen < kLearned;
     // p0 moves towards kProbOne after a 0 and towards 2^shift - 1 after a 1, by an arithmetic
     // shift: p0 + floor((2^shift - 1 - p0) / 2^shift) = p0 - floor(p0 / 2^shift), the same
     // rounding both ways as the two-sided form, with one shift instead of two.
     const int32_t target = bit ? (1 << shift) - 1 : int32_t(kProbOne);
-    const uint32_t next = uint32_t(int32_t(p0) + ((target - int32_t(p0)) >> shift));
-    p0 = uint16_t(p0 ^ ((p0 ^ next) & active));
+    p0 = uint16_t(int32_t(p0) + ((target - int32_t(p0)) >> shift));
   }
   static uint32_t maskOf(int bit) { return 0u - uint32_t(bit); }
 };
@@ -122,21 +119,6 @@ class RangeDecoder {
     const uint32_t mask = BitModel::maskOf(bit);
     code_ -= bound & mask;
     range_ = bound + ((range_ - bound - bound) & mask);  // range_ - bound when the bit is 1
-    normalize();
-    return bit;
-  }
-  // Either decodeData(m) (modelled) or decodeRaw(1) (m untouched), chosen by masks: for
-  // callers whose choice follows the data and would mispredict as a branch.
-  int decodeDataOrRaw(BitModel& m, bool modelled) {
-    const uint32_t use_model = BitModel::maskOf(modelled);
-    const uint32_t half = range_ >> 1, scaled = (range_ >> kProbBits) * m.p0;
-    const uint32_t bound = half ^ ((half ^ scaled) & use_model);
-    const int bit = code_ >= bound;
-    const uint32_t mask = BitModel::maskOf(bit);
-    code_ -= bound & mask;
-    // The range becomes bound, except after a modelled 1: range_ - bound.
-    range_ = bound + ((range_ - bound - bound) & use_model & mask);
-    m.updateIf(bit, use_model);
     normalize();
     return bit;
   }

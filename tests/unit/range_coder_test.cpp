@@ -1,6 +1,5 @@
 // The range coder's two decoding paths: decodeData (masks, for near-random data bits) must
-// give exactly what decode (which may branch) gives, decodeDataOrRaw what decodeData or
-// decodeRaw gives; and the models' update rule.
+// give exactly what decode (which may branch) gives; and the models' update rule.
 #include <gtest/gtest.h>
 
 #include <iterator>
@@ -62,40 +61,6 @@ TEST(RangeCoder, ModelUpdateFollowsItsDefinition) {
         ASSERT_EQ(m.p0, expected) << "step " << step << " p0 " << p0 << " bit " << bit;
       }
     }
-  }
-}
-
-// decodeDataOrRaw (masks) against decodeData / decodeRaw(1) chosen by a branch: same bits,
-// models and end state on streams that mix modelled and raw bits at random, truncated too.
-TEST(RangeCoder, DecodeDataOrRawMatchesEitherPath) {
-  std::mt19937 rng(11);
-  for (int trial = 0; trial < 30; ++trial) {
-    std::vector<uint8_t> bytes;
-    std::vector<bool> modelled;
-    const size_t decisions = 1 + rng() % 5000;
-    {
-      RangeEncoder enc(bytes);
-      BitModel models[2];
-      for (size_t i = 0; i < decisions; ++i) {
-        modelled.push_back(rng() % 3 == 0);
-        const int bit = int(rng() % 100 < (modelled.back() ? 15u : 50u));
-        if (modelled.back()) enc.encode(models[i % 2], bit);
-        else enc.encodeRaw(uint32_t(bit), 1);
-      }
-      enc.finish();
-    }
-    if (trial % 3 == 1) bytes.resize(bytes.size() / 2);
-    RangeDecoder branching(bytes.data(), bytes.size());
-    RangeDecoder masked(bytes.data(), bytes.size());
-    BitModel branching_models[2], masked_models[2];
-    for (size_t i = 0; i < decisions; ++i) {
-      BitModel& b = branching_models[i % 2];
-      const int expected = modelled[i] ? branching.decodeData(b) : int(branching.decodeRaw(1));
-      ASSERT_EQ(masked.decodeDataOrRaw(masked_models[i % 2], modelled[i]), expected) << "trial " << trial << " bit " << i;
-      ASSERT_EQ(masked_models[i % 2].p0, b.p0);
-      ASSERT_EQ(masked_models[i % 2].seen, b.seen);
-    }
-    EXPECT_EQ(branching.overran(), masked.overran()) << "trial " << trial;
   }
 }
 

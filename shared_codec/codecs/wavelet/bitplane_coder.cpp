@@ -114,7 +114,6 @@ struct EncoderIo {
     rc->encodeRaw(uint32_t(bit), 1);
     return bit;
   }
-  int codeOrRaw(BitModel& m, bool modelled, int bit) { return modelled ? code(m, bit) : raw(bit); }
 };
 
 // Holds the decoder by value: the walk copies it into a local for each plane, where its
@@ -124,7 +123,7 @@ struct DecoderIo {
   static constexpr bool kEncodes = false;
   RangeDecoder rc;
   int code(BitModel& m, int) { return rc.decodeData(m); }
-  int codeOrRaw(BitModel& m, bool modelled, int) { return rc.decodeDataOrRaw(m, modelled); }
+  int raw(int) { return int(rc.decodeRaw(1)); }
 };
 
 // Local owner when the caller passes no workspace.

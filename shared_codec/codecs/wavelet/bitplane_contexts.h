@@ -29,7 +29,6 @@ struct BitplaneContexts {
   BitModel fresh[kBitplaneClasses][3][3][kTemporalContexts];  // component, significant ones before it
   BitModel component[kPlaneSlots][kBitplaneClasses][kTemporalContexts][2];  // 2+ siblings significant
   BitModel sign[kBitplaneClasses][3];    // last frame's sign: none / + / -
-  BitModel refine[kBitplaneClasses];     // first refinement bit (known magnitude 1)
 
   // Before a frame whose walk starts at plane top - 1: the per-plane models above it are
   // never read, and skipping them saves most of the 50 KB a full reset writes per frame.
@@ -39,7 +38,6 @@ struct BitplaneContexts {
     fill(component, top);
     fill(fresh);
     fill(sign);
-    fill(refine);
   }
 
  private:
@@ -311,8 +309,7 @@ struct PlaneWalk {
 
   // The common case of the low planes: all three components known, three refinement bits.
   void codeRefinements(size_t v) {
-    BitModel& model = m.refine[classes[v]];
-    for (size_t j = 3 * v; j < 3 * v + 3; ++j) refine(model, j);
+    for (size_t j = 3 * v; j < 3 * v + 3; ++j) refine(j);
   }
 
   void codeSignificantVertex(size_t v) {
@@ -321,7 +318,7 @@ struct PlaneWalk {
     for (int a = 0; a < 3; ++a) {
       const size_t j = 3 * v + a;
       if (vertex_mask & (1 << a)) {
-        refine(m.refine[cls], j);
+        refine(j);
         continue;
       }
       const int siblings = (0xE8 >> vertex_mask) & 1;  // 2+ of the 3 bits set: masks 3, 5, 6, 7
@@ -333,13 +330,12 @@ struct PlaneWalk {
     mask[v] = vertex_mask;
   }
 
-  // Only the first refinement bit after significance is skewed (residuals are roughly
-  // Laplacian); the later ones are close to random and go raw, as in the paper: adaptive
-  // models for them cost up to 0.4 % more bits (docs/wavelet.md) and a slower decision.
-  void refine(BitModel& first, size_t j) {
-    const uint32_t k = known[j];
-    known[j] = (k << 1) | uint32_t(io.codeOrRaw(first, k == 1, magnitudeBit(j)));
-  }
+  // Refinement bits go raw, as in the paper. Only the first one after significance is
+  // skewed (residuals are roughly Laplacian: 0 in 59-69 % of cases); an adaptive model for
+  // it saved 0.15-0.43 % of the bits, but made decoding 2-14 % slower: a model load, update
+  // and store, and a range that depends on the bit, where a raw bit just halves it
+  // (docs/wavelet.md, "Decode speed, fourth pass").
+  void refine(size_t j) { known[j] = (known[j] << 1) | uint32_t(io.raw(magnitudeBit(j))); }
 
   void becomeSignificant(size_t j, int cls) {
     known[j] = 1;
