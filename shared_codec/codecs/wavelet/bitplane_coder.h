@@ -3,13 +3,13 @@
 // vertices in blocks of kBlockVertices consecutive ones in coding order. In each plane a
 // block not yet significant codes one flag (does any of its coefficients become significant
 // here?), a vertex not yet significant one flag, then its components; coefficients already
-// significant code their refinement bit. Every decision goes through the adaptive binary
-// range coder, except refinement bits after a coefficient's first one, which are raw bits of
-// the same coder (no model); significance contexts combine the plane, the vertex's class,
-// the parent's state and, for P-frames, what the same coefficient did in the previous frame
-// (temporal context). The stream can stop after any block of any plane: the decoder then knows each
-// magnitude to the planes it received and reconstructs inside the remaining interval,
-// biased towards zero (residuals are roughly Laplacian).
+// significant code their refinement bit. Significance and sign decisions go through the
+// adaptive binary range coder; refinement bits are raw bits of the same coder (no model).
+// Significance contexts combine the plane, the vertex's class, the parent's state and, for
+// P-frames, what the same coefficient did in the previous frame (temporal context). The
+// stream can stop after any block of any plane: the decoder then knows each magnitude to the
+// planes it received and reconstructs inside the remaining interval, biased towards zero
+// (residuals are roughly Laplacian).
 //
 // Block layout (docs/wavelet.md): u8 Plane_Count (bit 7: has checkpoints), then, when
 // Plane_Count > 0: varint Coded_Planes, varint Last_Plane_Stop (blocks coded in the last
