@@ -61,16 +61,16 @@ void WaveletFrameModel::setParametric(const std::vector<double>& parametric_xyz)
   for (const Collapse& c : pm.collapses) target[c.vertex] = c.target;
   classes_.clear();
   parents_.clear();
-  group_.clear();
   for (uint32_t v : order_) {
     classes_.push_back(classOf(transform_->levelOf()[v], pm.level_count));
-    group_.push_back(classes_.back() == 0 ? 0 : 1);
     parents_.push_back(target[v] == kNoVertex ? kNoParent : position[target[v]]);
   }
+  // Prediction groups: base vertices (class 0), then removed ones.
+  const auto group = [&](size_t i) { return uint8_t(classes_[i] == 0 ? 0 : 1); };
   runs_.clear();
   for (uint32_t begin = 0, end; begin < order_.size(); begin = end) {
-    for (end = begin + 1; end < order_.size() && group_[end] == group_[begin];) ++end;
-    runs_.push_back({begin, end, group_[begin]});
+    for (end = begin + 1; end < order_.size() && group(end) == group(begin);) ++end;
+    runs_.push_back({begin, end, group(begin)});
   }
   if (!order_.empty()) {
     quad_stops_ = {position[pm.vertex_count - 1], uint32_t(order_.size() - 1)};

@@ -97,7 +97,6 @@ class WaveletFrameModel {
   std::vector<uint32_t> parents_;   // coding position of the vertex it collapses onto
   BitplaneHistory context_, next_context_;
   BitplaneWorkspacePtr workspace_ = makeBitplaneWorkspace();
-  std::vector<uint8_t> group_;      // prediction group of each vertex, in coding order
   struct PredictionRun {
     uint32_t begin, end;
     uint8_t group;
