@@ -303,12 +303,10 @@ void WaveletTransform::buildCollapseTables() {
   for (size_t s = 0; s < stencils_.vertex.size(); ++s) stencil_offset_[s] = 3 * stencils_.vertex[s];
   ring_offset_.resize(local_frames_ ? pm_.ring.size() : 0);  // what the local frames read
   for (size_t r = 0; r < ring_offset_.size(); ++r) ring_offset_[r] = 3 * pm_.ring[r];
-  std::vector<bool> removed(pm_.vertex_count, false);
   collapse_offset_.clear();
   near_end_.clear();
   for (size_t i = 0; i < pm_.collapses.size(); ++i) {
     const Collapse& c = pm_.collapses[i];
-    removed[c.vertex] = true;
     collapse_offset_.push_back(3 * c.vertex);
     const auto stencil = stencils_.vertex.begin() + stencils_.first[i];
     const auto stencil_end = stencils_.vertex.begin() + stencils_.first[i + 1];
@@ -316,9 +314,6 @@ void WaveletTransform::buildCollapseTables() {
     near_end_.push_back(c.vertex == last || std::find(stencil, stencil_end, last) != stencil_end ||
                         std::find(ring, ring_end, last) != ring_end);
   }
-  kept_offset_.clear();
-  for (uint32_t v = 0; v < pm_.vertex_count; ++v)
-    if (!removed[v]) kept_offset_.push_back(3 * v);
 }
 
 CollapseTables WaveletTransform::tables() const {
@@ -328,8 +323,8 @@ CollapseTables WaveletTransform::tables() const {
 }
 
 void WaveletTransform::copyKept(const double* from, double* to) const {
-  for (uint32_t v : kept_offset_)
-    for (int a = 0; a < 3; ++a) to[v + a] = from[v + a];
+  for (uint32_t v : pm_.base)
+    for (size_t o = 3 * size_t(v); o < 3 * size_t(v) + 3; ++o) to[o] = from[o];
 }
 
 void WaveletTransform::computeWeights(const Topology& topology, const std::vector<double>& xyz) {

@@ -38,11 +38,11 @@ class WaveletTransform {
 
  private:
   void computeWeights(const Topology& topology, const std::vector<double>& xyz);
-  // The flat per-collapse arrays (offsets, near-end flags, kept vertices) that tables() hands
-  // to the transform kernels.
+  // The flat per-collapse arrays (offsets, near-end flags) that tables() hands to the
+  // transform kernels.
   void buildCollapseTables();
   CollapseTables tables() const;
-  // The positions (or coefficients) of the vertices no collapse removes, from -> to.
+  // The positions (or coefficients) of the base vertices (those no collapse removes), from -> to.
   void copyKept(const double* from, double* to) const;
 
   bool local_frames_;
@@ -51,7 +51,6 @@ class WaveletTransform {
   std::vector<uint32_t> stencil_offset_;  // 3 * stencils_.vertex: the x of each stencil vertex
   std::vector<uint32_t> collapse_offset_;  // 3 * the vertex of each collapse
   std::vector<uint8_t> near_end_;          // whether a collapse reads the last vertex
-  std::vector<uint32_t> kept_offset_;      // 3 * each vertex no collapse removes (the base)
   std::vector<uint32_t> ring_offset_;      // 3 * pm_.ring
   std::vector<double> cosines_, sines_;  // tangent masks, aligned with pm_.ring
   std::vector<double> weights_;
