@@ -32,6 +32,21 @@ double meanEdgeLength(const Topology& topology, const std::vector<double>& xyz) 
   return count ? sum / double(count) : 0.0;
 }
 
+// f(b) for each boundary edge (v, b), one held by exactly one live triangle: b is once among
+// the corners of v's triangles (b > v only, when higher_only). times is all zeros, and left so.
+template <class F>
+void forEachBoundaryEdge(const LevelMesh& mesh, uint32_t v, bool higher_only, std::vector<uint32_t>& times,
+                         std::vector<uint32_t>& corners, F f) {
+  corners.clear();  // each once, in order of first appearance
+  for (const uint32_t *t = mesh.trianglesBegin(v), *end = mesh.trianglesEnd(v); t != end; ++t)
+    for (uint32_t b : mesh.triangle(*t))
+      if ((higher_only ? b > v : b != v) && times[b]++ == 0) corners.push_back(b);
+  for (uint32_t b : corners) {
+    if (times[b] == 1) f(b);
+    times[b] = 0;
+  }
+}
+
 // The boundary loops (edges with one live triangle, joined at shared vertices) and how many
 // vertices each still has, so that every loop keeps >= 3. Collapses that pass the link
 // condition keep the topology, so loops neither split nor merge: built once, after the
@@ -65,23 +80,13 @@ struct BoundaryLoops {
     return v;
   }
 
-  // Edges (a, b), a < b, held by exactly one live triangle: b appears once among the other
-  // corners of a's triangles. (Their order does not matter: the loops are the connected
-  // components, whatever the order of the unions.)
+  // The boundary edges (a, b), a < b. (Their order does not matter: the loops are the
+  // connected components, whatever the order of the unions.)
   static std::vector<std::pair<uint32_t, uint32_t>> boundaryEdges(const LevelMesh& mesh, uint32_t vertex_count) {
     std::vector<std::pair<uint32_t, uint32_t>> out;
-    std::vector<uint32_t> corners;                   // of a's triangles, b > a, each once
-    std::vector<uint32_t> times(vertex_count, 0);  // how often b is a corner; 0 between vertices
-    for (uint32_t a = 0; a < vertex_count; ++a) {
-      corners.clear();
-      for (const uint32_t *t = mesh.trianglesBegin(a), *end = mesh.trianglesEnd(a); t != end; ++t)
-        for (uint32_t b : mesh.triangle(*t))
-          if (b > a && times[b]++ == 0) corners.push_back(b);
-      for (uint32_t b : corners) {
-        if (times[b] == 1) out.emplace_back(a, b);
-        times[b] = 0;
-      }
-    }
+    std::vector<uint32_t> times(vertex_count, 0), corners;
+    for (uint32_t a = 0; a < vertex_count; ++a)
+      forEachBoundaryEdge(mesh, a, true, times, corners, [&](uint32_t b) { out.emplace_back(a, b); });
     return out;
   }
 };
@@ -236,20 +241,11 @@ Collapse recordCollapse(const LevelMesh& mesh, const CollapseOptionCache& cache,
   return record;
 }
 
-// Whether some edge (v, b) is held by exactly one triangle: b is once among the corners of
-// v's triangles (the test BoundaryLoops makes for all vertices). `times` is all zeros, and
-// left so.
+// Whether v has a boundary edge. `times` is all zeros, and left so.
 bool onBoundary(const LevelMesh& mesh, uint32_t v, std::vector<uint32_t>& times, std::vector<uint32_t>& corners) {
-  corners.clear();
-  for (const uint32_t *t = mesh.trianglesBegin(v), *end = mesh.trianglesEnd(v); t != end; ++t)
-    for (uint32_t b : mesh.triangle(*t))
-      if (b != v && times[b]++ == 0) corners.push_back(b);
-  bool once = false;
-  for (uint32_t b : corners) {
-    once = once || times[b] == 1;
-    times[b] = 0;
-  }
-  return once;
+  bool any = false;
+  forEachBoundaryEdge(mesh, v, false, times, corners, [&](uint32_t) { any = true; });
+  return any;
 }
 
 // Seams: boundary vertices at exactly the same parametric position (texture seams, split
