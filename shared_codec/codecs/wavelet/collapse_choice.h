@@ -80,8 +80,9 @@ struct CollapseChecks {
 
 // A vertex's collapse options on the current level. Costs and lengths are computed for every
 // target at once; the validity rules (link condition, no duplicate, degenerate or flipped
-// triangle), which cost several times more, only for the targets a level's choice reaches,
-// once each. Valid while the vertex's neighbourhood within two edges is unchanged.
+// triangle), which cost several times more, only for the targets a level's choice reaches.
+// Costs and lengths stand while v's own triangles are unchanged, a validity while its
+// target's are too (valid()).
 class VertexCollapses {
  public:
   // Its arrays are allocated from `arena`.
