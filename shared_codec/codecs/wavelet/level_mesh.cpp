@@ -25,9 +25,9 @@ void LevelMesh::rebuildIncidence() {
     start += count_[v];
   }
   incident_.resize(start);
-  fill_.assign(first_.begin(), first_.end());
+  std::vector<uint32_t> fill(first_);
   for (size_t t = 0; t < triangles_.size(); ++t)
-    for (uint32_t v : triangles_[t]) incident_[fill_[v]++] = uint32_t(t);
+    for (uint32_t v : triangles_[t]) incident_[fill[v]++] = uint32_t(t);
   rebuilt_size_ = incident_.size();
 }
 
@@ -173,32 +173,31 @@ void LevelMesh::markNeighbours(uint32_t u) const {
   for (const uint32_t *t = trianglesBegin(u), *end = trianglesEnd(u); t != end; ++t) neighbours_.mark(triangles_[*t]);
 }
 
-void LevelMesh::collapse(uint32_t v, uint32_t u) {
+template <class Dies>
+void LevelMesh::replaceVertex(uint32_t v, uint32_t u, Dies dies) {
   for (const uint32_t *t = trianglesBegin(v), *end = trianglesEnd(v); t != end; ++t) {
     Triangle& tri = triangles_[*t];
     if (tri[0] == u || tri[1] == u || tri[2] == u) {
       alive_[*t] = 0;
-      for (uint32_t w : tri)
-        if (w != u && w != v) dropFromList(w, *t);  // u's list is merged below
+      dies(*t);
       continue;
     }
     for (uint32_t& w : tri)
       if (w == v) w = u;
   }
+}
+
+void LevelMesh::collapse(uint32_t v, uint32_t u) {
+  replaceVertex(v, u, [&](uint32_t t) {
+    for (uint32_t w : triangles_[t])
+      if (w != u && w != v) dropFromList(w, t);  // u's list is merged below
+  });
   mergeLists(u, v);
   count_[v] = 0;
 }
 
 void LevelMesh::weld(uint32_t v, uint32_t u) {
-  for (const uint32_t *t = trianglesBegin(v), *end = trianglesEnd(v); t != end; ++t) {
-    Triangle& tri = triangles_[*t];
-    if (tri[0] == u || tri[1] == u || tri[2] == u) {
-      alive_[*t] = 0;
-      continue;
-    }
-    for (uint32_t& w : tri)
-      if (w == v) w = u;
-  }
+  replaceVertex(v, u, [](uint32_t) {});
 }
 
 // Removes triangle t (listed once) from v's list, keeping the order.

@@ -101,6 +101,9 @@ class LevelMesh {
   bool fanSteps(uint32_t v) const;
   uint32_t walkSteps(uint32_t start, VertexRing& ring, size_t size) const;
   void nextStepToken() const;
+  // v's triangles: those that hold u die (dies(t) for each), v becomes u in the others.
+  template <class Dies>
+  void replaceVertex(uint32_t v, uint32_t u, Dies dies);
   void dropDeadTrianglesAndCount();
   void dropFromList(uint32_t v, uint32_t t);
   void mergeLists(uint32_t u, uint32_t v);
@@ -112,7 +115,6 @@ class LevelMesh {
   std::vector<uint32_t> count_;     // and how long it is
   std::vector<uint32_t> incident_;  // the lists; a moved list leaves its old place unused
   size_t rebuilt_size_ = 0;         // incident_'s size at the last rebuild
-  std::vector<uint32_t> fill_;      // rebuildIncidence's scratch
   // Scratch of the queries, reused so that they do not allocate (one thread per mesh).
   mutable std::vector<std::pair<uint32_t, uint32_t>> steps_;  // grows only; step_count_ are used
   mutable size_t step_count_ = 0;
