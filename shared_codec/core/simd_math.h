@@ -2,7 +2,7 @@
 //  - Pair: two doubles (a point's x and y; z goes alone), the SIMD width every x86-64 and
 //    ARM64 CPU has.
 //  - Quad: four doubles (x, y, z and an unused lane), for the AVX2 versions of the hottest
-//    loops, chosen at run time on x86-64 CPUs that have AVX2 (cell_kernels.cpp).
+//    loops, chosen at run time on x86-64 CPUs that have AVX2 (cpuHasAvx2() below).
 // Every operation is the IEEE operation of each lane, so results are bit-identical to the
 // scalar formulas they replace (no reassociation, no fused multiply-add: the library is built
 // with -ffp-contract=off), whichever version runs.
@@ -73,12 +73,19 @@ ANIMC_TARGET_AVX2 inline Quad minQuad(Quad a, Quad b) { return b < a ? b : a; }
 ANIMC_TARGET_AVX2 inline Quad maxQuad(Quad a, Quad b) { return a < b ? b : a; }
 // A point's x, y, z as lanes 0-2 of a Quad and back, touching those three doubles only:
 // loadQuad would read the double after the point (past the end of an array, for its last
-// point) and storeQuad would overwrite it. loadXyz leaves lane 3 at 0.
-ANIMC_TARGET_AVX2 inline Quad loadXyz(const double* p) { return Quad{p[0], p[1], p[2], 0.0}; }
+// point) and storeQuad would overwrite it. loadXyz leaves lane 3 at 0. It joins two loads
+// (x y, then z and a zero): GCC builds Quad{p[0], p[1], p[2], 0.0} from scalar loads instead,
+// sometimes with a register-to-register vmovq that valgrind 3.19 cannot decode.
+ANIMC_TARGET_AVX2 inline Quad loadXyz(const double* p) {
+  return __builtin_shufflevector(loadPair(p), Pair{p[2], 0.0}, 0, 1, 2, 3);
+}
 ANIMC_TARGET_AVX2 inline void storeXyz(double* p, Quad v) {
   storePair(p, Pair{v[0], v[1]});
   p[2] = v[2];
 }
+// Lanes 0-2 rotated: (v1, v2, v0) and (v2, v0, v1), lane 3 kept (cross products).
+ANIMC_TARGET_AVX2 inline Quad yzx(Quad v) { return __builtin_shufflevector(v, v, 1, 2, 0, 3); }
+ANIMC_TARGET_AVX2 inline Quad zxy(Quad v) { return __builtin_shufflevector(v, v, 2, 0, 1, 3); }
 // Columns 0, 1 and 2 of the 4 x 4 matrix with rows a, b, c, e: (a[j], b[j], c[j], e[j]).
 ANIMC_TARGET_AVX2 inline void transposeColumns(Quad a, Quad b, Quad c, Quad e, Quad columns[3]) {
   const Quad ab_even = __builtin_shufflevector(a, b, 0, 4, 2, 6), ab_odd = __builtin_shufflevector(a, b, 1, 5, 3, 7);

@@ -134,13 +134,6 @@ __attribute__((noinline)) void predictPointsPortable(const double* u, size_t n, 
 #if ANIMC_AVX2_PATH
 // ---- AVX2 versions: a whole point per Quad (lane 3 unused). ----
 
-// Two loads joined (x y, then z and a zero): GCC builds Quad{p[0], p[1], p[2], 0.0} from
-// scalar loads instead, sometimes with a register-to-register vmovq that valgrind 3.19
-// cannot decode.
-ANIMC_TARGET_AVX2 Quad loadPoint3(const double* p) {
-  return __builtin_shufflevector(loadPair(p), Pair{p[2], 0.0}, 0, 1, 2, 3);
-}
-
 // PointGatherer with a whole point per Quad. The constructor adds the first point: the box of
 // one point is that point, the same values as adding it to a box started from it, with one
 // load less.
@@ -148,13 +141,13 @@ struct QuadGatherer {
   Quad sum, lo, hi;
 
   ANIMC_TARGET_AVX2 QuadGatherer(const double* first, double* out) {
-    const Quad p = loadPoint3(first);
+    const Quad p = loadXyz(first);
     storeQuad(out, p);
     sum = splatQuad(0) + p;
     lo = hi = p;
   }
   ANIMC_TARGET_AVX2 void add(const double* point, double* out) {
-    const Quad p = loadPoint3(point);
+    const Quad p = loadXyz(point);
     storeQuad(out, p);
     sum += p;
     lo = minQuad(lo, p);
@@ -184,7 +177,7 @@ ANIMC_TARGET_AVX2 TwoCellFrames gatherPointsTwiceAvx2(const double* first, const
 }
 
 ANIMC_TARGET_AVX2 void copyPointsAvx2(const double* frame, const uint32_t* idx, size_t n, double* out) {
-  for (size_t i = 0; i < n; ++i) storeQuad(&out[kPointStride * i], loadPoint3(&frame[3 * size_t(idx[i])]));
+  for (size_t i = 0; i < n; ++i) storeQuad(&out[kPointStride * i], loadXyz(&frame[3 * size_t(idx[i])]));
 }
 
 // One pass: the 21 sums fit in seven Quads. Σ d·dᵀ comes from d·d (the diagonal) and d·d'
@@ -221,15 +214,6 @@ ANIMC_TARGET_AVX2 FitSums fitSumsAvx2(const double* u, const double* q, size_t n
                  {s.md[0], s.md1[0], s.md2[0], s.md2[1], s.md[1], s.md1[1], s.md1[2], s.md2[2], s.md[2]}};
 }
 
-// (v1, v2, v0) and (v2, v0, v1).
-ANIMC_TARGET_AVX2 inline Quad yzx(Quad v) { return __builtin_shufflevector(v, v, 1, 2, 0, 3); }
-ANIMC_TARGET_AVX2 inline Quad zxy(Quad v) { return __builtin_shufflevector(v, v, 2, 0, 1, 3); }
-
-// The first three lanes of v to out[0..2].
-ANIMC_TARGET_AVX2 inline void storePoint3(double* out, Quad v) {
-  storePair(out, Pair{v[0], v[1]});
-  out[2] = v[2];
-}
 
 ANIMC_TARGET_AVX2 void predictPointsAvx2(const double* u, size_t n, const double c[3], const CentredAffine& a,
                                          const uint32_t* idx, double* recon) {
@@ -271,7 +255,7 @@ ANIMC_TARGET_AVX2 void fitCentredAvx2(const double* u, const double* q, size_t n
   // b = Σ (m - m̄)·dᵀ + λ·prior, as in fitCentred().
   Quad b[3];
   for (int r = 0; r < 3; ++r)
-    b[r] = (cross[r] - splatQuad(t[r]) * s.d) + splatQuad(lambda) * loadPoint3(&prior_L[3 * r]);
+    b[r] = (cross[r] - splatQuad(t[r]) * s.d) + splatQuad(lambda) * loadXyz(&prior_L[3 * r]);
   // Rows of the cofactor matrix: inv row 0 = a₁ × a₂, row 1 = a₂ × a₀, row 2 = a₀ × a₁.
   Quad inv[3];
   for (int r = 0; r < 3; ++r) {
@@ -280,10 +264,10 @@ ANIMC_TARGET_AVX2 void fitCentredAvx2(const double* u, const double* q, size_t n
     inv[r] = yzx(x) * zxy(y) - zxy(x) * yzx(y);
   }
   const double det = a[0][0] * inv[0][0] + a[0][1] * inv[1][0] + a[0][2] * inv[2][0];
-  storePoint3(out.t, t);
+  storeXyz(out.t, t);
   for (int r = 0; r < 3; ++r) {
     const Quad numerator = (splatQuad(b[r][0]) * inv[0] + splatQuad(b[r][1]) * inv[1]) + splatQuad(b[r][2]) * inv[2];
-    storePoint3(&out.L[3 * r], numerator / splatQuad(det));
+    storeXyz(&out.L[3 * r], numerator / splatQuad(det));
   }
 }
 #endif

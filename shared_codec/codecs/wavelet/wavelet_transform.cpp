@@ -82,11 +82,7 @@ ANIMC_TARGET_AVX2 inline FrameQuads worldAxesQuads() {
 ANIMC_TARGET_AVX2 inline double sum3(Quad a) { return (a[0] + a[1]) + a[2]; }
 
 // Eigen's cross product of lanes 0-2: (a1 b2 - a2 b1, a2 b0 - a0 b2, a0 b1 - a1 b0).
-ANIMC_TARGET_AVX2 inline Quad cross3(Quad a, Quad b) {
-  const Quad a_yzx = __builtin_shufflevector(a, a, 1, 2, 0, 3), a_zxy = __builtin_shufflevector(a, a, 2, 0, 1, 3);
-  const Quad b_yzx = __builtin_shufflevector(b, b, 1, 2, 0, 3), b_zxy = __builtin_shufflevector(b, b, 2, 0, 1, 3);
-  return a_yzx * b_zxy - a_zxy * b_yzx;
-}
+ANIMC_TARGET_AVX2 inline Quad cross3(Quad a, Quad b) { return yzx(a) * zxy(b) - zxy(a) * yzx(b); }
 
 // localFrame() (local_frame.h) on Quads, the same operations: Eigen's 3-vector expressions
 // component by component, its sums of three in sum3's order. Lanes 3 hold whatever follows the
