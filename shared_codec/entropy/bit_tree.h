@@ -26,17 +26,21 @@ void encodeTree(RangeEncoder& rc, BitTreeModel<kBits>& m, uint32_t value) {
 // Each level's probability is that of a child of the node just decoded: both children's are
 // fetched while the bit is decoded and the right one selected after, which keeps the memory
 // load off the chain from one bit to the next.
+// Always inlined: called out of line, it would take the caller's decoder by address, which
+// forces the caller's local copy (see predictive_octree_decoder.cpp) out of registers.
 template <int kBits>
-uint32_t decodeTree(RangeDecoder& decoder, BitTreeModel<kBits>& m) {
+__attribute__((always_inline)) inline uint32_t decodeTree(RangeDecoder& decoder, BitTreeModel<kBits>& m) {
   RangeDecoder rc = decoder;  // a local copy the compiler can keep in registers
   uint32_t node = 1;
   uint32_t p0 = m.node[1].p0;
+  // Unrolled: a loop exit is a mispredicted branch per tree.
+#pragma GCC unroll 8
   for (int i = 0; i < kBits; ++i) {
     const bool inner = i + 1 < kBits;
     const uint32_t p0_left = inner ? m.node[2 * node].p0 : 0;
     const uint32_t p0_right = inner ? m.node[2 * node + 1].p0 : 0;
     const int bit = rc.decodeWithProbability(p0);
-    m.node[node].update(bit);
+    m.node[node].updateData(bit);
     node = node * 2 + uint32_t(bit);
     p0 = bit ? p0_right : p0_left;
   }

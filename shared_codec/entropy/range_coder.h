@@ -18,18 +18,31 @@ struct BitModel {
   // coders' range and code out of registers after every bit.
   uint16_t seen = 0;
 
+  // For a bit the caller branches on.
   void update(int bit) {
+    const int shift = nextShift();
+    // p0 moves towards kProbOne after a 0 and towards 2^shift - 1 after a 1, by an arithmetic
+    // shift: p0 + floor((2^shift - 1 - p0) / 2^shift) = p0 - floor(p0 / 2^shift), the same
+    // rounding both ways as the two-sided form, with one shift instead of two.
+    moveTowards(bit ? (1 << shift) - 1 : int32_t(kProbOne), shift);
+  }
+  // The same for a bit that is data (close to random), with a mask: GCC may turn update()'s
+  // select into a branch, which suits well-predicted bits and mispredicts on these.
+  void updateData(int bit) {
+    const int shift = nextShift();
+    moveTowards(int32_t(kProbOne) + ((((1 << shift) - 1) - int32_t(kProbOne)) & -bit), shift);
+  }
+  static uint32_t maskOf(int bit) { return 0u - uint32_t(bit); }
+
+ private:
+  int nextShift() {
     static constexpr uint8_t kShift[] = {2, 3, 3, 4, 4, 4, 5, 5, 5, 5, 5, 5, 5};
     constexpr uint16_t kLearned = sizeof(kShift) - 1;  // from here on the rate stays 1/32
     const int shift = kShift[seen];
     seen += seen < kLearned;
-    // p0 moves towards kProbOne after a 0 and towards 2^shift - 1 after a 1, by an arithmetic
-    // shift: p0 + floor((2^shift - 1 - p0) / 2^shift) = p0 - floor(p0 / 2^shift), the same
-    // rounding both ways as the two-sided form, with one shift instead of two.
-    const int32_t target = bit ? (1 << shift) - 1 : int32_t(kProbOne);
-    p0 = uint16_t(int32_t(p0) + ((target - int32_t(p0)) >> shift));
+    return shift;
   }
-  static uint32_t maskOf(int bit) { return 0u - uint32_t(bit); }
+  void moveTowards(int32_t target, int shift) { p0 = uint16_t(int32_t(p0) + ((target - int32_t(p0)) >> shift)); }
 };
 
 class RangeEncoder {
