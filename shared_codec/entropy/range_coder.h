@@ -149,6 +149,8 @@ class RangeDecoder {
   // A valid stream is fully consumed with at most the encoder's 4 flush bytes of slack; a
   // corrupt one either reads far past its end or leaves the code outside the range.
   bool overran() const { return overrun_ > 4 || code_ >= range_; }
+  // The next byte the decoder would read (it reads 4 bytes ahead of the bits decoded).
+  const uint8_t* position() const { return p_; }
 
  private:
   void normalize() {

@@ -44,7 +44,7 @@ TEST(RangeCoder, DecodeDataMatchesDecode) {
   }
 }
 
-// The model's update, against its definition: after a 0, p0 += (2^15 - p0) >> shift; after a
+// The model's update (both forms), against its definition: after a 0, p0 += (2^15 - p0) >> shift; after a
 // 1, p0 -= p0 >> shift; the shift following the schedule 2, 3, 3, 4, 4, 4, then 5 for good.
 // Every reachable probability, every step of the schedule, both bits.
 TEST(RangeCoder, ModelUpdateFollowsItsDefinition) {
@@ -56,9 +56,13 @@ TEST(RangeCoder, ModelUpdateFollowsItsDefinition) {
         BitModel m;
         for (int i = 0; i < step; ++i) m.update(i & 1);  // walk the schedule
         m.p0 = uint16_t(p0);
+        BitModel data = m;
         m.update(bit);
+        data.updateData(bit);
         const uint32_t expected = bit ? p0 - (p0 >> shift) : p0 + ((kProbOne - p0) >> shift);
         ASSERT_EQ(m.p0, expected) << "step " << step << " p0 " << p0 << " bit " << bit;
+        ASSERT_EQ(data.p0, expected) << "updateData, step " << step << " p0 " << p0 << " bit " << bit;
+        ASSERT_EQ(data.seen, m.seen);
       }
     }
   }

@@ -6,7 +6,9 @@
 //  - quantisation steps follow from ME instead of a fixed 16 bits;
 //  - every vertex gets a residual on a grid of step 2·ME/√3, which bounds its error by ME
 //    whatever the split, so splits are chosen by estimated rate + weighted distortion;
-//  - all symbols go through context-modelled adaptive binary coding.
+//  - flags, residuals and the corrections' magnitude classes go through context-modelled
+//    adaptive binary coding; the corrections' signs and low bits go raw, in a raw-bit stream
+//    after the range coder's bytes (entropy/classed_integer.h, for decoding speed).
 #pragma once
 #include <cstdint>
 #include <memory>
@@ -19,14 +21,12 @@
 #include "codecs/affine_octree/pframe.h"
 #include "codecs/affine_octree/residual_context.h"
 #include "core/status.h"
+#include "entropy/classed_integer.h"
 #include "entropy/integer_coder.h"
 #include "io/byte_reader.h"
 
 namespace animc {
 
-constexpr int kCtxTranslation = 0;
-constexpr int kCtxLinear = 1;
-constexpr int kCtxResidual = 2;  // + ResidualContexts::contextAt()
 constexpr uint32_t kMinLinearVertices = 4;  // fewer vertices: translation only, L from the prior
 // Tuned on all four shared sequences; docs/affine_octree.md gives the measurements.
 constexpr double kTranslationStep = 0.125;    // in residual steps
@@ -37,14 +37,18 @@ constexpr int64_t kMaxCodedMagnitude = int64_t(1) << 30;
 
 struct PredictiveModels {
   BitModel split[kMaxDepthLimit + 1];
+  ClassedIntegerModel translation, linear;  // the coded affine's corrections
   BitModel residuals_zero[2];
-  IntegerModel<kCtxResidual + kResidualContexts> ints;
+  BitModel vertex_residual[kResidualContexts];  // whether a vertex has a residual at all
+  IntegerModel<kResidualContexts> residuals;    // by ResidualContexts::contextAt()
 
   // Start from "values are mostly zero" (what prediction is for) rather than from even
   // odds, so the rate estimates of the first frames after an I-frame do not favour
   // needless splits.
   PredictiveModels() {
-    for (BitModel& m : ints.zero) m.p0 = uint16_t(0.85 * kProbOne);
+    translation.zero.p0 = linear.zero.p0 = uint16_t(0.85 * kProbOne);
+    for (BitModel& m : residuals.zero) m.p0 = uint16_t(0.85 * kProbOne);
+    for (BitModel& m : vertex_residual) m.p0 = uint16_t(0.85 * kProbOne);
   }
 };
 

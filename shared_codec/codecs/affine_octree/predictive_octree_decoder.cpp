@@ -9,6 +9,7 @@ struct PredictiveOctreeDecoder::Walk {
   const PFrameInput& in;
   double step;
   RangeDecoder rc;
+  RawBitReader raw;
   std::vector<double>& recon;
 };
 
@@ -16,10 +17,13 @@ Status PredictiveOctreeDecoder::decode(const PFrameInput& in, ByteReader payload
                                        std::vector<double>& recon) {
   recon.resize(in.reference->size());
   contexts_.beginFrame();
-  Walk w{in, residualStep(in.max_error), RangeDecoder(payload.cursor(), payload.remaining()), recon};
+  Walk w{in, residualStep(in.max_error), RangeDecoder(payload.cursor(), payload.remaining()),
+         RawBitReader(payload.cursor(), payload.remaining()), recon};
   const Cell root = partition_.reset(*in.reference, in.max_depth);
   if (root.end != root.begin) decodeCell(w, root);
-  if (w.rc.overran()) return corrupt("octree frame: coded data ends early or is damaged");
+  const size_t coded_bytes = size_t(w.rc.position() - payload.cursor());
+  if (w.rc.overran() || w.raw.overran() || coded_bytes + w.raw.bytesUsed() > payload.remaining())
+    return corrupt("octree frame: coded data ends early or is damaged");
   return Status();
 }
 
@@ -54,38 +58,40 @@ void PredictiveOctreeDecoder::decodeLeaf(Walk& w, const Cell& cell) {
 
 namespace {
 
-using IntModels = IntegerModel<kCtxResidual + kResidualContexts>;
-
 // The entropy-decoding loops, written once and compiled twice: for any CPU and for x86-64
 // CPUs with AVX2 and BMI2, whose one-micro-operation shifts by a variable amount speed up
 // every model update. Each works on a local copy of the decoder, which the compiler keeps in
 // registers only because its address never leaves the loop.
 
 // Most of the bits of a frame on the game sequences, whose leaves are small.
-__attribute__((always_inline)) inline void parametersLoop(RangeDecoder& decoder, IntModels& ints, bool linear,
-                                                          int64_t coded[12]) {
+__attribute__((always_inline)) inline void parametersLoop(RangeDecoder& decoder, RawBitReader& raw_bits,
+                                                          PredictiveModels& pm, bool linear, int64_t coded[12]) {
   RangeDecoder rc = decoder;
-  for (int r = 0; r < 3; ++r) coded[r] = decodeIntInline(rc, ints, kCtxTranslation);
-  for (int k = 3; k < 12; ++k) coded[k] = linear ? decodeIntInline(rc, ints, kCtxLinear) : 0;
+  RawBitReader raw = raw_bits;
+  for (int r = 0; r < 3; ++r) coded[r] = decodeClassed(rc, raw, pm.translation);
+  for (int k = 3; k < 12; ++k) coded[k] = linear ? decodeClassed(rc, raw, pm.linear) : 0;
   decoder = rc;
+  raw_bits = raw;
 }
 
-// The hot loop of busy frames: one adaptive integer per coordinate (decodeIntInline() written
-// out), added onto the prediction. A zero residual, the usual one, changes nothing: the
+// The hot loop of busy frames: a flag per vertex, then one adaptive integer per coordinate
+// (decodeIntInline() written out), added onto the prediction. A zero residual, the usual one, changes nothing: the
 // context is already zero (ResidualContexts::beginFrame()), and adding +0.0 would only turn
 // a -0.0 prediction into +0.0, which denormalize() maps to the same coordinate (the frame's
 // minimum is never -0.0: frame_passes.cpp).
-__attribute__((always_inline)) inline void residualsLoop(RangeDecoder& decoder, IntModels& ints,
+__attribute__((always_inline)) inline void residualsLoop(RangeDecoder& decoder, PredictiveModels& pm,
                                                          ResidualContexts& contexts, const uint32_t* vertices,
                                                          uint32_t n, double step, double* recon) {
   RangeDecoder rc = decoder;
+  IntegerModel<kResidualContexts>& ints = pm.residuals;
   for (uint32_t i = 0; i < n; ++i) {
     const size_t v = 3 * size_t(vertices[i]);
+    if (!rc.decode(pm.vertex_residual[contexts.vertexContext(v)])) continue;
     // Unrolled: most coordinates cost one zero flag, beside which counting the axes was a
     // fifth of the loop's instructions.
 #pragma GCC unroll 3
     for (size_t c = v; c < v + 3; ++c) {
-      const int ctx = kCtxResidual + contexts.contextAt(c);
+      const int ctx = contexts.contextAt(c);
       if (!rc.decode(ints.zero[ctx])) continue;
       const int64_t r = decodeMagnitudeAndSign(rc, ints, ctx);
       recon[c] += double(r) * step;
@@ -96,21 +102,23 @@ __attribute__((always_inline)) inline void residualsLoop(RangeDecoder& decoder, 
 }
 
 // noinline: see cell_kernels.cpp (portable versions).
-__attribute__((noinline)) void parametersPortable(RangeDecoder& rc, IntModels& ints, bool linear, int64_t coded[12]) {
-  parametersLoop(rc, ints, linear, coded);
+__attribute__((noinline)) void parametersPortable(RangeDecoder& rc, RawBitReader& raw, PredictiveModels& pm, bool linear,
+                                                  int64_t coded[12]) {
+  parametersLoop(rc, raw, pm, linear, coded);
 }
-__attribute__((noinline)) void residualsPortable(RangeDecoder& rc, IntModels& ints, ResidualContexts& contexts, const uint32_t* vertices,
-                       uint32_t n, double step, double* recon) {
-  residualsLoop(rc, ints, contexts, vertices, n, step, recon);
+__attribute__((noinline)) void residualsPortable(RangeDecoder& rc, PredictiveModels& pm, ResidualContexts& contexts,
+                                                 const uint32_t* vertices, uint32_t n, double step, double* recon) {
+  residualsLoop(rc, pm, contexts, vertices, n, step, recon);
 }
 
 #if ANIMC_AVX2_PATH
-ANIMC_TARGET_AVX2 void parametersAvx2(RangeDecoder& rc, IntModels& ints, bool linear, int64_t coded[12]) {
-  parametersLoop(rc, ints, linear, coded);
+ANIMC_TARGET_AVX2 void parametersAvx2(RangeDecoder& rc, RawBitReader& raw, PredictiveModels& pm, bool linear,
+                                      int64_t coded[12]) {
+  parametersLoop(rc, raw, pm, linear, coded);
 }
-ANIMC_TARGET_AVX2 void residualsAvx2(RangeDecoder& rc, IntModels& ints, ResidualContexts& contexts,
+ANIMC_TARGET_AVX2 void residualsAvx2(RangeDecoder& rc, PredictiveModels& pm, ResidualContexts& contexts,
                                      const uint32_t* vertices, uint32_t n, double step, double* recon) {
-  residualsLoop(rc, ints, contexts, vertices, n, step, recon);
+  residualsLoop(rc, pm, contexts, vertices, n, step, recon);
 }
 #endif
 
@@ -119,16 +127,16 @@ ANIMC_TARGET_AVX2 void residualsAvx2(RangeDecoder& rc, IntModels& ints, Residual
 void PredictiveOctreeDecoder::decodeParameters(Walk& w, uint32_t n, int64_t coded[12]) {
   const bool linear = n >= kMinLinearVertices;
 #if ANIMC_AVX2_PATH
-  if (cpuHasAvx2()) return parametersAvx2(w.rc, models_->ints, linear, coded);
+  if (cpuHasAvx2()) return parametersAvx2(w.rc, w.raw, *models_, linear, coded);
 #endif
-  parametersPortable(w.rc, models_->ints, linear, coded);
+  parametersPortable(w.rc, w.raw, *models_, linear, coded);
 }
 
 void PredictiveOctreeDecoder::decodeResiduals(Walk& w, const uint32_t* vertices, uint32_t n) {
 #if ANIMC_AVX2_PATH
-  if (cpuHasAvx2()) return residualsAvx2(w.rc, models_->ints, contexts_, vertices, n, w.step, w.recon.data());
+  if (cpuHasAvx2()) return residualsAvx2(w.rc, *models_, contexts_, vertices, n, w.step, w.recon.data());
 #endif
-  residualsPortable(w.rc, models_->ints, contexts_, vertices, n, w.step, w.recon.data());
+  residualsPortable(w.rc, *models_, contexts_, vertices, n, w.step, w.recon.data());
 }
 
 }  // namespace animc

@@ -13,6 +13,7 @@ struct PredictiveOctreeEncoder::Walk {
   bool overflow = false;
   size_t cursor = 0;  // next plan node while coding
   RangeEncoder* rc = nullptr;
+  RawBitWriter* raw = nullptr;
   std::vector<double>* recon = nullptr;
   PredictiveFrameStats* stats = nullptr;
 };
@@ -29,12 +30,15 @@ bool PredictiveOctreeEncoder::encode(const PFrameInput& in, std::vector<uint8_t>
   // Pass 2: code the chosen tree exactly as the decoder will walk it.
   const Cell root = partition_.restart();
   RangeEncoder rc(out);
+  RawBitWriter raw;
   recon.resize(in.reference->size());
   w.rc = &rc;
+  w.raw = &raw;
   w.recon = &recon;
   w.stats = &stats;
   codeCell(w, root);
   rc.finish();
+  raw.appendTo(out);
   return true;
 }
 
@@ -79,11 +83,11 @@ double PredictiveOctreeEncoder::evaluateLeaf(Walk& w, const Cell& cell, Node& no
   double bits = 0;
   for (int r = 0; r < 3; ++r) {
     node.coded[r] = std::llround((fit.t[r] - m.prior.t[r]) / st);
-    bits += intCost(pm.ints, kCtxTranslation, node.coded[r]);
+    bits += classedCost(pm.translation, node.coded[r]);
   }
   for (int k = 0; k < 9; ++k) {
     node.coded[3 + k] = linear ? std::llround((fit.L[k] - m.prior.L[k]) / sl) : 0;
-    if (linear) bits += intCost(pm.ints, kCtxLinear, node.coded[3 + k]);
+    if (linear) bits += classedCost(pm.linear, node.coded[3 + k]);
   }
   for (int64_t c : node.coded)
     if (c > kMaxCodedMagnitude || c < -kMaxCodedMagnitude) w.overflow = true;
@@ -95,15 +99,20 @@ double PredictiveOctreeEncoder::evaluateLeaf(Walk& w, const Cell& cell, Node& no
     const double* t = points_.targetPoint(i);
     const size_t v = 3 * size_t(idx[i]);
     predictVertex(points_, m, a, i, p);
+    double vertex_bits = 0;
+    bool vertex_zero = true;
     for (int ax = 0; ax < 3; ++ax) {
       const double k = std::nearbyint((t[ax] - p[ax]) / w.step);
       if (std::fabs(k) > double(kMaxCodedMagnitude)) w.overflow = true;
       const int64_t r = w.overflow ? 0 : int64_t(k);
-      all_zero = all_zero && r == 0;
-      residual_bits += intCost(pm.ints, kCtxResidual + contexts_.contextAt(v + ax), r);
+      vertex_zero = vertex_zero && r == 0;
+      vertex_bits += intCost(pm.residuals, contexts_.contextAt(v + ax), r);
       const double e = t[ax] - p[ax] - double(r) * w.step;
       distortion += e * e;
     }
+    const BitModel& flag = pm.vertex_residual[contexts_.vertexContext(v)];
+    residual_bits += vertex_zero ? bitCost(flag, 0) : bitCost(flag, 1) + vertex_bits;
+    all_zero = all_zero && vertex_zero;
   }
   const BitModel& zero_flag = pm.residuals_zero[n <= kMinLinearVertices];
   bits += all_zero ? bitCost(zero_flag, 1) : bitCost(zero_flag, 0) + residual_bits;
@@ -134,9 +143,9 @@ void PredictiveOctreeEncoder::codeLeaf(Walk& w, const Cell& cell, const Node& no
   RangeEncoder& rc = *w.rc;
   PredictiveModels& pm = *models_;
   ++w.stats->leaves;
-  for (int r = 0; r < 3; ++r) encodeInt(rc, pm.ints, kCtxTranslation, node.coded[r]);
+  for (int r = 0; r < 3; ++r) encodeClassed(rc, *w.raw, pm.translation, node.coded[r]);
   if (n >= kMinLinearVertices)
-    for (int k = 0; k < 9; ++k) encodeInt(rc, pm.ints, kCtxLinear, node.coded[3 + k]);
+    for (int k = 0; k < 9; ++k) encodeClassed(rc, *w.raw, pm.linear, node.coded[3 + k]);
   points_.gather(w.in, idx, n);
   const LeafModel m = leafModel(points_);
   const CentredAffine a = codedAffine(m, node.coded, w.step);
@@ -156,10 +165,13 @@ void PredictiveOctreeEncoder::codeLeaf(Walk& w, const Cell& cell, const Node& no
   if (all_zero) return;
   for (uint32_t i = 0; i < n; ++i) {
     const size_t v = 3 * size_t(idx[i]);
+    const int64_t* r = &residual_[3 * size_t(i)];
+    const bool vertex_zero = r[0] == 0 && r[1] == 0 && r[2] == 0;
+    rc.encode(pm.vertex_residual[contexts_.vertexContext(v)], !vertex_zero);
+    if (vertex_zero) continue;
     for (int ax = 0; ax < 3; ++ax) {
-      const int64_t r = residual_[3 * size_t(i) + ax];
-      encodeInt(rc, pm.ints, kCtxResidual + contexts_.contextAt(v + ax), r);
-      contexts_.setAt(v + ax, r);
+      encodeInt(rc, pm.residuals, contexts_.contextAt(v + ax), r[ax]);
+      contexts_.setAt(v + ax, r[ax]);
     }
   }
 }

@@ -33,6 +33,10 @@ class ResidualContexts {
   // By coordinate index (3·v + axis): the context its residual is coded in this frame, and
   // its residual, recorded for the next (a zero needs no recording).
   int contextAt(size_t coordinate) const { return before_[coordinate]; }
+  // By the vertex's first coordinate index: the largest of its three axes' contexts.
+  int vertexContext(size_t coordinate) const {
+    return std::max(std::max(before_[coordinate], before_[coordinate + 1]), before_[coordinate + 2]);
+  }
   void setAt(size_t coordinate, int64_t r) { now_[coordinate] = contextOf(r); }
 
  private:
