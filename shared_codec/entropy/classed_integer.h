@@ -38,14 +38,17 @@ inline int rawBitsOfClass(uint32_t c) { return c < 4 ? 1 : int(c >> 1); }
 inline uint64_t magnitudeOf(uint32_t c, uint64_t low) {
   return c < 4 ? c : (uint64_t(2 | (c & 1)) << ((c >> 1) - 1)) | low;
 }
+// The symbols a class >= 1 is coded with in the Low tree and, from class 16, the High tree.
+inline uint32_t lowTreeSymbol(uint32_t c) { return c < 16 ? c - 1 : 15; }
+inline uint32_t highTreeSymbol(uint32_t c) { return c < 31 ? c - 16 : 15; }
 
 inline void encodeClassed(RangeEncoder& rc, RawBitWriter& raw, ClassedIntegerModel& m, int64_t v) {
   rc.encode(m.zero, v != 0);
   if (v == 0) return;
   const uint64_t mag = uint64_t(v < 0 ? -v : v);
   const uint32_t c = magnitudeClass(mag);
-  encodeTree(rc, m.low, c < 16 ? c - 1 : 15);
-  if (c >= 16) encodeTree(rc, m.high, c < 31 ? c - 16 : 15);
+  encodeTree(rc, m.low, lowTreeSymbol(c));
+  if (c >= 16) encodeTree(rc, m.high, highTreeSymbol(c));
   if (c >= 31) raw.write(c - 31, 5);
   const int bits = rawBitsOfClass(c);
   const uint64_t low = mag & ((uint64_t(1) << (bits - 1)) - 1);  // empty below class 4
@@ -87,8 +90,8 @@ double treeCost(const BitTreeModel<kBits>& m, uint32_t symbol) {
 inline double classedCost(const ClassedIntegerModel& m, int64_t v) {
   if (v == 0) return bitCost(m.zero, 0);
   const uint32_t c = magnitudeClass(uint64_t(v < 0 ? -v : v));
-  double bits = bitCost(m.zero, 1) + treeCost(m.low, c < 16 ? c - 1 : 15);
-  if (c >= 16) bits += treeCost(m.high, c < 31 ? c - 16 : 15);
+  double bits = bitCost(m.zero, 1) + treeCost(m.low, lowTreeSymbol(c));
+  if (c >= 16) bits += treeCost(m.high, highTreeSymbol(c));
   if (c >= 31) bits += 5;
   return bits + rawBitsOfClass(c);
 }
