@@ -10,8 +10,19 @@ namespace animc {
 constexpr int kProbBits = 15;
 constexpr uint32_t kProbOne = 1u << kProbBits;
 
-// Probability that the next bit is 0, adapting fast at first and then more slowly, so that
-// short streams (one frame of a small mesh) still learn their statistics.
+// The adaptation rate of a model, as a shift, for its update after `seen` earlier ones
+// (which it counts): fast at first and then settling at 1/32, so that short streams (one
+// frame of a small mesh) still learn their statistics. Bit models and symbol models
+// (symbol_model.h) share it.
+inline int nextAdaptationShift(uint16_t& seen) {
+  static constexpr uint8_t kShift[] = {2, 3, 3, 4, 4, 4, 5, 5, 5, 5, 5, 5, 5};
+  constexpr uint16_t kLearned = sizeof(kShift) - 1;  // from here on the rate stays 1/32
+  const int shift = kShift[seen];
+  seen += seen < kLearned;
+  return shift;
+}
+
+// Probability that the next bit is 0, adapting at nextAdaptationShift()'s rate.
 struct BitModel {
   uint16_t p0 = kProbOne / 2;
   // Not uint8_t: a store through a char type may alias anything, which would force the
@@ -35,13 +46,7 @@ struct BitModel {
   static uint32_t maskOf(int bit) { return 0u - uint32_t(bit); }
 
  private:
-  int nextShift() {
-    static constexpr uint8_t kShift[] = {2, 3, 3, 4, 4, 4, 5, 5, 5, 5, 5, 5, 5};
-    constexpr uint16_t kLearned = sizeof(kShift) - 1;  // from here on the rate stays 1/32
-    const int shift = kShift[seen];
-    seen += seen < kLearned;
-    return shift;
-  }
+  int nextShift() { return nextAdaptationShift(seen); }
   void moveTowards(int32_t target, int shift) { p0 = uint16_t(int32_t(p0) + ((target - int32_t(p0)) >> shift)); }
 };
 
@@ -58,6 +63,14 @@ class RangeEncoder {
       range_ -= bound;
     }
     m.update(bit);
+    normalize();
+  }
+  // A symbol spanning [start, end) of 2^15 (symbol_model.h); the last span, which ends at
+  // 2^15, takes whatever the scaled spans leave of the range, as a 1 bit does above.
+  void encodeSpan(uint32_t start, uint32_t end) {
+    const uint32_t unit = range_ >> kProbBits;
+    low_ += unit * start;
+    range_ = (end < kProbOne ? unit * end : range_) - unit * start;
     normalize();
   }
   // Equiprobable bits (signs, low mantissa bits): no model, no adaptation.
@@ -134,6 +147,18 @@ class RangeDecoder {
     range_ = bound + ((range_ - bound - bound) & mask);  // range_ - bound when the bit is 1
     normalize();
     return bit;
+  }
+  // A symbol in two steps (symbol_model.h): the value in 15-bit units that the coded span
+  // holds, capped below 2^15 (the last span also holds what lies beyond), then the span.
+  uint32_t spanTarget() const {
+    const uint32_t target = code_ / (range_ >> kProbBits);
+    return target < kProbOne - 1 ? target : kProbOne - 1;
+  }
+  void decodeSpan(uint32_t start, uint32_t end) {
+    const uint32_t unit = range_ >> kProbBits;
+    code_ -= unit * start;
+    range_ = (end < kProbOne ? unit * end : range_) - unit * start;
+    normalize();
   }
   uint32_t decodeRaw(int bits) {
     uint32_t v = 0;

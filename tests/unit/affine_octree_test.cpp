@@ -71,14 +71,16 @@ TEST(AffineOctree, RigidMotionCodesOneCellPerFrame) {
 // The default profile predicts rigid motion with one affine too, but its splits are chosen by
 // rate + distortion, and the reference frame's own quantisation noise is distortion that
 // smaller cells can fit and keep fitted. So rigid motion is not exactly one cell a frame
-// there; it must still cost far less than deformation does.
+// there; it must still cost far less than deformation does. 40 frames, because which splits
+// the first few frames choose, while the models still learn, swings widely with small
+// changes to the coder (from 1 to 150 cells a frame on this grid); the steady state does not.
 TEST(AffineOctree, DefaultProfileCodesRigidMotionFarCheaperThanDeformation) {
   EncodeSettings settings;
   const std::string path = tempPath("rigid_default.ams");
-  MemorySequence rigid = gridSequence(30, 30, 12, 0.0, 1.0);
+  MemorySequence rigid = gridSequence(30, 30, 40, 0.0, 1.0);
   auto r = encodeSequence(rigid, settings, path);
   ASSERT_TRUE(r.ok()) << r.status().message();
-  MemorySequence deforming = gridSequence(30, 30, 12, 1.0, 1.0);
+  MemorySequence deforming = gridSequence(30, 30, 40, 1.0, 1.0);
   auto d = encodeSequence(deforming, settings, path);
   ASSERT_TRUE(d.ok()) << d.status().message();
   const auto motion = [](const EncodeReport& e) { return e.file_bytes - e.static_bytes; };

@@ -55,7 +55,8 @@ TEST(ClassedInteger, ClassesCoverEveryMagnitudeOnce) {
       ASSERT_GE(c, 1u);
       ASSERT_LE(c, kMaxMagnitudeClass);
       // The raw bits after the sign: the ones below the class's two leading bits.
-      const uint64_t low = uint64_t(mag) & ((uint64_t(1) << (rawBitsOfClass(c) - 1)) - 1);
+      ASSERT_EQ(rawBitsOfClass(c), 1 + lowBitsOfClass(c));
+      const uint64_t low = uint64_t(mag) & ((uint64_t(1) << lowBitsOfClass(c)) - 1);
       ASSERT_EQ(magnitudeOf(c, low), uint64_t(mag)) << "class " << c;
       // The class's range starts at its lowest magnitude.
       ASSERT_GE(uint64_t(mag), magnitudeOf(c, 0));

@@ -37,7 +37,9 @@ constexpr int64_t kMaxCodedMagnitude = int64_t(1) << 30;
 
 struct PredictiveModels {
   BitModel split[kMaxDepthLimit + 1];
-  ClassedIntegerModel translation, linear;  // the coded affine's corrections
+  // The coded affine's corrections: the translation's by axis (the motions along the three
+  // axes differ in scale: 1-3 % fewer bits at ME 0.2 %), the linear part's all alike.
+  ClassedIntegerModel translation[3], linear;
   BitModel residuals_zero[2];
   BitModel vertex_residual[kResidualContexts];  // whether a vertex has a residual at all
   IntegerModel<kResidualContexts> residuals;    // by ResidualContexts::contextAt()
@@ -46,7 +48,8 @@ struct PredictiveModels {
   // odds, so the rate estimates of the first frames after an I-frame do not favour
   // needless splits.
   PredictiveModels() {
-    translation.zero.p0 = linear.zero.p0 = uint16_t(0.85 * kProbOne);
+    for (ClassedIntegerModel& m : translation) m.zero.p0 = uint16_t(0.85 * kProbOne);
+    linear.zero.p0 = uint16_t(0.85 * kProbOne);
     for (BitModel& m : residuals.zero) m.p0 = uint16_t(0.85 * kProbOne);
     for (BitModel& m : vertex_residual) m.p0 = uint16_t(0.85 * kProbOne);
   }

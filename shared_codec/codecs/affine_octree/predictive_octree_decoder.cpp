@@ -68,7 +68,7 @@ __attribute__((always_inline)) inline void parametersLoop(RangeDecoder& decoder,
                                                           PredictiveModels& pm, bool linear, int64_t coded[12]) {
   RangeDecoder rc = decoder;
   RawBitReader raw = raw_bits;
-  for (int r = 0; r < 3; ++r) coded[r] = decodeClassed(rc, raw, pm.translation);
+  for (int r = 0; r < 3; ++r) coded[r] = decodeClassed(rc, raw, pm.translation[r]);
   for (int k = 3; k < 12; ++k) coded[k] = linear ? decodeClassed(rc, raw, pm.linear) : 0;
   decoder = rc;
   raw_bits = raw;

@@ -83,7 +83,7 @@ double PredictiveOctreeEncoder::evaluateLeaf(Walk& w, const Cell& cell, Node& no
   double bits = 0;
   for (int r = 0; r < 3; ++r) {
     node.coded[r] = std::llround((fit.t[r] - m.prior.t[r]) / st);
-    bits += classedCost(pm.translation, node.coded[r]);
+    bits += classedCost(pm.translation[r], node.coded[r]);
   }
   for (int k = 0; k < 9; ++k) {
     node.coded[3 + k] = linear ? std::llround((fit.L[k] - m.prior.L[k]) / sl) : 0;
@@ -143,7 +143,7 @@ void PredictiveOctreeEncoder::codeLeaf(Walk& w, const Cell& cell, const Node& no
   RangeEncoder& rc = *w.rc;
   PredictiveModels& pm = *models_;
   ++w.stats->leaves;
-  for (int r = 0; r < 3; ++r) encodeClassed(rc, *w.raw, pm.translation, node.coded[r]);
+  for (int r = 0; r < 3; ++r) encodeClassed(rc, *w.raw, pm.translation[r], node.coded[r]);
   if (n >= kMinLinearVertices)
     for (int k = 0; k < 9; ++k) encodeClassed(rc, *w.raw, pm.linear, node.coded[3 + k]);
   points_.gather(w.in, idx, n);
