@@ -43,10 +43,13 @@ inline int rawBitsOfClass(uint32_t c) { return 1 + lowBitsOfClass(c); }
 inline uint64_t magnitudeOf(uint32_t c, uint64_t low) {
   return c < 4 ? c : (uint64_t(2 | (c & 1)) << ((c >> 1) - 1)) | low;
 }
-// The symbols a class >= 1 is coded with in the Low model and, from class 16, the High model.
+// The symbols a class >= 1 is coded with in the Low model and, from class 16, the High model;
+// each model's last symbol is its escape.
 constexpr uint32_t kEscape = kSymbols - 1;
-inline uint32_t lowSymbol(uint32_t c) { return c <= kEscape ? c - 1 : kEscape; }
-inline uint32_t highSymbol(uint32_t c) { return c <= 2 * kEscape ? c - 1 - kEscape : kEscape; }
+constexpr uint32_t kFirstHighClass = 1 + kEscape;              // 16
+constexpr uint32_t kFirstRawClass = kFirstHighClass + kEscape;  // 31
+inline uint32_t lowSymbol(uint32_t c) { return c < kFirstHighClass ? c - 1 : kEscape; }
+inline uint32_t highSymbol(uint32_t c) { return c < kFirstRawClass ? c - kFirstHighClass : kEscape; }
 
 inline void encodeClassed(RangeEncoder& rc, RawBitWriter& raw, ClassedIntegerModel& m, int64_t v) {
   rc.encode(m.zero, v != 0);
@@ -54,8 +57,8 @@ inline void encodeClassed(RangeEncoder& rc, RawBitWriter& raw, ClassedIntegerMod
   const uint64_t mag = uint64_t(v < 0 ? -v : v);
   const uint32_t c = magnitudeClass(mag);
   encodeSymbol(rc, m.low, lowSymbol(c));
-  if (c > kEscape) encodeSymbol(rc, m.high, highSymbol(c));
-  if (c > 2 * kEscape) raw.write(c - 2 * kEscape - 1, 5);
+  if (c >= kFirstHighClass) encodeSymbol(rc, m.high, highSymbol(c));
+  if (c >= kFirstRawClass) raw.write(c - kFirstRawClass, 5);
   const int low_bits = lowBitsOfClass(c);
   const uint64_t low = mag & ((uint64_t(1) << low_bits) - 1);
   raw.write(uint32_t((uint64_t(v < 0) << low_bits) | low), rawBitsOfClass(c));
@@ -65,9 +68,9 @@ inline void encodeClassed(RangeEncoder& rc, RawBitWriter& raw, ClassedIntegerMod
 // the caller's decoders by address and so keep them out of registers (bit_tree.h).
 __attribute__((always_inline)) inline uint32_t decodeHighClass(RangeDecoder& rc, RawBitReader& raw,
                                                           ClassedIntegerModel& m) {
-  const uint32_t c = kEscape + 1 + decodeSymbol(rc, m.high);
-  if (c <= 2 * kEscape) return c;
-  const uint32_t top = 2 * kEscape + 1 + raw.read(5);
+  const uint32_t c = kFirstHighClass + decodeSymbol(rc, m.high);
+  if (c < kFirstRawClass) return c;
+  const uint32_t top = kFirstRawClass + raw.read(5);
   return top < kMaxMagnitudeClass ? top : kMaxMagnitudeClass;  // a damaged stream's class
 }
 
@@ -76,7 +79,7 @@ __attribute__((always_inline)) inline int64_t decodeClassed(RangeDecoder& rc, Ra
                                                             ClassedIntegerModel& m) {
   if (!rc.decode(m.zero)) return 0;
   uint32_t c = 1 + decodeSymbol(rc, m.low);
-  if (c > kEscape) c = decodeHighClass(rc, raw, m);
+  if (c == kFirstHighClass) c = decodeHighClass(rc, raw, m);
   const int low_bits = lowBitsOfClass(c);
   const uint32_t r = raw.read(rawBitsOfClass(c));
   const int64_t mag = int64_t(magnitudeOf(c, r & ((1u << low_bits) - 1)));
@@ -89,8 +92,8 @@ inline double classedCost(const ClassedIntegerModel& m, int64_t v) {
   if (v == 0) return bitCost(m.zero, 0);
   const uint32_t c = magnitudeClass(uint64_t(v < 0 ? -v : v));
   double bits = bitCost(m.zero, 1) + symbolCost(m.low, lowSymbol(c));
-  if (c > kEscape) bits += symbolCost(m.high, highSymbol(c));
-  if (c > 2 * kEscape) bits += 5;
+  if (c >= kFirstHighClass) bits += symbolCost(m.high, highSymbol(c));
+  if (c >= kFirstRawClass) bits += 5;
   return bits + rawBitsOfClass(c);
 }
 

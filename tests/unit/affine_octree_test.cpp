@@ -73,7 +73,7 @@ TEST(AffineOctree, RigidMotionCodesOneCellPerFrame) {
 // smaller cells can fit and keep fitted. So rigid motion is not exactly one cell a frame
 // there; it must still cost far less than deformation does. 40 frames, because which splits
 // the first few frames choose, while the models still learn, swings widely with small
-// changes to the coder (from 1 to 150 cells a frame on this grid); the steady state does not.
+// changes to the coder (from 1 to over 150 cells a frame on this grid); the steady state does not.
 TEST(AffineOctree, DefaultProfileCodesRigidMotionFarCheaperThanDeformation) {
   EncodeSettings settings;
   const std::string path = tempPath("rigid_default.ams");

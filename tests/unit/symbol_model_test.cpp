@@ -8,7 +8,7 @@
 #include <random>
 #include <vector>
 
-#include "entropy/classed_integer.h"
+#include "entropy/integer_coder.h"
 #include "entropy/symbol_model.h"
 
 namespace animc {
