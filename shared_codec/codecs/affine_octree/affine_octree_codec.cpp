@@ -30,16 +30,15 @@ double innerMaxError(const AffineOctreeOptions& options) {
 struct LoopState {
   std::vector<double> current, before;
   bool has_current = false, has_before = false;
-  std::vector<double> u, u0, recon_unit;
+  std::vector<double> u, recon_unit;
   // The bounding cube of `current`, found by advance() on the way (so known exactly when
   // has_before is), saving prepare() a pass.
   RootCube current_cube;
 
-  // Normalises the references into the root cube of `current`.
+  // Normalises `current` into its root cube, and returns the cube.
   RootCube prepare() {
     const RootCube cube = has_before ? current_cube : boundingCube(current);
     normalize(cube, current, u);
-    if (has_before) normalize(cube, before, u0);
     return cube;
   }
   void advance(const RootCube& cube) {
@@ -76,7 +75,7 @@ class AffineOctreeEncoder final : public FrameEncoder {
     normalize(cube, x_, q_);
     for (double c : q_)
       if (std::fabs(c) > kMaxUnitCoordinate) return false;
-    PFrameInput in{&state_.u, state_.has_before ? &state_.u0 : nullptr, &q_, innerMaxError(options_),
+    PFrameInput in{&state_.u, state_.has_before ? &state_.before : nullptr, cube, &q_, innerMaxError(options_),
                    options_.max_depth};
     out.push_back(kInterFrame);
     if (options_.profile == Profile::kPaper) {
@@ -135,7 +134,7 @@ class AffineOctreeDecoder final : public FrameDecoder {
  private:
   Status decodeInter(ByteReader payload) {
     const RootCube cube = state_.prepare();
-    PFrameInput in{&state_.u, state_.has_before ? &state_.u0 : nullptr, nullptr,
+    PFrameInput in{&state_.u, state_.has_before ? &state_.before : nullptr, cube, nullptr,
                    innerMaxError(options_), options_.max_depth};
     if (options_.profile == Profile::kPaper)
       ANIMC_RETURN_IF_ERROR(paper_.decode(in, payload, state_.recon_unit));

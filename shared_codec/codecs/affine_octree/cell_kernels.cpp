@@ -50,13 +50,29 @@ __attribute__((noinline)) CellFrame gatherPointsPortable(const double* frame, co
   return g.frame(n);
 }
 
+// normalize()'s arithmetic for one point: (x - min) · (1 / side), x and y through a Pair.
+struct PointNormaliser {
+  Pair min_xy;
+  double min_z, inv;
+  explicit PointNormaliser(const RootCube& cube)
+      : min_xy(loadPair(cube.min)), min_z(cube.min[2]), inv(1.0 / cube.side) {}
+  void apply(const double* p, double out[3]) const {
+    storePair(out, (loadPair(p) - min_xy) * splat(inv));
+    out[2] = (p[2] - min_z) * inv;
+  }
+};
+
 __attribute__((noinline)) TwoCellFrames gatherPointsTwicePortable(const double* first, const double* second,
-                                                                  const uint32_t* idx, size_t n, double* out_first,
-                                                                  double* out_second) {
-  PointGatherer a(&first[3 * size_t(idx[0])]), b(&second[3 * size_t(idx[0])]);
+                                                                  const RootCube& cube, const uint32_t* idx,
+                                                                  size_t n, double* out_first, double* out_second) {
+  const PointNormaliser normaliser(cube);
+  double p[3];
+  normaliser.apply(&second[3 * size_t(idx[0])], p);
+  PointGatherer a(&first[3 * size_t(idx[0])]), b(p);
   for (size_t i = 0; i < n; ++i) {
     a.add(&first[3 * size_t(idx[i])], &out_first[kPointStride * i]);
-    b.add(&second[3 * size_t(idx[i])], &out_second[kPointStride * i]);
+    normaliser.apply(&second[3 * size_t(idx[i])], p);
+    b.add(p, &out_second[kPointStride * i]);
   }
   return TwoCellFrames{a.frame(n), b.frame(n)};
 }
@@ -140,14 +156,12 @@ __attribute__((noinline)) void predictPointsPortable(const double* u, size_t n, 
 struct QuadGatherer {
   Quad sum, lo, hi;
 
-  ANIMC_TARGET_AVX2 QuadGatherer(const double* first, double* out) {
-    const Quad p = loadXyz(first);
+  ANIMC_TARGET_AVX2 QuadGatherer(Quad p, double* out) {
     storeQuad(out, p);
     sum = splatQuad(0) + p;
     lo = hi = p;
   }
-  ANIMC_TARGET_AVX2 void add(const double* point, double* out) {
-    const Quad p = loadXyz(point);
+  ANIMC_TARGET_AVX2 void add(Quad p, double* out) {
     storeQuad(out, p);
     sum += p;
     lo = minQuad(lo, p);
@@ -160,18 +174,21 @@ struct QuadGatherer {
 };
 
 ANIMC_TARGET_AVX2 CellFrame gatherPointsAvx2(const double* frame, const uint32_t* idx, size_t n, double* out) {
-  QuadGatherer g(&frame[3 * size_t(idx[0])], out);
-  for (size_t i = 1; i < n; ++i) g.add(&frame[3 * size_t(idx[i])], &out[kPointStride * i]);
+  QuadGatherer g(loadXyz(&frame[3 * size_t(idx[0])]), out);
+  for (size_t i = 1; i < n; ++i) g.add(loadXyz(&frame[3 * size_t(idx[i])]), &out[kPointStride * i]);
   return g.frame(n);
 }
 
+// Lane 3 stays 0: (0 - 0) · inv.
 ANIMC_TARGET_AVX2 TwoCellFrames gatherPointsTwiceAvx2(const double* first, const double* second,
-                                                      const uint32_t* idx, size_t n, double* out_first,
-                                                      double* out_second) {
-  QuadGatherer a(&first[3 * size_t(idx[0])], out_first), b(&second[3 * size_t(idx[0])], out_second);
+                                                      const RootCube& cube, const uint32_t* idx, size_t n,
+                                                      double* out_first, double* out_second) {
+  const Quad min = {cube.min[0], cube.min[1], cube.min[2], 0.0}, inv = splatQuad(1.0 / cube.side);
+  const auto normalised = [&](size_t i) ANIMC_TARGET_AVX2 { return (loadXyz(&second[3 * size_t(idx[i])]) - min) * inv; };
+  QuadGatherer a(loadXyz(&first[3 * size_t(idx[0])]), out_first), b(normalised(0), out_second);
   for (size_t i = 1; i < n; ++i) {
-    a.add(&first[3 * size_t(idx[i])], &out_first[kPointStride * i]);
-    b.add(&second[3 * size_t(idx[i])], &out_second[kPointStride * i]);
+    a.add(loadXyz(&first[3 * size_t(idx[i])]), &out_first[kPointStride * i]);
+    b.add(normalised(i), &out_second[kPointStride * i]);
   }
   return TwoCellFrames{a.frame(n), b.frame(n)};
 }
@@ -279,12 +296,12 @@ CellFrame gatherPoints(const double* frame, const uint32_t* idx, size_t n, doubl
   return gatherPointsPortable(frame, idx, n, out);
 }
 
-TwoCellFrames gatherPointsTwice(const double* first, const double* second, const uint32_t* idx, size_t n,
-                                double* out_first, double* out_second) {
+TwoCellFrames gatherPointsTwice(const double* first, const double* second, const RootCube& cube,
+                                const uint32_t* idx, size_t n, double* out_first, double* out_second) {
 #if ANIMC_AVX2_PATH
-  if (cpuHasAvx2()) return gatherPointsTwiceAvx2(first, second, idx, n, out_first, out_second);
+  if (cpuHasAvx2()) return gatherPointsTwiceAvx2(first, second, cube, idx, n, out_first, out_second);
 #endif
-  return gatherPointsTwicePortable(first, second, idx, n, out_first, out_second);
+  return gatherPointsTwicePortable(first, second, cube, idx, n, out_first, out_second);
 }
 
 void copyPoints(const double* frame, const uint32_t* idx, size_t n, double* out) {

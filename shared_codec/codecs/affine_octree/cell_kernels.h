@@ -7,6 +7,7 @@
 #include <cstdint>
 
 #include "codecs/affine_octree/affine_fit.h"
+#include "codecs/affine_octree/octree_shared.h"
 
 namespace animc {
 
@@ -17,12 +18,14 @@ constexpr size_t kPointStride = 4;
 // Copies the points idx[0..n) (n >= 1) of an xyz-interleaved frame to out
 // (n·kPointStride doubles) and returns their centroid and radius.
 CellFrame gatherPoints(const double* frame, const uint32_t* idx, size_t n, double* out);
-// gatherPoints() from two frames in one pass over the indices.
+// gatherPoints() from two frames in one pass over the indices. The second frame is in world
+// units: each of its points is normalised into `cube` on the way, with normalize()'s
+// arithmetic, so the points and their frame are those of the normalised frame.
 struct TwoCellFrames {
   CellFrame first, second;
 };
-TwoCellFrames gatherPointsTwice(const double* first, const double* second, const uint32_t* idx, size_t n,
-                                double* out_first, double* out_second);
+TwoCellFrames gatherPointsTwice(const double* first, const double* second, const RootCube& cube,
+                                const uint32_t* idx, size_t n, double* out_first, double* out_second);
 // gatherPoints() without measuring them.
 void copyPoints(const double* frame, const uint32_t* idx, size_t n, double* out);
 

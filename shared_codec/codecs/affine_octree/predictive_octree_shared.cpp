@@ -18,7 +18,7 @@ void CellPoints::gather(const PFrameInput& in, const uint32_t* idx, size_t n) {
   has_before = in.before != nullptr;
   if (in.before) {
     const TwoCellFrames f =
-        gatherPointsTwice(in.reference->data(), in.before->data(), idx, n, reference.data(), before.data());
+        gatherPointsTwice(in.reference->data(), in.before->data(), in.cube, idx, n, reference.data(), before.data());
     reference_frame = f.first;
     before_frame = f.second;
   } else {
