@@ -7,6 +7,7 @@
 #include <random>
 
 #include "api.h"
+#include "codecs/affine_octree/cell_kernels.h"
 #include "codecs/affine_octree/octree_shared.h"
 #include "codecs/affine_octree/options.h"
 #include "codec_test_support.h"
@@ -151,6 +152,70 @@ TEST(OctreePartition, SplitsAreStablePartitionsByOctant) {
     for (uint32_t i = 0; i < n; ++i) all[i] = i;
     ASSERT_NO_FATAL_FAILURE(w.walk(w.partition.reset(w.unit, w.levels), all));
     ASSERT_NO_FATAL_FAILURE(w.walk(w.partition.restart(), all));
+  }
+}
+
+// The prior's one-pass kernel (which on AVX2 CPUs sums while it gathers, normalises frame f-2
+// point by point and solves with a row per vector) against its definition written out of the
+// frame-wide and portable pieces: normalize(), gatherPoints(), fitSums() about the first
+// point, solveFit(). Bit for bit, since encoder and decoder may run either. It must also find
+// an affine motion that the points follow exactly.
+TEST(CellKernels, GatheredMotionIsTheFitOfTheNormalisedPoints) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> uniform(-1, 1);
+  const double L_true[9] = {0.02, -0.01, 0.005, 0.01, -0.03, 0.0, 0.004, 0.02, 0.01};
+  const double t_true[3] = {0.05, -0.02, 0.01};
+  for (size_t n : {1, 2, 3, 5, 40, 300}) {
+    const size_t count = 2 * n;  // the leaf takes every other vertex, in a shuffled order
+    std::vector<double> before(3 * count), reference(3 * count);
+    for (double& x : before) x = 3.0 + 7.0 * uniform(rng);  // world units
+    const RootCube cube = boundingCube(before);
+    std::vector<double> unit_before;
+    normalize(cube, before, unit_before);
+    for (size_t v = 0; v < count; ++v) {
+      const double* b = &unit_before[3 * v];
+      for (int r = 0; r < 3; ++r)  // exact motion about the cube's centre, plus nothing
+        reference[3 * v + r] = b[r] + t_true[r] + L_true[3 * r] * (b[0] - 0.5) +
+                               L_true[3 * r + 1] * (b[1] - 0.5) + L_true[3 * r + 2] * (b[2] - 0.5);
+    }
+    std::vector<uint32_t> idx;
+    for (uint32_t v = 0; v < count; v += 2) idx.push_back(v);
+    std::shuffle(idx.begin(), idx.end(), rng);
+
+    std::vector<double> out(kPointStride * n), scratch(kPointStride * n);
+    CellFrame frame;
+    CentredAffine motion;
+    gatherWithMotion(reference.data(), before.data(), cube, idx.data(), n, out.data(), scratch.data(), frame, motion);
+
+    std::vector<double> want_out(kPointStride * n), before_points(kPointStride * n, 0.0);
+    const CellFrame want_frame = gatherPoints(reference.data(), idx.data(), n, want_out.data());
+    for (size_t i = 0; i < n; ++i)
+      for (int a = 0; a < 3; ++a) before_points[kPointStride * i + a] = unit_before[3 * size_t(idx[i]) + a];
+    const double origin[3] = {before_points[0], before_points[1], before_points[2]};
+    const double no_prior[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+    CentredAffine want;
+    solveFit(fitSums(before_points.data(), want_out.data(), n, origin), n, ridgeWeight(n, want_frame), no_prior,
+             want);
+
+    EXPECT_EQ(out, want_out) << n;
+    for (int a = 0; a < 3; ++a) EXPECT_EQ(frame.centroid[a], want_frame.centroid[a]) << n;
+    EXPECT_EQ(frame.radius, want_frame.radius) << n;
+    for (int r = 0; r < 3; ++r) EXPECT_EQ(motion.t[r], want.t[r]) << n << " t" << r;
+    for (int k = 0; k < 9; ++k) EXPECT_EQ(motion.L[k], want.L[k]) << n << " L" << k;
+    // The translation is the mean motion, whatever the ridge: the applied one, taken at the
+    // points' centroid rather than at the cube's centre.
+    double centroid[3] = {0, 0, 0};
+    for (size_t i = 0; i < n; ++i)
+      for (int a = 0; a < 3; ++a) centroid[a] += before_points[kPointStride * i + a] / double(n);
+    for (int r = 0; r < 3; ++r) {
+      double t = t_true[r];
+      for (int j = 0; j < 3; ++j) t += L_true[3 * r + j] * (centroid[j] - 0.5);
+      EXPECT_NEAR(motion.t[r], t, 1e-12) << n << " t" << r;
+    }
+    if (n < 40) continue;
+    // Enough points that the linear part is determined: the one applied, shrunk by the ridge
+    // (10^-3 · n · r², against a spread of about n · r² / 10 here) by about 1 %.
+    for (int k = 0; k < 9; ++k) EXPECT_NEAR(motion.L[k], L_true[k], 6e-4) << n << " L" << k;
   }
 }
 

@@ -48,16 +48,20 @@ void fitCentred(const double* u, const double* q, size_t n, const CellFrame& fra
 #if ANIMC_AVX2_PATH
   if (cpuHasAvx2()) return fitCentredAvx2(u, q, n, frame, prior_L, out);
 #endif
-  const FitSums s = fitSums(u, q, n, frame.centroid);
+  solveFit(fitSums(u, q, n, frame.centroid), n, ridgeWeight(n, frame), prior_L, out);
+}
+
+void solveFit(const FitSums& s, size_t n, double lambda, const double prior_L[9], CentredAffine& out) {
   const double inv_n = 1.0 / double(n);
-  const double lambda = kRidge * double(n) * frame.radius * frame.radius;
   double a[9], b[9];
   for (int r = 0; r < 3; ++r) {
     out.t[r] = s.m[r] * inv_n;  // the centroid's displacement
     for (int k = 0; k < 3; ++k) {
-      // Σ (m - m̄)·dᵀ = Σ m·dᵀ - m̄·(Σ d)ᵀ, and the ridge pulls L towards the prior.
+      // Σ (m - m̄)·dᵀ = Σ m·dᵀ - m̄·(Σ d)ᵀ, and the ridge pulls L towards the prior. The
+      // spread about the centroid, Σ d·dᵀ - (Σ d)·(Σ d)ᵀ / n, takes the product d_r·d_k,
+      // which is d_k·d_r bit for bit: the matrix stays exactly symmetric.
       b[3 * r + k] = s.cross[3 * r + k] - out.t[r] * s.d[k] + lambda * prior_L[3 * r + k];
-      a[3 * r + k] = s.cov[3 * r + k] + (r == k ? lambda : 0.0);
+      a[3 * r + k] = (s.cov[3 * r + k] - (s.d[r] * s.d[k]) * inv_n) + (r == k ? lambda : 0.0);
     }
   }
   // L = b · a⁻¹, a symmetric positive definite (λ > 0): inverse by cofactors.

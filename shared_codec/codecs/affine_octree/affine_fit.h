@@ -38,6 +38,10 @@ struct CellFrame {
   double radius;  // half the diagonal of the vertices' bounding box (>= tiny): their scale
 };
 
+// The ridge weight of a fit over n points of that frame: scaled by the points' spread, so that
+// it pulls as hard whatever the cell's size.
+inline double ridgeWeight(size_t n, const CellFrame& frame) { return kRidge * double(n) * frame.radius * frame.radius; }
+
 // u and q: a cell's points gathered in cell order, kPointStride doubles apart (cell_kernels.h).
 void fitCentred(const double* u, const double* q, size_t n, const CellFrame& frame,
                 const double prior_L[9], CentredAffine& out);

@@ -62,20 +62,7 @@ struct PointNormaliser {
   }
 };
 
-__attribute__((noinline)) TwoCellFrames gatherPointsTwicePortable(const double* first, const double* second,
-                                                                  const RootCube& cube, const uint32_t* idx,
-                                                                  size_t n, double* out_first, double* out_second) {
-  const PointNormaliser normaliser(cube);
-  double p[3];
-  normaliser.apply(&second[3 * size_t(idx[0])], p);
-  PointGatherer a(&first[3 * size_t(idx[0])]), b(p);
-  for (size_t i = 0; i < n; ++i) {
-    a.add(&first[3 * size_t(idx[i])], &out_first[kPointStride * i]);
-    normaliser.apply(&second[3 * size_t(idx[i])], p);
-    b.add(p, &out_second[kPointStride * i]);
-  }
-  return TwoCellFrames{a.frame(n), b.frame(n)};
-}
+
 
 __attribute__((noinline)) void copyPointsPortable(const double* frame, const uint32_t* idx, size_t n, double* out) {
   for (size_t i = 0; i < n; ++i) {
@@ -142,6 +129,26 @@ __attribute__((noinline)) FitSums fitSumsPortable(const double* u, const double*
   return s;
 }
 
+__attribute__((noinline)) void normalisePoints(const double* frame, const RootCube& cube, const uint32_t* idx,
+                                               size_t n, double* out) {
+  const PointNormaliser normaliser(cube);
+  for (size_t i = 0; i < n; ++i) {
+    normaliser.apply(&frame[3 * size_t(idx[i])], &out[kPointStride * i]);
+    out[kPointStride * i + 3] = 0.0;
+  }
+}
+
+const double kNoPrior[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+
+void gatherWithMotionPortable(const double* reference, const double* before, const RootCube& cube,
+                              const uint32_t* idx, size_t n, double* out, double* scratch, CellFrame& frame,
+                              CentredAffine& motion) {
+  frame = gatherPointsPortable(reference, idx, n, out);
+  normalisePoints(before, cube, idx, n, scratch);
+  const double origin[3] = {scratch[0], scratch[1], scratch[2]};
+  solveFit(fitSumsPortable(scratch, out, n, origin), n, ridgeWeight(n, frame), kNoPrior, motion);
+}
+
 __attribute__((noinline)) void predictPointsPortable(const double* u, size_t n, const double c[3], const CentredAffine& a,
                            const uint32_t* idx, double* recon) {
   for (size_t i = 0; i < n; ++i) applyCentred(a, c, &u[kPointStride * i], &recon[3 * size_t(idx[i])]);
@@ -179,19 +186,6 @@ ANIMC_TARGET_AVX2 CellFrame gatherPointsAvx2(const double* frame, const uint32_t
   return g.frame(n);
 }
 
-// Lane 3 stays 0: (0 - 0) · inv.
-ANIMC_TARGET_AVX2 TwoCellFrames gatherPointsTwiceAvx2(const double* first, const double* second,
-                                                      const RootCube& cube, const uint32_t* idx, size_t n,
-                                                      double* out_first, double* out_second) {
-  const Quad min = {cube.min[0], cube.min[1], cube.min[2], 0.0}, inv = splatQuad(1.0 / cube.side);
-  const auto normalised = [&](size_t i) ANIMC_TARGET_AVX2 { return (loadXyz(&second[3 * size_t(idx[i])]) - min) * inv; };
-  QuadGatherer a(loadXyz(&first[3 * size_t(idx[0])]), out_first), b(normalised(0), out_second);
-  for (size_t i = 1; i < n; ++i) {
-    a.add(loadXyz(&first[3 * size_t(idx[i])]), &out_first[kPointStride * i]);
-    b.add(normalised(i), &out_second[kPointStride * i]);
-  }
-  return TwoCellFrames{a.frame(n), b.frame(n)};
-}
 
 ANIMC_TARGET_AVX2 void copyPointsAvx2(const double* frame, const uint32_t* idx, size_t n, double* out) {
   for (size_t i = 0; i < n; ++i) storeQuad(&out[kPointStride * i], loadXyz(&frame[3 * size_t(idx[i])]));
@@ -202,16 +196,13 @@ ANIMC_TARGET_AVX2 void copyPointsAvx2(const double* frame, const uint32_t* idx, 
 // with d'' = (d2, d0, d1). Each entry is the same product the scalar formula sums.
 struct QuadFitSums {
   Quad m, d, dd, dd1, md, md1, md2;
-};
-ANIMC_TARGET_AVX2 inline QuadFitSums quadFitSums(const double* u, const double* q, size_t n, const double c[3]) {
-  const Quad c4 = {c[0], c[1], c[2], 0.0};
-  Quad m = splatQuad(0), d = m, dd = m, dd1 = m, md = m, md1 = m, md2 = m;
-  for (size_t i = 0; i < n; ++i) {
-    const Quad ui = loadQuad(&u[kPointStride * i]);
-    const Quad di = ui - c4;
-    const Quad mi = loadQuad(&q[kPointStride * i]) - ui;
-    const Quad di1 = __builtin_shufflevector(di, di, 1, 2, 0, 3);
-    const Quad di2 = __builtin_shufflevector(di, di, 2, 0, 1, 3);
+
+  ANIMC_TARGET_AVX2 QuadFitSums() : m(splatQuad(0)), d(m), dd(m), dd1(m), md(m), md1(m), md2(m) {}
+  ANIMC_TARGET_AVX2 void add(Quad u, Quad q, Quad c) {
+    const Quad di = u - c;
+    const Quad mi = q - u;
+    const Quad di1 = yzx(di);
+    const Quad di2 = zxy(di);
     m += mi;
     d += di;
     dd += di * di;
@@ -220,7 +211,72 @@ ANIMC_TARGET_AVX2 inline QuadFitSums quadFitSums(const double* u, const double* 
     md1 += mi * di1;
     md2 += mi * di2;
   }
-  return QuadFitSums{m, d, dd, dd1, md, md1, md2};
+};
+ANIMC_TARGET_AVX2 inline QuadFitSums quadFitSums(const double* u, const double* q, size_t n, const double c[3]) {
+  const Quad c4 = {c[0], c[1], c[2], 0.0};
+  QuadFitSums s;
+  for (size_t i = 0; i < n; ++i) s.add(loadQuad(&u[kPointStride * i]), loadQuad(&q[kPointStride * i]), c4);
+  return s;
+}
+
+// solveFit() with a row of each 3x3 matrix per Quad. Each entry is the same IEEE expression
+// as there: products commute exactly, and the cofactors are taken as cross products of rows,
+// which equal the columns bit for bit (the sums make Σ d·dᵀ, and so the spread, exactly
+// symmetric, and the ridge adds 0.0 off the diagonal on both sides).
+ANIMC_TARGET_AVX2 inline __attribute__((always_inline)) void solveQuadFit(const QuadFitSums& s, size_t n, double lambda, const double prior_L[9],
+                                    CentredAffine& out) {
+  const Quad inv_n = splatQuad(1.0 / double(n));
+  const Quad t = s.m * inv_n;
+  // The spread about the centroid: Σ d·dᵀ − (Σd)·(Σd)ᵀ / n, diagonal and off it.
+  const Quad spread = s.dd - (s.d * s.d) * inv_n, spread1 = s.dd1 - (s.d * yzx(s.d)) * inv_n;
+  // Rows of that + λ·I and of Σ m·dᵀ (fitSumsAvx2() lists their entries). (λ·0 = +0.0 as
+  // solveFit() adds; a Quad{λ, 0, 0, 0} made GCC emit a register vmovq that valgrind 3.19
+  // cannot decode.)
+  const Quad lam = splatQuad(lambda);
+  const Quad a[3] = {__builtin_shufflevector(spread, spread1, 0, 4, 6, 3) + lam * Quad{1.0, 0.0, 0.0, 0.0},
+                     __builtin_shufflevector(spread, spread1, 4, 1, 5, 3) + lam * Quad{0.0, 1.0, 0.0, 0.0},
+                     __builtin_shufflevector(spread, spread1, 6, 5, 2, 3) + lam * Quad{0.0, 0.0, 1.0, 0.0}};
+  const Quad md_md1 = __builtin_shufflevector(s.md, s.md1, 0, 4, 1, 5);  // md0 md1_0 md_1 md1_1
+  const Quad cross[3] = {__builtin_shufflevector(md_md1, s.md2, 0, 1, 4, 3),
+                         __builtin_shufflevector(md_md1, s.md2, 5, 2, 3, 3),
+                         __builtin_shufflevector(__builtin_shufflevector(s.md1, s.md2, 2, 6, 2, 3), s.md, 0, 1, 6, 3)};
+  // b = Σ (m - m̄)·dᵀ + λ·prior, as in solveFit().
+  Quad b[3];
+  for (int r = 0; r < 3; ++r)
+    b[r] = (cross[r] - splatQuad(t[r]) * s.d) + lam * loadXyz(&prior_L[3 * r]);
+  // Rows of the cofactor matrix: inv row 0 = a₁ × a₂, row 1 = a₂ × a₀, row 2 = a₀ × a₁.
+  Quad inv[3];
+  for (int r = 0; r < 3; ++r) {
+    const Quad& x = a[(r + 1) % 3];
+    const Quad& y = a[(r + 2) % 3];
+    inv[r] = yzx(x) * zxy(y) - zxy(x) * yzx(y);
+  }
+  const double det = a[0][0] * inv[0][0] + a[0][1] * inv[1][0] + a[0][2] * inv[2][0];
+  storeXyz(out.t, t);
+  for (int r = 0; r < 3; ++r) {
+    const Quad numerator = (splatQuad(b[r][0]) * inv[0] + splatQuad(b[r][1]) * inv[1]) + splatQuad(b[r][2]) * inv[2];
+    storeXyz(&out.L[3 * r], numerator / splatQuad(det));
+  }
+}
+
+// The before points are normalised (lane 3 stays 0: (0 - 0) · inv) and summed as they come,
+// about the first of them.
+ANIMC_TARGET_AVX2 void gatherWithMotionAvx2(const double* reference, const double* before, const RootCube& cube,
+                                            const uint32_t* idx, size_t n, double* out, CellFrame& frame,
+                                            CentredAffine& motion) {
+  const Quad min = {cube.min[0], cube.min[1], cube.min[2], 0.0}, inv = splatQuad(1.0 / cube.side);
+  const auto beforePoint = [&](size_t i) ANIMC_TARGET_AVX2 { return (loadXyz(&before[3 * size_t(idx[i])]) - min) * inv; };
+  const Quad origin = beforePoint(0), first = loadXyz(&reference[3 * size_t(idx[0])]);
+  QuadGatherer gatherer(first, out);
+  QuadFitSums s;
+  s.add(origin, first, origin);
+  for (size_t i = 1; i < n; ++i) {
+    const Quad r = loadXyz(&reference[3 * size_t(idx[i])]);
+    gatherer.add(r, &out[kPointStride * i]);
+    s.add(beforePoint(i), r, origin);
+  }
+  frame = gatherer.frame(n);
+  solveQuadFit(s, n, ridgeWeight(n, frame), kNoPrior, motion);
 }
 
 ANIMC_TARGET_AVX2 FitSums fitSumsAvx2(const double* u, const double* q, size_t n, const double c[3]) {
@@ -251,41 +307,11 @@ ANIMC_TARGET_AVX2 void predictPointsAvx2(const double* u, size_t n, const double
 }  // namespace
 
 #if ANIMC_AVX2_PATH
-// fitCentred() (affine_fit.cpp) with a row of each 3x3 matrix per Quad. Each entry is the
-// same IEEE expression as there: products commute exactly, and the cofactors are taken as
-// cross products of rows, which equal the columns bit for bit (the sums make Σ d·dᵀ
-// symmetric, and the ridge adds 0.0 off the diagonal on both sides).
+// fitCentred() (affine_fit.cpp): the sums in one pass, then the solve with a row of each
+// matrix per Quad.
 ANIMC_TARGET_AVX2 void fitCentredAvx2(const double* u, const double* q, size_t n, const CellFrame& frame,
                                       const double prior_L[9], CentredAffine& out) {
-  const QuadFitSums s = quadFitSums(u, q, n, frame.centroid);
-  const double inv_n = 1.0 / double(n);
-  const double lambda = kRidge * double(n) * frame.radius * frame.radius;
-  const Quad t = s.m * splatQuad(inv_n);
-  // Rows of Σ d·dᵀ + λ·I and of Σ m·dᵀ (fitSumsAvx2() lists their entries).
-  const Quad a[3] = {__builtin_shufflevector(s.dd, s.dd1, 0, 4, 6, 3) + Quad{lambda, 0.0, 0.0, 0.0},
-                     __builtin_shufflevector(s.dd, s.dd1, 4, 1, 5, 3) + Quad{0.0, lambda, 0.0, 0.0},
-                     __builtin_shufflevector(s.dd, s.dd1, 6, 5, 2, 3) + Quad{0.0, 0.0, lambda, 0.0}};
-  const Quad md_md1 = __builtin_shufflevector(s.md, s.md1, 0, 4, 1, 5);  // md0 md1_0 md_1 md1_1
-  const Quad cross[3] = {__builtin_shufflevector(md_md1, s.md2, 0, 1, 4, 3),
-                         __builtin_shufflevector(md_md1, s.md2, 5, 2, 3, 3),
-                         __builtin_shufflevector(__builtin_shufflevector(s.md1, s.md2, 2, 6, 2, 3), s.md, 0, 1, 6, 3)};
-  // b = Σ (m - m̄)·dᵀ + λ·prior, as in fitCentred().
-  Quad b[3];
-  for (int r = 0; r < 3; ++r)
-    b[r] = (cross[r] - splatQuad(t[r]) * s.d) + splatQuad(lambda) * loadXyz(&prior_L[3 * r]);
-  // Rows of the cofactor matrix: inv row 0 = a₁ × a₂, row 1 = a₂ × a₀, row 2 = a₀ × a₁.
-  Quad inv[3];
-  for (int r = 0; r < 3; ++r) {
-    const Quad& x = a[(r + 1) % 3];
-    const Quad& y = a[(r + 2) % 3];
-    inv[r] = yzx(x) * zxy(y) - zxy(x) * yzx(y);
-  }
-  const double det = a[0][0] * inv[0][0] + a[0][1] * inv[1][0] + a[0][2] * inv[2][0];
-  storeXyz(out.t, t);
-  for (int r = 0; r < 3; ++r) {
-    const Quad numerator = (splatQuad(b[r][0]) * inv[0] + splatQuad(b[r][1]) * inv[1]) + splatQuad(b[r][2]) * inv[2];
-    storeXyz(&out.L[3 * r], numerator / splatQuad(det));
-  }
+  solveQuadFit(quadFitSums(u, q, n, frame.centroid), n, ridgeWeight(n, frame), prior_L, out);
 }
 #endif
 
@@ -296,12 +322,12 @@ CellFrame gatherPoints(const double* frame, const uint32_t* idx, size_t n, doubl
   return gatherPointsPortable(frame, idx, n, out);
 }
 
-TwoCellFrames gatherPointsTwice(const double* first, const double* second, const RootCube& cube,
-                                const uint32_t* idx, size_t n, double* out_first, double* out_second) {
+void gatherWithMotion(const double* reference, const double* before, const RootCube& cube, const uint32_t* idx,
+                      size_t n, double* out, double* scratch, CellFrame& frame, CentredAffine& motion) {
 #if ANIMC_AVX2_PATH
-  if (cpuHasAvx2()) return gatherPointsTwiceAvx2(first, second, cube, idx, n, out_first, out_second);
+  if (cpuHasAvx2()) return gatherWithMotionAvx2(reference, before, cube, idx, n, out, frame, motion);
 #endif
-  return gatherPointsTwicePortable(first, second, cube, idx, n, out_first, out_second);
+  gatherWithMotionPortable(reference, before, cube, idx, n, out, scratch, frame, motion);
 }
 
 void copyPoints(const double* frame, const uint32_t* idx, size_t n, double* out) {

@@ -66,26 +66,27 @@ inline bool canSplit(const Cell& cell, int max_depth) {
   return cell.depth < max_depth && cell.end - cell.begin >= kMinSplitVertices;
 }
 
+// What encoder and decoder derive for a leaf before any of its data: the frame of its
+// reference points, and the prior of its affine, the cell's own motion from frame f-2 to
+// f-1 assumed to continue (zero without f-2).
+struct LeafModel {
+  CellFrame frame;
+  CentredAffine prior;
+};
+
 // A cell's vertices copied out of the frames, in cell order and kPointStride doubles apart
 // (cell_kernels.h), so that the per-cell passes (fits, predictions) stream through memory
-// instead of hopping through the vertex index; the frames of the reference and the before
-// points are found on the way. The buffers only grow, so cells allocate nothing.
+// instead of hopping through the vertex index; the leaf's model is found on the way. The
+// buffers only grow, so cells allocate nothing.
 struct CellPoints {
-  std::vector<double> reference, before, target;  // before/target: when the input has them
-  CellFrame reference_frame, before_frame;
-  size_t count = 0;         // points per buffer in the last gather
-  bool has_before = false;  // whether that gather had frame f-2 (before_frame is stale if not)
+  std::vector<double> reference, target;  // target: when the input has it
+  std::vector<double> scratch;            // CPUs without AVX2: frame f-2's points
+  LeafModel model;
   void gather(const PFrameInput& in, const uint32_t* idx, size_t n);
   const double* referencePoint(size_t i) const { return &reference[kPointStride * i]; }
   const double* targetPoint(size_t i) const { return &target[kPointStride * i]; }
 };
 
-// Leaf arithmetic shared by encoder and decoder, for the cell last gathered.
-struct LeafModel {
-  CellFrame frame;
-  CentredAffine prior;
-};
-LeafModel leafModel(const CellPoints& points);
 // Prediction of the cell's i-th vertex from the reference frame with the leaf's coded affine.
 // (Adding a share of the vertex's own last motion beyond its cell's was tried: it amplifies
 // the reconstruction noise and cost 60-200 % more bits on chickenCrossing.)

@@ -50,7 +50,7 @@ void PredictiveOctreeDecoder::decodeLeaf(Walk& w, const Cell& cell) {
   int64_t coded[12];
   decodeParameters(w, n, coded);
   points_.gather(w.in, idx, n);
-  const LeafModel m = leafModel(points_);
+  const LeafModel& m = points_.model;
   const CentredAffine a = codedAffine(m, coded, w.step);
   predictPoints(points_.reference.data(), n, m.frame.centroid, a, idx, w.recon.data());
   if (!w.rc.decode(pm.residuals_zero[n <= kMinLinearVertices])) decodeResiduals(w, idx, n);

@@ -73,7 +73,7 @@ double PredictiveOctreeEncoder::evaluateLeaf(Walk& w, const Cell& cell, Node& no
   const uint32_t n = cell.end - cell.begin;
   const uint32_t* idx = partition_.vertices(cell);
   points_.gather(w.in, idx, n);
-  const LeafModel m = leafModel(points_);
+  const LeafModel& m = points_.model;
   CentredAffine fit;
   fitCentred(points_.reference.data(), points_.target.data(), n, m.frame, m.prior.L, fit);
   const double st = w.step * kTranslationStep;
@@ -147,7 +147,7 @@ void PredictiveOctreeEncoder::codeLeaf(Walk& w, const Cell& cell, const Node& no
   if (n >= kMinLinearVertices)
     for (int k = 0; k < 9; ++k) encodeClassed(rc, *w.raw, pm.linear, node.coded[3 + k]);
   points_.gather(w.in, idx, n);
-  const LeafModel m = leafModel(points_);
+  const LeafModel& m = points_.model;
   const CentredAffine a = codedAffine(m, node.coded, w.step);
   predictPoints(points_.reference.data(), n, m.frame.centroid, a, idx, w.recon->data());
   residual_.resize(3 * size_t(n));

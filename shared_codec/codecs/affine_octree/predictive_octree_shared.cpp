@@ -11,32 +11,17 @@ void CellPoints::gather(const PFrameInput& in, const uint32_t* idx, size_t n) {
   const size_t size = kPointStride * n;
   if (reference.size() < size) {  // the three grow together
     reference.resize(size);
-    before.resize(size);
     target.resize(size);
+    scratch.resize(size);
   }
-  count = n;
-  has_before = in.before != nullptr;
   if (in.before) {
-    const TwoCellFrames f =
-        gatherPointsTwice(in.reference->data(), in.before->data(), in.cube, idx, n, reference.data(), before.data());
-    reference_frame = f.first;
-    before_frame = f.second;
+    gatherWithMotion(in.reference->data(), in.before->data(), in.cube, idx, n, reference.data(), scratch.data(),
+                     model.frame, model.prior);
   } else {
-    reference_frame = gatherPoints(in.reference->data(), idx, n, reference.data());
+    model.frame = gatherPoints(in.reference->data(), idx, n, reference.data());
+    model.prior = CentredAffine();
   }
   if (in.target) copyPoints(in.target->data(), idx, n, target.data());
-}
-
-LeafModel leafModel(const CellPoints& points) {
-  LeafModel m;
-  m.frame = points.reference_frame;
-  if (points.has_before) {
-    // The cell's own motion from f-2 to f-1, assumed to continue.
-    static const double kZero[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
-    fitCentred(points.before.data(), points.reference.data(), points.count, points.before_frame, kZero,
-               m.prior);
-  }
-  return m;
 }
 
 CentredAffine codedAffine(const LeafModel& m, const int64_t coded[12], double step) {
