@@ -22,7 +22,7 @@ Status PredictiveOctreeDecoder::decode(const PFrameInput& in, ByteReader payload
   const Cell root = partition_.reset(*in.reference, in.max_depth);
   if (root.end != root.begin) decodeCell(w, root);
   const size_t coded_bytes = size_t(w.rc.position() - payload.cursor());
-  if (w.rc.overran() || w.raw.overran() || coded_bytes + w.raw.bytesUsed() > payload.remaining())
+  if (w.rc.overran() || w.raw.overran() || coded_bytes + w.raw.bytesUsed() > payload.remaining() + kFinishReadAhead)
     return corrupt("octree frame: coded data ends early or is damaged");
   return Status();
 }
