@@ -62,8 +62,6 @@ struct PointNormaliser {
   }
 };
 
-
-
 __attribute__((noinline)) void copyPointsPortable(const double* frame, const uint32_t* idx, size_t n, double* out) {
   for (size_t i = 0; i < n; ++i) {
     const double* p = &frame[3 * size_t(idx[i])];
@@ -186,7 +184,6 @@ ANIMC_TARGET_AVX2 CellFrame gatherPointsAvx2(const double* frame, const uint32_t
   return g.frame(n);
 }
 
-
 ANIMC_TARGET_AVX2 void copyPointsAvx2(const double* frame, const uint32_t* idx, size_t n, double* out) {
   for (size_t i = 0; i < n; ++i) storeQuad(&out[kPointStride * i], loadXyz(&frame[3 * size_t(idx[i])]));
 }
@@ -223,8 +220,9 @@ ANIMC_TARGET_AVX2 inline QuadFitSums quadFitSums(const double* u, const double* 
 // as there: products commute exactly, and the cofactors are taken as cross products of rows,
 // which equal the columns bit for bit (the sums make Σ d·dᵀ, and so the spread, exactly
 // symmetric, and the ridge adds 0.0 off the diagonal on both sides).
-ANIMC_TARGET_AVX2 inline __attribute__((always_inline)) void solveQuadFit(const QuadFitSums& s, size_t n, double lambda, const double prior_L[9],
-                                    CentredAffine& out) {
+ANIMC_TARGET_AVX2 inline __attribute__((always_inline)) void solveQuadFit(const QuadFitSums& s, size_t n,
+                                                                          double lambda, const double prior_L[9],
+                                                                          CentredAffine& out) {
   const Quad inv_n = splatQuad(1.0 / double(n));
   const Quad t = s.m * inv_n;
   // The spread about the centroid: Σ d·dᵀ − (Σd)·(Σd)ᵀ / n, diagonal and off it.
@@ -286,7 +284,6 @@ ANIMC_TARGET_AVX2 FitSums fitSumsAvx2(const double* u, const double* q, size_t n
                  {s.dd[0], s.dd1[0], s.dd1[2], s.dd1[0], s.dd[1], s.dd1[1], s.dd1[2], s.dd1[1], s.dd[2]},
                  {s.md[0], s.md1[0], s.md2[0], s.md2[1], s.md[1], s.md1[1], s.md1[2], s.md2[2], s.md[2]}};
 }
-
 
 ANIMC_TARGET_AVX2 void predictPointsAvx2(const double* u, size_t n, const double c[3], const CentredAffine& a,
                                          const uint32_t* idx, double* recon) {
