@@ -50,18 +50,6 @@ __attribute__((noinline)) CellFrame gatherPointsPortable(const double* frame, co
   return g.frame(n);
 }
 
-// normalize()'s arithmetic for one point: (x - min) · (1 / side), x and y through a Pair.
-struct PointNormaliser {
-  Pair min_xy;
-  double min_z, inv;
-  explicit PointNormaliser(const RootCube& cube)
-      : min_xy(loadPair(cube.min)), min_z(cube.min[2]), inv(1.0 / cube.side) {}
-  void apply(const double* p, double out[3]) const {
-    storePair(out, (loadPair(p) - min_xy) * splat(inv));
-    out[2] = (p[2] - min_z) * inv;
-  }
-};
-
 __attribute__((noinline)) void copyPointsPortable(const double* frame, const uint32_t* idx, size_t n, double* out) {
   for (size_t i = 0; i < n; ++i) {
     const double* p = &frame[3 * size_t(idx[i])];

@@ -62,12 +62,8 @@ bool toFloatsPortable(const double* frame, size_t size, float* out) {
 }
 
 void normalizePortable(const RootCube& cube, const double* xyz, size_t size, double* out) {
-  const double inv = 1.0 / cube.side;
-  const Pair min_xy = loadPair(cube.min);
-  for (size_t i = 0; i < size; i += 3) {
-    storePair(&out[i], (loadPair(&xyz[i]) - min_xy) * splat(inv));
-    out[i + 2] = (xyz[i + 2] - cube.min[2]) * inv;
-  }
+  const PointNormaliser normaliser(cube);
+  for (size_t i = 0; i < size; i += 3) normaliser.apply(&xyz[i], &out[i]);
 }
 
 // out[i..] = min + side · unit[i..] for the vertices from `from` on, adding them to box.

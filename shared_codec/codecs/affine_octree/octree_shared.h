@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/simd_math.h"
 #include "core/status.h"
 
 namespace animc {
@@ -17,6 +18,18 @@ struct RootCube {
 // Positions are xyz-interleaved doubles.
 RootCube boundingCube(const std::vector<double>& xyz);
 void normalize(const RootCube& cube, const std::vector<double>& xyz, std::vector<double>& out);
+// normalize()'s arithmetic for one point, (x − min) · (1 / side), x and y through a Pair: the
+// portable normalize() and the passes that normalise points as they meet them share it.
+struct PointNormaliser {
+  Pair min_xy;
+  double min_z, inv;
+  explicit PointNormaliser(const RootCube& cube)
+      : min_xy(loadPair(cube.min)), min_z(cube.min[2]), inv(1.0 / cube.side) {}
+  void apply(const double* p, double out[3]) const {
+    storePair(out, (loadPair(p) - min_xy) * splat(inv));
+    out[2] = (p[2] - min_z) * inv;
+  }
+};
 // out = cube.min + cube.side · unit, returning the bounding cube of out (what boundingCube(out)
 // returns) found in the same pass.
 RootCube denormalize(const RootCube& cube, const std::vector<double>& unit, std::vector<double>& out);
