@@ -10,6 +10,7 @@
 #include "codecs/affine_octree/cell_kernels.h"
 #include "codecs/affine_octree/octree_shared.h"
 #include "codecs/affine_octree/options.h"
+#include "codecs/affine_octree/predictive_octree.h"
 #include "codec_test_support.h"
 #include "test_sequences.h"
 
@@ -217,6 +218,133 @@ TEST(CellKernels, GatheredMotionIsTheFitOfTheNormalisedPoints) {
     // (10^-3 · n · r², against a spread of about n · r² / 10 here) by about 1 %.
     for (int k = 0; k < 9; ++k) EXPECT_NEAR(motion.L[k], L_true[k], 6e-4) << n << " L" << k;
   }
+}
+
+// A leaf's points for the two tests below: reference u in a small cell, target q = u moved by
+// a smooth deformation plus noise, gathered kPointStride apart.
+struct LeafFixture {
+  size_t n;
+  std::vector<double> u, q;
+  CellFrame frame;
+  double prior_L[9];
+  LeafFixture(size_t count, std::mt19937& rng) : n(count), u(kPointStride * count, 0.0), q(kPointStride * count, 0.0) {
+    std::uniform_real_distribution<double> uniform(-1, 1);
+    for (size_t i = 0; i < n; ++i)
+      for (int a = 0; a < 3; ++a) u[kPointStride * i + a] = 0.4 + 0.05 * uniform(rng);
+    for (size_t i = 0; i < n; ++i)
+      for (int a = 0; a < 3; ++a)
+        q[kPointStride * i + a] = u[kPointStride * i + a] + 0.01 + 0.03 * (u[kPointStride * i + (a + 1) % 3] - 0.4) +
+                                  0.001 * uniform(rng);
+    std::vector<double> copy(kPointStride * n);
+    std::vector<uint32_t> idx(n);
+    for (uint32_t i = 0; i < n; ++i) idx[i] = i;
+    std::vector<double> flat(3 * n);
+    for (size_t i = 0; i < n; ++i)
+      for (int a = 0; a < 3; ++a) flat[3 * i + a] = u[kPointStride * i + a];
+    frame = gatherPoints(flat.data(), idx.data(), n, copy.data());
+    for (double& l : prior_L) l = 0.01 * uniform(rng);
+  }
+  // The fit's objective: squared error of the points plus the ridge's pull to the prior.
+  double objective(const CentredAffine& m) const {
+    double sum = 0;
+    for (size_t i = 0; i < n; ++i) {
+      double p[3];
+      applyCentred(m, frame.centroid, &u[kPointStride * i], p);
+      for (int a = 0; a < 3; ++a) sum += (q[kPointStride * i + a] - p[a]) * (q[kPointStride * i + a] - p[a]);
+    }
+    for (int k = 0; k < 9; ++k) sum += ridgeWeight(n, frame) * (m.L[k] - prior_L[k]) * (m.L[k] - prior_L[k]);
+    return sum;
+  }
+};
+
+// The rate-distortion quantisation weighs its choices by fitCentred()'s normal matrix instead
+// of predicting points: moving the fit by (δt, δL) must add exactly n·|δt|² + Σ δLᵣᵀ·A·δLᵣ to
+// its objective.
+TEST(PredictiveOctree, FitNormalMatrixIsTheCurvatureOfItsObjective) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> uniform(-1, 1);
+  for (size_t n : {1, 4, 30}) {
+    const LeafFixture leaf(n, rng);
+    CentredAffine fit;
+    double normal[9];
+    fitCentred(leaf.u.data(), leaf.q.data(), n, leaf.frame, leaf.prior_L, fit, normal);
+    for (int trial = 0; trial < 5; ++trial) {
+      CentredAffine moved = fit;
+      double want = 0;
+      for (int r = 0; r < 3; ++r) {
+        const double dt = 1e-3 * uniform(rng);
+        moved.t[r] += dt;
+        want += double(n) * dt * dt;
+      }
+      for (int r = 0; r < 3; ++r) {
+        double dl[3];
+        for (int k = 0; k < 3; ++k) moved.L[3 * r + k] += dl[k] = 0.05 * uniform(rng);
+        for (int j = 0; j < 3; ++j)
+          for (int k = 0; k < 3; ++k) want += dl[j] * normal[3 * j + k] * dl[k];
+      }
+      EXPECT_NEAR(leaf.objective(moved) - leaf.objective(fit), want, 1e-9 * want + 1e-15) << n;
+    }
+  }
+}
+
+// Each correction is the nearest value, one nearer zero, or zero: pure rate (weight 0) codes
+// every correction as zero; a ruling distortion weight rounds the translation to nearest and
+// the linear part to no more error than rounding to nearest (an entry of a row of L may
+// instead offset the others' rounding); in between, the choice never costs more bits +
+// weighted added error (measured by predicting the points) than rounding to nearest, and is
+// not always that rounding. The choice is the one a greedy pass over the twelve entries in
+// order makes when it measures each candidate's error by predicting the points.
+TEST(PredictiveOctree, CorrectionsAreRoundedForRatePlusDistortion) {
+  std::mt19937 rng(6);
+  const PredictiveModels models;
+  const CentredAffine prior;  // corrections are the fit itself
+  int differs = 0;
+  for (int trial = 0; trial < 40; ++trial) {
+    const size_t n = 4 + size_t(trial);
+    const LeafFixture leaf(n, rng);
+    CentredAffine fit;
+    double normal[9];
+    fitCentred(leaf.u.data(), leaf.q.data(), n, leaf.frame, leaf.prior_L, fit, normal);
+    const CorrectionSteps steps = correctionSteps(leaf.frame, n, 0.002);
+    LeafModel model{leaf.frame, prior};
+    int64_t nearest[12], coded[12];
+    for (int r = 0; r < 3; ++r) nearest[r] = std::llround(fit.t[r] / steps.translation);
+    for (int k = 0; k < 9; ++k) nearest[3 + k] = std::llround(fit.L[k] / steps.linear);
+    const auto rate = [&](const int64_t c[12]) {
+      double bits = 0;
+      for (int r = 0; r < 3; ++r) bits += classedCost(models.translation[r], c[r]);
+      for (int k = 0; k < 9; ++k) bits += classedCost(models.linear, c[3 + k]);
+      return bits;
+    };
+    quantiseCorrections(models, fit, prior, steps, n, normal, 0.0, coded);
+    for (int64_t c : coded) EXPECT_EQ(c, 0);
+    const double base = leaf.objective(fit);
+    const auto added = [&](const int64_t c[12]) { return leaf.objective(codedAffine(model, steps, c)) - base; };
+    quantiseCorrections(models, fit, prior, steps, n, normal, 1e30, coded);
+    for (int r = 0; r < 3; ++r) EXPECT_EQ(coded[r], nearest[r]) << r;
+    EXPECT_LE(added(coded), added(nearest) * (1 + 1e-9)) << trial;
+
+    const double weight = 2e6;  // about where the encoder works at ME 1 %
+    const double bits = quantiseCorrections(models, fit, prior, steps, n, normal, weight, coded);
+    EXPECT_DOUBLE_EQ(bits, rate(coded));
+    const auto cost = [&](const int64_t c[12]) { return rate(c) + weight * added(c); };
+    EXPECT_LE(cost(coded), cost(nearest) + 1e-9 * cost(nearest)) << trial;
+    int64_t greedy[12];
+    std::copy(nearest, nearest + 12, greedy);
+    for (int k = 0; k < 12; ++k) {
+      const int64_t m = nearest[k];
+      int64_t best = m;
+      double best_cost = cost(greedy);
+      for (const int64_t c : {m - (m > 0) + (m < 0), int64_t(0)}) {
+        greedy[k] = c;
+        if (cost(greedy) < best_cost) best = c, best_cost = cost(greedy);
+      }
+      greedy[k] = best;
+    }
+    for (int k = 0; k < 12; ++k) EXPECT_EQ(coded[k], greedy[k]) << trial << " entry " << k;
+    differs += !std::equal(coded, coded + 12, nearest);
+  }
+  EXPECT_GT(differs, 0);
 }
 
 }  // namespace

@@ -44,14 +44,15 @@ bool fitAffinePaper(const std::vector<double>& u, const std::vector<double>& q, 
 // Plain loops rather than Eigen: the matrices are 3x3, and this runs for every cell the
 // encoder's search visits and every leaf the decoder reads.
 void fitCentred(const double* u, const double* q, size_t n, const CellFrame& frame,
-                const double prior_L[9], CentredAffine& out) {
+                const double prior_L[9], CentredAffine& out, double normal[9]) {
 #if ANIMC_AVX2_PATH
-  if (cpuHasAvx2()) return fitCentredAvx2(u, q, n, frame, prior_L, out);
+  if (cpuHasAvx2()) return fitCentredAvx2(u, q, n, frame, prior_L, out, normal);
 #endif
-  solveFit(fitSums(u, q, n, frame.centroid), n, ridgeWeight(n, frame), prior_L, out);
+  solveFit(fitSums(u, q, n, frame.centroid), n, ridgeWeight(n, frame), prior_L, out, normal);
 }
 
-void solveFit(const FitSums& s, size_t n, double lambda, const double prior_L[9], CentredAffine& out) {
+void solveFit(const FitSums& s, size_t n, double lambda, const double prior_L[9], CentredAffine& out,
+              double normal[9]) {
   const double inv_n = 1.0 / double(n);
   double a[9], b[9];
   for (int r = 0; r < 3; ++r) {
@@ -64,6 +65,7 @@ void solveFit(const FitSums& s, size_t n, double lambda, const double prior_L[9]
       a[3 * r + k] = (s.cov[3 * r + k] - (s.d[r] * s.d[k]) * inv_n) + (r == k ? lambda : 0.0);
     }
   }
+  if (normal) std::copy(a, a + 9, normal);
   // L = b · a⁻¹, a symmetric positive definite (λ > 0): inverse by cofactors.
   const double inv[9] = {a[4] * a[8] - a[5] * a[7], a[2] * a[7] - a[1] * a[8], a[1] * a[5] - a[2] * a[4],
                          a[5] * a[6] - a[3] * a[8], a[0] * a[8] - a[2] * a[6], a[2] * a[3] - a[0] * a[5],

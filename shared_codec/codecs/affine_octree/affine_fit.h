@@ -43,8 +43,11 @@ struct CellFrame {
 inline double ridgeWeight(size_t n, const CellFrame& frame) { return kRidge * double(n) * frame.radius * frame.radius; }
 
 // u and q: a cell's points gathered in cell order, kPointStride doubles apart (cell_kernels.h).
+// `normal` (optional, row-major 3x3) receives the fit's normal matrix A, the spread of the
+// points about their centroid plus the ridge: moving the fit by (δt, δL) adds
+// n·|δt|² + Σᵣ δLᵣᵀ·A·δLᵣ (δLᵣ a row of δL) to its squared error plus ridge penalty.
 void fitCentred(const double* u, const double* q, size_t n, const CellFrame& frame,
-                const double prior_L[9], CentredAffine& out);
+                const double prior_L[9], CentredAffine& out, double normal[9] = nullptr);
 
 // x and y of the result go through the two lanes of a Pair, z alone; each lane computes
 // u + t + ((L₀·d₀ + L₁·d₁) + L₂·d₂) exactly as the scalar formula would.

@@ -210,7 +210,7 @@ ANIMC_TARGET_AVX2 inline QuadFitSums quadFitSums(const double* u, const double* 
 // symmetric, and the ridge adds 0.0 off the diagonal on both sides).
 ANIMC_TARGET_AVX2 inline __attribute__((always_inline)) void solveQuadFit(const QuadFitSums& s, size_t n,
                                                                           double lambda, const double prior_L[9],
-                                                                          CentredAffine& out) {
+                                                                          CentredAffine& out, double normal[9]) {
   const Quad inv_n = splatQuad(1.0 / double(n));
   const Quad t = s.m * inv_n;
   // The spread about the centroid: Σ d·dᵀ − (Σd)·(Σd)ᵀ / n, diagonal and off it.
@@ -226,6 +226,8 @@ ANIMC_TARGET_AVX2 inline __attribute__((always_inline)) void solveQuadFit(const 
   const Quad cross[3] = {__builtin_shufflevector(md_md1, s.md2, 0, 1, 4, 3),
                          __builtin_shufflevector(md_md1, s.md2, 5, 2, 3, 3),
                          __builtin_shufflevector(__builtin_shufflevector(s.md1, s.md2, 2, 6, 2, 3), s.md, 0, 1, 6, 3)};
+  if (normal)
+    for (int r = 0; r < 3; ++r) storeXyz(&normal[3 * r], a[r]);
   // b = Σ (m - m̄)·dᵀ + λ·prior, as in solveFit().
   Quad b[3];
   for (int r = 0; r < 3; ++r)
@@ -262,7 +264,7 @@ ANIMC_TARGET_AVX2 void gatherWithMotionAvx2(const double* reference, const doubl
     s.add(beforePoint(i), r, origin);
   }
   frame = gatherer.frame(n);
-  solveQuadFit(s, n, ridgeWeight(n, frame), kNoPrior, motion);
+  solveQuadFit(s, n, ridgeWeight(n, frame), kNoPrior, motion, nullptr);
 }
 
 ANIMC_TARGET_AVX2 FitSums fitSumsAvx2(const double* u, const double* q, size_t n, const double c[3]) {
@@ -295,8 +297,8 @@ ANIMC_TARGET_AVX2 void predictPointsAvx2(const double* u, size_t n, const double
 // fitCentred() (affine_fit.cpp): the sums in one pass, then the solve with a row of each
 // matrix per Quad.
 ANIMC_TARGET_AVX2 void fitCentredAvx2(const double* u, const double* q, size_t n, const CellFrame& frame,
-                                      const double prior_L[9], CentredAffine& out) {
-  solveQuadFit(quadFitSums(u, q, n, frame.centroid), n, ridgeWeight(n, frame), prior_L, out);
+                                      const double prior_L[9], CentredAffine& out, double normal[9]) {
+  solveQuadFit(quadFitSums(u, q, n, frame.centroid), n, ridgeWeight(n, frame), prior_L, out, normal);
 }
 #endif
 

@@ -31,8 +31,10 @@ struct FitSums {
 FitSums fitSums(const double* u, const double* q, size_t n, const double c[3]);
 // The least-squares motion q ≈ u + t + L·(u − centroid) from those sums, with L pulled
 // towards prior_L by the ridge weight lambda: t = Σm / n and
-// L = (Σ m·dᵀ − t·(Σd)ᵀ + λ·prior)·(Σ d·dᵀ − (Σd)·(Σd)ᵀ / n + λ·I)⁻¹.
-void solveFit(const FitSums& s, size_t n, double lambda, const double prior_L[9], CentredAffine& out);
+// L = (Σ m·dᵀ − t·(Σd)ᵀ + λ·prior)·(Σ d·dᵀ − (Σd)·(Σd)ᵀ / n + λ·I)⁻¹; `normal`, if given,
+// receives the matrix inverted (fitCentred()).
+void solveFit(const FitSums& s, size_t n, double lambda, const double prior_L[9], CentredAffine& out,
+              double normal[9] = nullptr);
 
 // gatherPoints() of frame f-1 (`reference`), together with the cell's motion from frame f-2
 // (`before`, in world units: each point is normalised into `cube` on the way, with
@@ -47,7 +49,7 @@ void gatherWithMotion(const double* reference, const double* before, const RootC
 // fitCentred() for CPUs with AVX2 (it calls this itself): the sums above, then the solve with
 // a row of each matrix per Quad.
 void fitCentredAvx2(const double* u, const double* q, size_t n, const CellFrame& frame, const double prior_L[9],
-                    CentredAffine& out);
+                    CentredAffine& out, double normal[9]);
 #endif
 
 // applyCentred() of every gathered point, written to recon at the point's vertex idx[i].

@@ -29,8 +29,8 @@ namespace animc {
 
 constexpr uint32_t kMinLinearVertices = 4;  // fewer vertices: translation only, L from the prior
 // Tuned on all four shared sequences; docs/affine_octree.md gives the measurements.
-constexpr double kTranslationStep = 0.125;    // in residual steps
-constexpr double kLinearStep = 0.125;         // in residual steps per cell radius
+constexpr double kTranslationStep = 0.5;      // in residual steps over √n (correctionSteps())
+constexpr double kLinearStep = 1.25;          // in residual steps over √n per cell radius
 constexpr double kRateDistortion = 0.1;       // scales the weight of distortion in splits
 constexpr double kPruneDistortionBits = 8.0;  // search no deeper below such a quiet leaf
 constexpr int64_t kMaxCodedMagnitude = int64_t(1) << 30;
@@ -94,8 +94,30 @@ inline void predictVertex(const CellPoints& points, const LeafModel& m, const Ce
                           size_t i, double out[3]) {
   applyCentred(a, m.frame.centroid, points.referencePoint(i), out);
 }
-// coded[0..2] translation, coded[3..11] linear part, in quantisation steps.
-CentredAffine codedAffine(const LeafModel& m, const int64_t coded[12], double step);
+// The quantisation steps of the corrections of a leaf of n vertices. Rounding a correction
+// moves all n vertices, so its share of the squared error grows as n, and the step that
+// balances that against the correction's bits shrinks as 1/√n; the linear part's also as
+// 1/radius, the lever it acts through. (Fixed steps of 0.125 residual steps, and 0.125 per
+// radius, cost 6-19 % more bits at equal PSNR: docs/affine_octree.md.)
+struct CorrectionSteps {
+  double translation, linear;
+};
+CorrectionSteps correctionSteps(const CellFrame& frame, size_t n, double residual_step);
+// coded[0..2] translation, coded[3..11] linear part, in those steps.
+CentredAffine codedAffine(const LeafModel& m, const CorrectionSteps& steps, const int64_t coded[12]);
+
+// Rate-distortion quantisation of a leaf's corrections from `prior` to `fit` (what video
+// coders call RDOQ): each is rounded to nearest, one step nearer zero or zero, whichever
+// costs the fewest bits (estimated from the models) plus `weight` times the squared error it
+// adds. The fit is the minimum of that error, which grows from it by n·|δt|² and δLᵣᵀ·A·δLᵣ
+// (A the fit's normal matrix, fitCentred()), so a choice is weighed without predicting a
+// vertex. The translations are independent; the entries of a row of L are chosen in turn,
+// each with the ones before it as chosen. Fills coded[12] (the linear part only when
+// n >= kMinLinearVertices) and returns their bits. (Against rounding to nearest: 2-4 % fewer
+// bits at equal PSNR on the shared sequences.)
+double quantiseCorrections(const PredictiveModels& pm, const CentredAffine& fit, const CentredAffine& prior,
+                           const CorrectionSteps& steps, size_t n, const double normal[9], double weight,
+                           int64_t coded[12]);
 
 struct PredictiveFrameStats {
   uint64_t leaves = 0;

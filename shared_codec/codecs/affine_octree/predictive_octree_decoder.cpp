@@ -51,7 +51,7 @@ void PredictiveOctreeDecoder::decodeLeaf(Walk& w, const Cell& cell) {
   decodeParameters(w, n, coded);
   points_.gather(w.in, idx, n);
   const LeafModel& m = points_.model;
-  const CentredAffine a = codedAffine(m, coded, w.step);
+  const CentredAffine a = codedAffine(m, correctionSteps(m.frame, n, w.step), coded);
   predictPoints(points_.reference.data(), n, m.frame.centroid, a, idx, w.recon.data());
   if (!w.rc.decode(pm.residuals_zero[n <= kMinLinearVertices])) decodeResiduals(w, idx, n);
 }

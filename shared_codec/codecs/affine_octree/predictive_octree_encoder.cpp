@@ -4,6 +4,80 @@
 #include "codecs/affine_octree/predictive_octree.h"
 
 namespace animc {
+namespace {
+
+// Of the nearest value, one step nearer zero and zero, the one of least rate + distortion
+// (bits); adds its rate to `bits`.
+template <class Rate, class Distortion>
+int64_t cheapest(int64_t nearest, const Rate& rate, const Distortion& distortion, double& bits) {
+  int64_t best = nearest;
+  double best_rate = rate(nearest);
+  if (nearest != 0) {
+    double best_cost = best_rate + distortion(nearest);
+    const int64_t nearer_zero = nearest - (nearest > 0) + (nearest < 0);
+    const auto consider = [&](int64_t c) {
+      const double c_rate = rate(c), c_cost = c_rate + distortion(c);
+      if (c_cost < best_cost) best = c, best_rate = c_rate, best_cost = c_cost;
+    };
+    consider(nearer_zero);
+    if (nearer_zero != 0) consider(0);
+  }
+  bits += best_rate;
+  return best;
+}
+
+// A value in steps (a correction or a residual), rounded half away from zero; beyond ±2^40
+// (NaN included) it is clamped, which the callers' overflow tests then catch. (Inline
+// arithmetic: std::llround and std::nearbyint are library calls, 3 % of the encoder's
+// instructions.)
+int64_t nearestSteps(double x) {
+  constexpr double kLimit = 0x1p40;
+  if (!(x > -kLimit)) return -int64_t(kLimit);
+  if (x > kLimit) return int64_t(kLimit);
+  return int64_t(x + std::copysign(0.5, x));  // no branch on the sign: it is random
+}
+
+}  // namespace
+
+double quantiseCorrections(const PredictiveModels& pm, const CentredAffine& fit, const CentredAffine& prior,
+                           const CorrectionSteps& steps, size_t n, const double normal[9], double weight,
+                           int64_t coded[12]) {
+  double bits = 0;
+  const double translation_weight = weight * double(n) * steps.translation * steps.translation;
+  for (int r = 0; r < 3; ++r) {
+    const double x = (fit.t[r] - prior.t[r]) / steps.translation;
+    coded[r] = cheapest(
+        nearestSteps(x), [&](int64_t c) { return classedCost(pm.translation[r], c); },
+        [&](int64_t c) { return translation_weight * (double(c) - x) * (double(c) - x); }, bits);
+  }
+  const bool linear = n >= kMinLinearVertices;
+  const double linear_weight = weight * steps.linear * steps.linear;
+  for (int r = 0; r < 3; ++r) {
+    double x[3], e[3];  // the row's corrections, and the chosen ones' rounding errors
+    int64_t* row = &coded[3 + 3 * r];
+    for (int k = 0; k < 3; ++k) {
+      x[k] = (fit.L[3 * r + k] - prior.L[3 * r + k]) / steps.linear;
+      row[k] = linear ? nearestSteps(x[k]) : 0;
+      e[k] = double(row[k]) - x[k];
+    }
+    if (!linear) continue;
+    for (int k = 0; k < 3; ++k) {
+      const double* a = &normal[3 * k];
+      // The part of eᵀ·A·e that depends on e[k].
+      const double others = 2.0 * (a[(k + 1) % 3] * e[(k + 1) % 3] + a[(k + 2) % 3] * e[(k + 2) % 3]);
+      row[k] = cheapest(
+          row[k], [&](int64_t c) { return classedCost(pm.linear, c); },
+          [&](int64_t c) {
+            const double ek = double(c) - x[k];
+            return linear_weight * ek * (a[k] * ek + others);
+          },
+          bits);
+      e[k] = double(row[k]) - x[k];
+    }
+  }
+  return bits;
+}
+
 struct PredictiveOctreeEncoder::Walk {
   const PFrameInput& in;
   double step;
@@ -75,23 +149,14 @@ double PredictiveOctreeEncoder::evaluateLeaf(Walk& w, const Cell& cell, Node& no
   points_.gather(w.in, idx, n);
   const LeafModel& m = points_.model;
   CentredAffine fit;
-  fitCentred(points_.reference.data(), points_.target.data(), n, m.frame, m.prior.L, fit);
-  const double st = w.step * kTranslationStep;
-  const double sl = w.step * kLinearStep / m.frame.radius;
-  const bool linear = n >= kMinLinearVertices;
+  double normal[9];
+  fitCentred(points_.reference.data(), points_.target.data(), n, m.frame, m.prior.L, fit, normal);
+  const CorrectionSteps steps = correctionSteps(m.frame, n, w.step);
   const PredictiveModels& pm = *models_;
-  double bits = 0;
-  for (int r = 0; r < 3; ++r) {
-    node.coded[r] = std::llround((fit.t[r] - m.prior.t[r]) / st);
-    bits += classedCost(pm.translation[r], node.coded[r]);
-  }
-  for (int k = 0; k < 9; ++k) {
-    node.coded[3 + k] = linear ? std::llround((fit.L[k] - m.prior.L[k]) / sl) : 0;
-    if (linear) bits += classedCost(pm.linear, node.coded[3 + k]);
-  }
+  double bits = quantiseCorrections(pm, fit, m.prior, steps, n, normal, w.bits_per_squared_error, node.coded);
   for (int64_t c : node.coded)
     if (c > kMaxCodedMagnitude || c < -kMaxCodedMagnitude) w.overflow = true;
-  const CentredAffine a = codedAffine(m, node.coded, w.step);
+  const CentredAffine a = codedAffine(m, steps, node.coded);
   double residual_bits = 0, distortion = 0;
   bool all_zero = true;
   for (uint32_t i = 0; i < n; ++i) {
@@ -102,9 +167,9 @@ double PredictiveOctreeEncoder::evaluateLeaf(Walk& w, const Cell& cell, Node& no
     double vertex_bits = 0;
     bool vertex_zero = true;
     for (int ax = 0; ax < 3; ++ax) {
-      const double k = std::nearbyint((t[ax] - p[ax]) / w.step);
-      if (std::fabs(k) > double(kMaxCodedMagnitude)) w.overflow = true;
-      const int64_t r = w.overflow ? 0 : int64_t(k);
+      const int64_t k = nearestSteps((t[ax] - p[ax]) / w.step);
+      if (k > kMaxCodedMagnitude || k < -kMaxCodedMagnitude) w.overflow = true;
+      const int64_t r = w.overflow ? 0 : k;
       vertex_zero = vertex_zero && r == 0;
       vertex_bits += intCost(pm.residuals, contexts_.contextAt(v + ax), r);
       const double e = t[ax] - p[ax] - double(r) * w.step;
@@ -148,14 +213,14 @@ void PredictiveOctreeEncoder::codeLeaf(Walk& w, const Cell& cell, const Node& no
     for (int k = 0; k < 9; ++k) encodeClassed(rc, *w.raw, pm.linear, node.coded[3 + k]);
   points_.gather(w.in, idx, n);
   const LeafModel& m = points_.model;
-  const CentredAffine a = codedAffine(m, node.coded, w.step);
+  const CentredAffine a = codedAffine(m, correctionSteps(m.frame, n, w.step), node.coded);
   predictPoints(points_.reference.data(), n, m.frame.centroid, a, idx, w.recon->data());
   residual_.resize(3 * size_t(n));
   bool all_zero = true;
   for (uint32_t i = 0; i < n; ++i) {
     double* out = &(*w.recon)[3 * size_t(idx[i])];
     for (int ax = 0; ax < 3; ++ax) {
-      const int64_t r = int64_t(std::nearbyint((points_.targetPoint(i)[ax] - out[ax]) / w.step));
+      const int64_t r = nearestSteps((points_.targetPoint(i)[ax] - out[ax]) / w.step);
       residual_[3 * size_t(i) + ax] = r;
       out[ax] += double(r) * w.step;
       all_zero = all_zero && r == 0;
