@@ -77,12 +77,12 @@ struct SpanCostTable {
     for (int i = 0; i < 256; ++i) log2_mantissa[i] = float(std::log2(1.0 + (i + 0.5) / 256.0));
   }
 };
+inline const SpanCostTable kSpanCostTable;  // before main(), as kBitCostTable
 inline double symbolCost(const SymbolModel& m, uint32_t symbol) {
-  static const SpanCostTable kTable;
   const uint32_t span = uint32_t(m.start[symbol + 1] - m.start[symbol]);  // 1 .. 2^15
   const int e = 31 - __builtin_clz(span);
   const uint32_t mantissa = ((span << 8) >> e) & 255;  // the 8 bits below the leading one
-  return double(kProbBits - e) - double(kTable.log2_mantissa[mantissa]);
+  return double(kProbBits - e) - double(kSpanCostTable.log2_mantissa[mantissa]);
 }
 
 inline void encodeSymbol(RangeEncoder& rc, SymbolModel& m, uint32_t symbol) {
