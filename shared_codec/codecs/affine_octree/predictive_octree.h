@@ -10,6 +10,7 @@
 //    adaptive binary coding; the corrections' signs and low bits go raw, in a raw-bit stream
 //    after the range coder's bytes (entropy/classed_integer.h, for decoding speed).
 #pragma once
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -102,9 +103,18 @@ inline void predictVertex(const CellPoints& points, const LeafModel& m, const Ce
 struct CorrectionSteps {
   double translation, linear;
 };
-CorrectionSteps correctionSteps(const CellFrame& frame, size_t n, double residual_step);
+// (Inline, as codedAffine(): both run once per leaf on the decoder's path.)
+inline CorrectionSteps correctionSteps(const CellFrame& frame, size_t n, double residual_step) {
+  const double step = residual_step / std::sqrt(double(n));
+  return {kTranslationStep * step, kLinearStep * step / frame.radius};
+}
 // coded[0..2] translation, coded[3..11] linear part, in those steps.
-CentredAffine codedAffine(const LeafModel& m, const CorrectionSteps& steps, const int64_t coded[12]);
+inline CentredAffine codedAffine(const LeafModel& m, const CorrectionSteps& steps, const int64_t coded[12]) {
+  CentredAffine a = m.prior;
+  for (int r = 0; r < 3; ++r) a.t[r] += double(coded[r]) * steps.translation;
+  for (int k = 0; k < 9; ++k) a.L[k] += double(coded[3 + k]) * steps.linear;
+  return a;
+}
 
 // Rate-distortion quantisation of a leaf's corrections from `prior` to `fit` (what video
 // coders call RDOQ): each is rounded to nearest, one step nearer zero or zero, whichever

@@ -24,16 +24,4 @@ void CellPoints::gather(const PFrameInput& in, const uint32_t* idx, size_t n) {
   if (in.target) copyPoints(in.target->data(), idx, n, target.data());
 }
 
-CorrectionSteps correctionSteps(const CellFrame& frame, size_t n, double residual_step) {
-  const double step = residual_step / std::sqrt(double(n));
-  return {kTranslationStep * step, kLinearStep * step / frame.radius};
-}
-
-CentredAffine codedAffine(const LeafModel& m, const CorrectionSteps& steps, const int64_t coded[12]) {
-  CentredAffine a = m.prior;
-  for (int r = 0; r < 3; ++r) a.t[r] += double(coded[r]) * steps.translation;
-  for (int k = 0; k < 9; ++k) a.L[k] += double(coded[3 + k]) * steps.linear;
-  return a;
-}
-
 }  // namespace animc
