@@ -229,19 +229,15 @@ struct LeafFixture {
   double prior_L[9];
   LeafFixture(size_t count, std::mt19937& rng) : n(count), u(kPointStride * count, 0.0), q(kPointStride * count, 0.0) {
     std::uniform_real_distribution<double> uniform(-1, 1);
-    for (size_t i = 0; i < n; ++i)
-      for (int a = 0; a < 3; ++a) u[kPointStride * i + a] = 0.4 + 0.05 * uniform(rng);
+    std::vector<double> xyz(3 * n);
+    for (double& x : xyz) x = 0.4 + 0.05 * uniform(rng);
+    std::vector<uint32_t> idx(n);
+    for (uint32_t i = 0; i < n; ++i) idx[i] = i;
+    frame = gatherPoints(xyz.data(), idx.data(), n, u.data());
     for (size_t i = 0; i < n; ++i)
       for (int a = 0; a < 3; ++a)
         q[kPointStride * i + a] = u[kPointStride * i + a] + 0.01 + 0.03 * (u[kPointStride * i + (a + 1) % 3] - 0.4) +
                                   0.001 * uniform(rng);
-    std::vector<double> copy(kPointStride * n);
-    std::vector<uint32_t> idx(n);
-    for (uint32_t i = 0; i < n; ++i) idx[i] = i;
-    std::vector<double> flat(3 * n);
-    for (size_t i = 0; i < n; ++i)
-      for (int a = 0; a < 3; ++a) flat[3 * i + a] = u[kPointStride * i + a];
-    frame = gatherPoints(flat.data(), idx.data(), n, copy.data());
     for (double& l : prior_L) l = 0.01 * uniform(rng);
   }
   // The fit's objective: squared error of the points plus the ridge's pull to the prior.
