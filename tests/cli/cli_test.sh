@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # End-to-end tests of the animc command line on the Sydney sample:
-#   encode / info / compare / bench with --json, decode to every format and a frame range,
+#   encode / info / compare / bench (of frames, and of an .ams: decoding only) with --json, decode to every format and a frame range,
 #   and the error contract: non-zero exit, nothing on stdout, one "animc: " line on stderr,
 #   no output file.
 # usage: cli_test.sh ANIMC_BINARY SAMPLES_DIR
@@ -83,6 +83,10 @@ json_check 'd["max_error_rel_cube"] <= 0.01 * 1.02 and d["frames"] == 50' "$TMP/
 run bench "$ANIMC" bench "$PC2" --mesh "$MESH" --runs 1 --json
 json_check 'd["encode_mvps"] > 0 and d["decode_mvps"] > 0' "$TMP/bench.out"
 same_kg "$TMP/bench.out" "$TMP/encode.out"
+# Given the .ams itself, bench decodes that file only.
+run bench_ams "$ANIMC" bench "$AMS" --runs 2 --json
+json_check 'd["decode_mvps"] > 0 and d["runs"] == 2 and d["frames"] == 50 and "encode_mvps" not in d' "$TMP/bench_ams.out"
+json_check 'd["file_bytes"] == e["file_bytes"] and d["profile"] == e["profile"]' "$TMP/bench_ams.out" "$TMP/encode.out"
 
 # --- decode to every format; each holds the same frames as the .ams ------------------------
 run decode_pc2 "$ANIMC" decode "$AMS" -o "$TMP/full.pc2"
@@ -224,6 +228,8 @@ expect_error progressive_octree "$ERRDIR/x.pc2" "$ANIMC" decode "$AMS" -o "$ERRD
 expect_error progressive_p_frames "$ERRDIR/x.pc2" "$ANIMC" decode "$W_AMS" -o "$ERRDIR/x.pc2" --bitplanes 4
 expect_error progressive_i_frames_only "$ERRDIR/x.ams" "$ANIMC" encode "$PC2" --mesh "$MESH" -o "$ERRDIR/x.ams" \
   --codec wavelet --i-frames-only --progressive-p-frames
+expect_error bench_ams_encode_option "" "$ANIMC" bench "$AMS" --max-error 0.1
+expect_error bench_ams_missing "" "$ANIMC" bench "$TMP/no_such.ams"
 expect_error negative_bitplanes "$ERRDIR/x.pc2" "$ANIMC" decode "$W_AMS" -o "$ERRDIR/x.pc2" --bitplanes -2
 
 if ((FAILURES > 0)); then

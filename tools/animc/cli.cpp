@@ -156,6 +156,10 @@ void endProgressLine() {
   g_progress_shown = false;
 }
 
+bool isAmsPath(const std::string& path) {
+  return path.size() > 4 && path.compare(path.size() - 4, 4, ".ams") == 0;
+}
+
 int fail(const Status& status) {
   endProgressLine();
   std::fprintf(stderr, "animc: %s\n", status.message().c_str());

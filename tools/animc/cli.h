@@ -41,6 +41,9 @@ Result<EncodeSettings> encodeSettingsFrom(const Args& args);
 ProgressFn progressLine(const char* label, bool force);
 void endProgressLine();
 
+// Whether a path names an .ams file (by its extension), which compare and bench read as one.
+bool isAmsPath(const std::string& path);
+
 // Prints "animc: <message>" on stderr and returns the exit status for the code.
 int fail(const Status& status);
 

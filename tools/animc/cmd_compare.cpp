@@ -16,7 +16,7 @@ int runCompare(const std::vector<std::string>& argv) {
   const std::string& recon_path = args.positional()[1];
   auto original = openSequence(args.positional()[0], args.get("mesh"));
   if (!original.ok()) return fail(original.status());
-  const bool is_ams = recon_path.size() > 4 && recon_path.compare(recon_path.size() - 4, 4, ".ams") == 0;
+  const bool is_ams = isAmsPath(recon_path);
   std::unique_ptr<FrameSource> recon;
   std::unique_ptr<AmsSource> ams;
   if (is_ams) {

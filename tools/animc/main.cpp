@@ -20,6 +20,7 @@ constexpr const char* kUsage =
     "  info IN.ams [--json]\n"
     "  compare ORIGINAL RECONSTRUCTED|IN.ams [--mesh M] [--json] [--per-frame]\n"
     "  bench IN [--mesh M] [encode options] [--runs R] [--json]\n"
+    "  bench IN.ams [--runs R] [--json]: decoding only, of that file\n"
     "IN: .pc2/.mdd (optionally .xz, with --mesh), a .ply/.off frame, a folder of them or a\n"
     ".txt list of frame files. E is a fraction of the root cube's side (0.01 = 1%).\n"
     "S is the wavelet's finest quantisation step as a fraction of the first frame's bounding-box\n"
