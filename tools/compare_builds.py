@@ -20,16 +20,16 @@ import sys
 import tempfile
 from concurrent.futures import ThreadPoolExecutor
 
+from bench_common import find_sequences
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 
-def measure(animc, folder, name, profile, max_error, scratch):
-    ply = os.path.join(folder, name + ".ply")
-    frames = os.path.join(folder, name + ".pc2.xz")
-    out = os.path.join(scratch, "%s_%d_%s_%g.ams" % (name, abs(hash(animc)), profile, max_error))
-    subprocess.run([animc, "encode", frames, "--mesh", ply, "--profile", profile,
+def measure(animc, pc2, ply, profile, max_error, scratch):
+    out = os.path.join(scratch, "%s_%d_%s_%g.ams" % (os.path.basename(ply), abs(hash(animc)), profile, max_error))
+    subprocess.run([animc, "encode", pc2, "--mesh", ply, "--profile", profile,
                     "--max-error", str(max_error), "-o", out], check=True, capture_output=True)
-    report = json.loads(subprocess.run([animc, "compare", frames, out, "--mesh", ply, "--json"],
+    report = json.loads(subprocess.run([animc, "compare", pc2, out, "--mesh", ply, "--json"],
                                        check=True, capture_output=True).stdout)
     os.remove(out)
     return report["psnr"], report["bpvf"]
@@ -59,15 +59,15 @@ def main():
     targets = [float(x) for x in args.at.split()]
     if any(t not in max_errors for t in targets):
         sys.exit("compare_builds.py: every --at value must be one of --max-errors")
-    names = sorted(d for d in os.listdir(args.data) if os.path.isfile(os.path.join(args.data, d, d + ".ply")))
-    jobs = [(b, n, me) for b in args.builds for n in names for me in max_errors]
+    sequences = find_sequences(args.data)
+    names = [name for name, _pc2, _ply in sequences]
     with tempfile.TemporaryDirectory() as scratch, ThreadPoolExecutor(2) as pool:
-        futures = {job: pool.submit(measure, job[0], os.path.join(args.data, job[1]), job[1], args.profile,
-                                    job[2], scratch) for job in jobs}
+        futures = {(b, name, me): pool.submit(measure, b, pc2, ply, args.profile, me, scratch)
+                   for b in args.builds for name, pc2, ply in sequences for me in max_errors}
         results = {}
         for i, (job, future) in enumerate(futures.items()):
             results[job] = future.result()
-            print("\r%d/%d encodes" % (i + 1, len(jobs)), end="", file=sys.stderr, flush=True)
+            print("\r%d/%d encodes" % (i + 1, len(futures)), end="", file=sys.stderr, flush=True)
         print(file=sys.stderr)
     base = args.builds[0]
     print("bpvf change at the base build's PSNR, builds: " + ", ".join(args.builds[1:]))
