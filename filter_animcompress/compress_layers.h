@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // "Compress Animation Layers": the document's layers are the frames of one animation; encode
 // them to an .ams file, optionally add the decoder's frames as layers and colour by error.
 #pragma once

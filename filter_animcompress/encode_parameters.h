@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The encoder settings as MeshLab parameters, shared by the Compress filter and the .ams save
 // dialog so both offer the same choices, defaults and limits as `animc encode`.
 #pragma once

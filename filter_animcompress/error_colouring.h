@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Reconstruction error shown on layers: per-vertex error as vertex quality, and a colour ramp
 // whose scale is fixed across all frames (so a frame that looks redder really is worse).
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The MeshLab filter plugin: declares the three animation filters and hands each to its
 // function (compress_layers, reconstruction_error, layer_frames). No codec logic here.
 #pragma once

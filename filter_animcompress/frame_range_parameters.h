@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The frames to load from an .ams file as MeshLab parameters, shared by the Import Compressed
 // Animation filter and the .ams open dialog so both offer the same choice.
 #pragma once

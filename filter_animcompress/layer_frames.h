@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // MeshLab layers as animc frames and back: the one place where CMeshO meets shared_codec.
 // A frame is a layer's live vertices in vector order; its triangles are its live faces with
 // indices renumbered over those vertices, so deleted-but-not-compacted elements are skipped.

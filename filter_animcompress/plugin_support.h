@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Small glue both plugins need between MeshLab's callbacks and the codec library's.
 #pragma once
 #include <functional>

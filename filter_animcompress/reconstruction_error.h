@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // "Animation Reconstruction Error": compares two equally long runs of layers (originals and
 // reconstructions), stores per-vertex error as quality on the reconstructions, colours them on
 // one scale for all frames, and logs per-frame and whole-animation figures.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // MeshLab 2020.09's GUI sets up rendering only for the layer an IO plugin's open() was given;
 // other layers open() adds stay invisible until the user picks a render mode by hand.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The MeshLab IO plugin for .ams files: open decodes frames into layers, save encodes every
 // layer as a frame. A thin adapter over shared_codec (through filter_animcompress's adapter).
 #pragma once

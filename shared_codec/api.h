@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The flat API of the codec library, used by animc and the MeshLab plugins alike:
 // encode a stream of frames to an .ams file, and read one back as a stream of frames.
 #pragma once

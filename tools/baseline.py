@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: Apache-2.0
 """The simple baseline every codec here must beat (DESIGN.md, "Measured on chickenCrossing"):
 quantise every coordinate to B bits on the sequence's bounding box, subtract the previous
 frame, store the differences as int32 little-endian and compress with xz -9.

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: Apache-2.0
 """Benchmark animc on every sequence of the data folder and write docs/benchmarks.md.
 
 usage: tools/bench.py [--animc PATH] [--data DIR] [--runs R] [--out FILE] [--quick] [--no-plugin]

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: Apache-2.0
 """Helpers shared by the benchmark scripts (bench.py, bench_wavelet.py, bench_progressive.py,
 bench_plugin.py): finding the sequences, running `animc bench --json` and other animc
 commands that print JSON, log-log interpolation, Markdown cells and tables, progress lines."""

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: Apache-2.0
 """Encoding through the MeshLab filter against `animc encode` on the same frames.
 
 usage: tools/bench_plugin.py [--animc PATH] [--data DIR] [--runs R]   (prints a Markdown section)

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: Apache-2.0
 """Progressive decoding of wavelet files with P-frames (`--progressive-p-frames`): what the
 option costs in rate, and what a decoder that keeps only the first N bytes of every frame
 gets, against I-frames only and against the encoder's own fixed rate. bench_wavelet.py puts

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: Apache-2.0
 """The wavelet codec against the Affine-Octree codec: rate-distortion table and plot, decode
 speed, parametric (static) archive size. bench.py calls wavelet_section() with the sequences
 it measured (their Affine-Octree sweeps and baseline points) and puts the returned Markdown

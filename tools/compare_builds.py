@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: Apache-2.0
 """Bits of one or more animc builds against a base build at equal PSNR (Affine-Octree codec).
 
 usage: tools/compare_builds.py BASE_ANIMC NEW_ANIMC [NEW_ANIMC ...] [--data DIR]

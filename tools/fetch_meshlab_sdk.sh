@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # Fetches the MeshLab 2020.09 headers the plugins build against: src/common and the bundled
 # vcglib from Debian's source package (there is no meshlab-dev). They land in a cache outside
 # the source tree and are never committed. Idempotent: does nothing when the cache is complete.

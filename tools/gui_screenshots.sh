@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # Drives the real MeshLab GUI (the staged build/stage/bin/meshlab with our plugins) under a
 # private Xvfb with xdotool and writes the README's screenshots to docs/img/:
 #   filter_menu.png              Filters > Mesh Layer, listing "Compress Animation Layers"

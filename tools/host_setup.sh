@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # Functions that tools/*.sh source (this file is not run on its own): installing the Debian
 # packages a script needs, and running MeshLab with a private home.
 

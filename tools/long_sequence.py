@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: Apache-2.0
 """Make a long PC2 sequence from a short one, for memory (streaming) tests.
 
 usage: long_sequence.py SOURCE.pc2[.xz] OUT.pc2 FRAMES

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: Apache-2.0
 """Rebuilds samples/ from ../shared/data: the first FRAMES frames of sydney_md2 as a PC2 point
 cache (xz-compressed) beside its PLY mesh, and the first PLY_FRAMES frames as PLY files (what
 MeshLab loads as layers). Run from the repository root."""

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # Runs the staged meshlabserver (cmake --install build --prefix build/stage) headless: under
 # xvfb-run (MeshLab needs a GL context even without a window), with HOME and the XDG folders in
 # build/meshlab-home so MeshLab, Qt and Mesa write nothing into the real home.

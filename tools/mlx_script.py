@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: Apache-2.0
 """A MeshLab filter script (.mlx) with some parameter values changed. MeshLab needs a script to
 list every parameter of its filters, so tests and benchmarks derive theirs from the samples
 instead of keeping copies. Every parameter named must occur exactly once: a renamed or removed

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: Apache-2.0
 """Rate-distortion plot (KG error against bits per vertex per frame) of several codecs on
 several sequences, one panel per sequence, drawn by gnuplot (Debian's gnuplot-nox, installed
 by tools/setup.sh) into a PNG. bench.py calls draw_rd_plot() for docs/img/rate_distortion.png.

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # The README's first command: install, build, stage MeshLab with our plugins, then compress the
 # sample animation (24 PLY frames loaded as layers) in meshlabserver with the Compress
 # Animation Layers filter and print the figures it logged.

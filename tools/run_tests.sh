@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # The README's second command (and CI's): install, build, run every test; then every test
 # again under AddressSanitizer and UBSan, where the corrupt-file tests earn their keep.
 set -euo pipefail

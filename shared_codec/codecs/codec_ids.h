@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Every on-wire identifier of the codecs, in one place (docs/format.md mirrors this file).
 #pragma once
 #include <cstdint>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The interface every codec offers the container: frames in, one self-delimited payload per
 // frame out, and the reverse. A group starts with an intra frame that needs no earlier one.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The CONN section: the triangle list in its original order (MeshLab layers and the user's
 // files must get back exactly their faces). Each index is coded as one of the previous
 // triangle's corners, the next never-seen vertex, or a delta from the previous index.

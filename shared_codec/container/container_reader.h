@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Reads an .ams file without trusting it: every count, offset and length is checked against
 // the file size and DecoderLimits before anything is allocated, and every section's CRC is
 // verified before its content is used. Frame groups are read one frame at a time, so memory

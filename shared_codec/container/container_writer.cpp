@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "container/container_writer.h"
 
 #include "container/connectivity_coder.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Writes an .ams file as frames arrive (memory O(one frame group's bookkeeping), not O(file)):
 // header and CONN first, one GRUP section per frame group streamed to disk, then INDX and END.
 // Nothing is visible at the target path until finish() succeeds.

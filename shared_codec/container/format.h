@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The .ams container, version 1. docs/format.md describes every byte; this header is its
 // single home in code. All integers little-endian.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Vertex neighbourhoods of a triangle list in compressed rows: neighbours(v) is the sorted
 // list of vertices sharing an edge with v. Built once per sequence, O(N + T) memory.
 #pragma once

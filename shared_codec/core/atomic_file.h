@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Writes a file so that readers only ever see the old content or the complete new content:
 // data goes to "<path>.tmp-<pid>-<counter>" and commit() renames it over the target.
 // A file that is never committed (error, early return) is removed by the destructor.

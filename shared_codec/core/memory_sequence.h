@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A sequence held in memory: for the MeshLab plugins (layers are already in memory), tests
 // and benchmarks. Everything else streams.
 #pragma once

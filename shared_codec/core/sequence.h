@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The animated-mesh model: one triangle list shared by every frame, and frames of N xyz
 // positions that are streamed one at a time so memory stays O(N), never O(N * frames).
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Small fixed-width vectors for the per-vertex loops (GCC/Clang vector extensions).
 //  - Pair: two doubles (a point's x and y; z goes alone), the SIMD width every x86-64 and
 //    ARM64 CPU has.

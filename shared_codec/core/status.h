@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Error handling for the codec library: nothing in shared_codec throws; every fallible call
 // returns a Status or a Result<T> whose message names the file, field or byte offset at fault.
 #pragma once

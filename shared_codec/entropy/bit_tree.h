@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Fixed-width symbols as a binary tree of adaptive bits (most significant bit first), so each
 // node learns the distribution of its prefix: the "adaptive arithmetic coder over k-bit
 // symbols" of the Affine-Octree paper, without a k-bit frequency table.

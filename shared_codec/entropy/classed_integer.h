@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Signed integers as a zero flag, a magnitude class through adaptive 16-symbol models
 // (symbol_model.h), and the sign and the class's low bits raw, in the raw-bit stream
 // (raw_bits.h). After the zero flag the range coder takes one step per value, not a branch on

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Signed integers through the binary range coder: a zero flag, a sign, an Elias-gamma style
 // exponent in unary with adaptive bits, the two leading mantissa bits adaptive and the rest
 // raw. Small values (the common case after prediction) cost a fraction of a bit.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Binary adaptive range coder (carry-propagating, byte-wise output, 15-bit probabilities).
 // Header-only so the per-bit calls inline into the codec loops. The decoder reads zeros past
 // the end of its input and counts them; callers turn too many into kCorrupt.

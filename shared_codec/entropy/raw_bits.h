@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Equiprobable bits kept out of the range coder: written after its bytes, in reverse, so a
 // payload holds both streams without a length field (the range decoder reads from the front,
 // this reader from the back). Taking a bit here costs a shift, not a step of the range

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Adaptive 16-symbol distributions for the range coder: one coding step per symbol, where a
 // 4-level bit tree takes four (each with its own multiplication, comparison and model update).
 // The decoder finds the symbol with one division and two 8-lane comparisons, and adapts all

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Bounds-checked little-endian reads over untrusted bytes. A failed read does not move the
 // cursor and names the field and its offset; nothing here can read past the span.
 #pragma once

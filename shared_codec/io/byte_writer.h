@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Little-endian serialisation into a growable buffer (the container's only byte order).
 #pragma once
 #include <cstdint>

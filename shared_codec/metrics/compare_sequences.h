@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Two sequences walked side by side into the metrics module's figures: `animc compare` and
 // `animc bench` (a file against its decode) and MeshLab's Animation Reconstruction Error
 // (two runs of layers) all measure through this one loop.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // An encode measured while it runs, from the reconstructions the encoder hands its observer,
 // so the file is never decoded again: `animc encode` and MeshLab's Compress filter.
 #pragma once

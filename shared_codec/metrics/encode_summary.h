@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The text an encode ends with, worded the same in `animc encode`, MeshLab's Compress filter
 // and the .ams save plugin: the settings, the size, the error metrics and the speed.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Builds the flat JSON objects every --json output of the project prints. Numbers are written
 // locale-independently (a host such as MeshLab may have switched LC_NUMERIC to a decimal
 // comma), and anything JSON cannot represent (inf, NaN) becomes null.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The project's only implementation of its quality and size figures (CLI, MeshLab plugins and
 // benchmarks all call it, so published numbers agree). Definitions follow the literature and
 // match /work/shared/tools/seqmetrics.py, the independent numpy cross-check.

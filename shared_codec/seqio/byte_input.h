@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Sequential byte sources for the sequence readers: a plain file, or an .xz file decompressed
 // on the fly with liblzma so that a large point cache never sits whole in memory.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Explicit byte-order loads and stores: the point-cache formats fix their byte order
 // (PC2 little-endian, MDD big-endian) whatever the host's is.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Writes a sequence as a directory of frame files, frame_00000.<ext>, frame_00001.<ext>, ...
 #pragma once
 #include <cstdint>

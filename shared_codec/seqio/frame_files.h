@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Sequences stored as one PLY / OFF file per frame: listing them (a directory, a .txt list)
 // and streaming them with the checks that every frame shares frame 0's connectivity.
 #pragma once

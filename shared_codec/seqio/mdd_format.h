@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // MDD point caches (LightWave / Blender): big-endian
 //   int32 frames; int32 points; float32 times[frames] (seconds);
 // then `frames` frames of `points` float32 x y z.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Validation shared by every reader, so a bad input is rejected with the same words whatever
 // its format: non-finite or huge coordinates, empty meshes, out-of-range or changing faces.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // OFF meshes: "OFF", then "vertices faces edges", vertex lines "x y z", face lines
 // "n i j k ..." (polygons fan-triangulated); '#' starts a comment. ASCII only.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // PC2 point caches (3ds Max / Blender): little-endian, 32-byte header
 //   char magic[12] = "POINTCACHE2\0"; int32 version = 1; int32 points;
 //   float32 start_frame; float32 sample_rate; int32 samples;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The PLY header: format line, elements with their scalar and list properties.
 #pragma once
 #include <cstddef>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Reads a PLY mesh (ascii, binary little- and big-endian): x, y, z among any vertex
 // properties, faces as a list of any integer types, polygons fan-triangulated.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Reads the typed scalars of a PLY body one at a time, in whichever encoding the header
 // declared, with bounds checks; a failed read leaves the reason in status().
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "seqio/ply_writer.h"
 
 #include <new>

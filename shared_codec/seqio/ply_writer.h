@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Writes one frame as a binary little-endian PLY: float x y z, uchar-count int faces.
 #pragma once
 #include <string>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "seqio/point_cache.h"
 
 #include <new>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The frame stream shared by PC2 and MDD: after a header, frames of point_count float32
 // xyz triples in a fixed byte order. Reading is streamed (one frame buffer), so a cache of
 // any length, compressed or not, needs O(points) memory.

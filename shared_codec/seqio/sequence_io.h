@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Reading and writing animated-mesh sequences in the interchange formats: PLY and OFF frame
 // files (one file per frame), PC2 and MDD point caches (optionally .xz-compressed). Every
 // reader validates what it returns (see mesh_checks.h) and every writer writes atomically.

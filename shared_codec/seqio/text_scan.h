@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Locale-independent number parsing for the ASCII formats: a host application (MeshLab sets
 // the user's locale) must not turn "1.5" into 1 the way strtod would under a comma locale.
 #pragma once

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # End-to-end tests of the animc command line on the Sydney sample:
 #   encode / info / compare / bench (of frames, and of an .ams: decoding only) with --json, decode to every format and a frame range,
 #   and the error contract: non-zero exit, nothing on stdout, one "animc: " line on stderr,

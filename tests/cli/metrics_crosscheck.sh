@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # Cross-checks animc's metrics against the independent numpy implementation in
 # ../shared/tools/seqmetrics.py on the sample animation, for both profiles.
 # usage: metrics_crosscheck.sh ANIMC SAMPLES_DIR SEQMETRICS_PY

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // libFuzzer harness: an .ams file decoded through the public API (AmsSource), both codecs,
 // with random access and the wavelet codec's progressive decoding. Any Status is fine; a
 // crash, sanitizer report, leak, hang or huge allocation is a bug.

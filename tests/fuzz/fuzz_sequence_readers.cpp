@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // libFuzzer harness: the sequence readers (PLY ascii/binary, OFF, PC2, MDD, and the .xz
 // streaming of point caches) on arbitrary bytes, reading every frame. Any Status is fine; a
 // crash, sanitizer report, leak, hang or huge allocation is a bug.

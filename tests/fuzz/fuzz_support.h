@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Shared by the fuzz harnesses: the library reads files by path, so each input is written to
 // a per-process scratch file first (several fuzzing jobs may run side by side).
 #pragma once

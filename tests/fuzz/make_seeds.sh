@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # Writes the seed corpora of the fuzz harnesses (a few KB each, so they are regenerated rather
 # than committed): OUT/ams for fuzz_ams_decode, OUT/seqio for fuzz_sequence_readers.
 #   usage: tests/fuzz/make_seeds.sh path/to/animc OUT

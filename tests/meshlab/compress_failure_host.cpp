@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // A minimal MeshLab host for what meshlabserver cannot show: the layers after a filter failed
 // (meshlabserver exits as soon as a filter fails, before it saves anything). It loads the
 // filter plugin, makes one layer per frame file, puts a NaN into the last layer so the encoder

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # End-to-end tests of the MeshLab plugins in the real meshlabserver (staged by
 # `cmake --install BUILD --prefix STAGE`, run headless under xvfb-run by tools/meshlabserver.sh).
 # usage: meshlab_test.sh CASE ANIMC_BINARY SOURCE_DIR STAGE_DIR

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Round trips of the Affine-Octree codec through the .ams container, both profiles.
 #include <gtest/gtest.h>
 #include <unistd.h>

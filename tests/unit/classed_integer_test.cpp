@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The raw-bit stream kept at the end of a payload, and the classed integers that use it beside
 // the range coder: round trips at every class boundary, the two streams sharing one buffer,
 // the rate estimate against the real size, and damaged input.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Helpers shared by the codec tests: temp paths, full decodes, the error bound check.
 #pragma once
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The .ams reader on untrusted files: every truncation and every single-byte corruption of a
 // small valid file must be refused with a Status (never a crash, a hang or a silent success),
 // with messages that say what is wrong, and the DecoderLimits must be honoured.

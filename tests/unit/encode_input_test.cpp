@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Bad input to encodeSequence and openSequence: every case gives a non-ok Status whose message
 // names the problem, and (outputs being atomic) leaves nothing behind: no file at the target
 // path, no temporary beside it, and an earlier file at the target untouched.

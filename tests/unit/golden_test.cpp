@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Frozen .ams files must keep decoding to exactly the same frames: any change to the decoder
 // or the format that alters them shows up here. Regenerate deliberately (and bump the format
 // version if old files would change meaning) with ANIMC_UPDATE_GOLDEN=1.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The range coder's two decoding paths: decodeData (masks, for near-random data bits) must
 // give exactly what decode (which may branch) gives; and the models' update rule.
 #include <gtest/gtest.h>

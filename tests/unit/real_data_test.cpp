@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The error bound on real animations from ../shared/data, both profiles, whole sequences.
 #include <gtest/gtest.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Sequence I/O: round trips through every writer, the PLY / OFF / PC2 / MDD readers (including
 // streamed .xz), and the validation messages for bad inputs.
 #include <gtest/gtest.h>

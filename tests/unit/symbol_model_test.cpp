@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The 16-symbol adaptive model: its vector update and search against their one-lane
 // definitions, its invariants under long skewed runs, and round trips through the range coder
 // beside binary decisions, with the rate estimate against the real size.

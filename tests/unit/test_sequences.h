@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Animations for the unit tests: a small synthetic bumpy grid that deforms smoothly, moves
 // rigidly, or both; and the real sequences of ../shared/data (ANIMC_SHARED_DATA).
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The progressive bitplane coder: exact to the step, progressive by plane and by byte,
 // within its budget, and safe on garbage.
 #include <gtest/gtest.h>

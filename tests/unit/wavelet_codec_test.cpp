@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The wavelet codec through its FrameEncoder / FrameDecoder pair: round trips of real
 // sequences, rate control, progressive decoding, drift, and garbage.
 #include <gtest/gtest.h>

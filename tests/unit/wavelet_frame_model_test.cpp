@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The wavelet frame model: what accept() reconstructs from a decoded residual.
 #include <gtest/gtest.h>
 

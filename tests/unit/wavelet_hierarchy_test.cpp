@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The progressive-mesh hierarchy and the anisotropic predictor of the wavelet codec.
 #include <gtest/gtest.h>
 

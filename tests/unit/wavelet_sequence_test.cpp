@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The wavelet codec end to end on real data, through the library's API and .ams files:
 // round trips at several rates, rate-distortion and progressive-decoding monotonicity,
 // truncated streams, P-frame drift, random access.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Helpers of the wavelet codec tests: frame and sequence errors.
 #pragma once
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The wavelet transform: forward then inverse gives the frame back, on synthetic and real
 // meshes, with and without local frames.
 #include <gtest/gtest.h>

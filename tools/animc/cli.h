@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Shared pieces of the animc subcommands: argument parsing, encode flags, progress line,
 // errors to exit codes.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // animc bench: median encode and decode throughput over R runs on one core, plus every
 // metric of the decoded result. The input is read into memory first so that file reading
 // and xz decompression are not timed. Given an .ams file, it times decoding only (the file

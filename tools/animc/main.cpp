@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // animc: encode, decode, inspect, compare and benchmark animated-mesh files from a shell.
 #include <cstdio>
 #include <string>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The figures every subcommand prints, text or JSON, from the library's one metrics module.
 #pragma once
 #include <string>

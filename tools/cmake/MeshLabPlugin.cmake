@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # Building plugins for Debian bookworm's MeshLab 2020.09 (../shared/DESIGN.md, "MeshLab facts").
 # Headers: src/common and vcglib from Debian's source package, fetched by tools/setup.sh into
 # a cache outside the tree. Library: the packaged libmeshlab-common.so. The compile settings

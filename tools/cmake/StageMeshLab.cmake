@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # Install step of a staged prefix: copies of Debian's meshlab and meshlabserver in bin/ (a copy,
 # not a symlink: MeshLab resolves /proc/self/exe to find its plugin folder) and symlinks to the
 # packaged libmeshlab-common.so and stock plugins, so the staged MeshLab has every stock filter

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "codecs/affine_octree/affine_fit.h"
 
 #include <Eigen/Dense>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Least-squares affine motion of one octree cell: reference positions u (normalised) to
 // current positions q, over the vertices idx[0..n).
 #pragma once

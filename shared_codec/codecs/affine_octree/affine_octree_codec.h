@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The Affine-Octree codec as seen by the container: intra frames through IFrameCoder,
 // inter frames through the profile's octree coder, closed loop on the reconstruction.
 #pragma once

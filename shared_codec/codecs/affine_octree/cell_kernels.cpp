@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "codecs/affine_octree/cell_kernels.h"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The per-vertex loops of a leaf: copying its points out of the frames, summing its affine
 // fits, predicting its vertices. Each comes in a portable version (Pair) and an AVX2 version
 // (Quad) chosen at run time; both compute every value with the same IEEE operations in the

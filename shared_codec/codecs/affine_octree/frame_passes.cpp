@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The frame-wide passes of octree_shared.h: bounding cube, normalisation into it and back,
 // conversion to floats. They touch every coordinate of a frame or two per inter frame, so
 // the busiest have an AVX2 version besides the portable one, working on whole Quads (for

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Intra frames (the first frame of every group): positions on a uniform grid anchored at the
 // frame's minimum corner, each vertex predicted from the already decoded neighbours with a
 // lower index (the mesh is known to both sides), residuals through the range coder.

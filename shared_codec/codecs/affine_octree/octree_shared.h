@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // What the Affine-Octree encoder and decoder compute identically from the reference frame:
 // its bounding cube, the normalised positions, and the vertex lists of the octree cells.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Encoder settings of the Affine-Octree codec; they travel in the container's HEAD section so
 // the decoder rebuilds exactly the encoder's state.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // P-frames of the "paper" profile: the Affine-Octree method as published. A cell whose
 // quantised affine leaves every vertex within ME is a leaf; otherwise it splits into eight,
 // and cells of at most four vertices (or at the depth limit) store positions.

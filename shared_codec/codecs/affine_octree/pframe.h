@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // What both P-frame coders (paper and default profile) get for one frame, positions in the
 // normalised units of the reference frame's root cube (but for `before`).
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // P-frames of the "default" profile: the Affine-Octree family with the paper's open headroom
 // taken (docs/affine_octree.md, "default profile", gives each change with its measured gain):
 //  - the affine is expressed about the cell centroid (t = centroid motion, L = deformation);

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Context selection for the default profile's per-vertex residuals: the size of the same
 // vertex's residual on the same axis in the previous frame (a vertex the affine missed
 // once tends to be missed again). Both sides know it, so the context costs no bits.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The anisotropic predictor of the paper (section 3.1): the value at a removed vertex that
 // minimises the sum over the edges around it of w_e * (second difference across e)^2, the
 // weights favouring flat edges over creases. Coefficients come from the parametric mesh

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Progressive bitplane coding of real coefficients (paper section 4.2), most significant
 // plane first. Coefficients come in groups of three (the components of one vertex) and the
 // vertices in blocks of kBlockVertices consecutive ones in coding order. In each plane a

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Internals of the bitplane coder (bitplane_coder.h): its adaptive models and the state both
 // sides keep while walking the planes. One template walks a block for the encoder and the
 // decoder alike, so the two cannot disagree on the order or the contexts of the decisions.

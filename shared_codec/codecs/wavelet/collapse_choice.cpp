@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "codecs/wavelet/collapse_choice.h"
 
 #include <algorithm>

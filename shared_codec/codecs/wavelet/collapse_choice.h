@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Which neighbour a vertex would collapse onto within one level, and at what cost: the
 // validity rules (link condition, no duplicate or flipped triangles) and the memoryless
 // quadric of the vertex's current triangles. Interior vertices have a closed ring, boundary

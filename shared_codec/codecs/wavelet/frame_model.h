@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // What the wavelet encoder and decoder both hold: the transform built on the current
 // parametric mesh, the coding order and contexts of the coefficients, and the last
 // reconstructed coefficients (the reference of P-frames, closed loop).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The triangle mesh of one simplification level: the live triangles and, per vertex, the
 // triangles that use it, in the order of the input (a triangle with the vertex at two corners
 // twice). A collapse updates the lists it changes; a full rebuild (which renumbers the

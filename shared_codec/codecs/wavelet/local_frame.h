@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The local frame of a removed vertex (paper eq. 1), from the positions of its one ring on
 // the coarser level only, so the decoder can rebuild it before the vertex itself: the
 // tangent masks t1 = sum cos(2 pi k / K) p_k, t2 = sum sin(2 pi k / K) p_k of the ring, the

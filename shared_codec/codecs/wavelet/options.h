@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Encoder settings of the wavelet codec (Guskov & Khodakovsky 2004, docs/wavelet.md). They
 // travel in the container's codec parameters so the decoder rebuilds the encoder's state.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The progressive-mesh hierarchy of the wavelet codec (paper section 3.2): half-edge
 // collapses in batches, one independent set per level, chosen by a memoryless quadric cost
 // under an edge-length bound that is relaxed level by level. Built from the connectivity and

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Rate control by target error (WaveletOptions::target_kg): per-frame error bounds whose sum
 // over the frames bounds the sequence's KG error, and the search of the shortest bitplane
 // prefix that meets a frame's bound.

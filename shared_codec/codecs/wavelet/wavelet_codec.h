@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The wavelet codec (Guskov & Khodakovsky 2004) as seen by the container. Three frame types:
 // a parametric frame (the first frame of every group: positions through the static
 // IFrameCoder, then the hierarchy is rebuilt on its reconstruction), and detail I- and

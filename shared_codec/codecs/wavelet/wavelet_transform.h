@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The wavelet transform of the paper (section 3.2) over a progressive mesh: one detail per
 // removed vertex, the difference between its position and the anisotropic prediction from
 // the coarser level, in the local frame of its coarser one ring. No update step, so the
