@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
-// The error bound on real animations from ../shared/data, both profiles, whole sequences.
+// The error bound on real animations, both profiles, whole sequences (test_sequences.h says
+// where they are looked for).
 #include <gtest/gtest.h>
 
 #include "codec_test_support.h"
@@ -9,7 +10,7 @@ namespace animc {
 namespace {
 
 using testing_support::decodeAll;
-using testing_support::sharedSequence;
+using testing_support::realSequence;
 using testing_support::tempPath;
 using testing_support::worstRelativeError;
 
@@ -22,7 +23,8 @@ struct RealCase {
 class RealDataRoundTrip : public ::testing::TestWithParam<RealCase> {};
 
 TEST_P(RealDataRoundTrip, EveryDecodedVertexIsWithinMaxError) {
-  MemorySequence seq = sharedSequence(GetParam().sequence, 0);
+  ANIMC_REQUIRE_SEQUENCE(GetParam().sequence);
+  MemorySequence seq = realSequence(GetParam().sequence, 0);
   ASSERT_FALSE(HasFailure());  // the whole sequence was read
   EncodeSettings settings;
   settings.octree.profile = GetParam().profile;

@@ -19,6 +19,7 @@
 #include "core/memory_sequence.h"
 #include "seqio/frame_files.h"
 #include "seqio/sequence_io.h"
+#include "test_sequences.h"
 
 namespace animc {
 namespace {
@@ -458,7 +459,8 @@ TEST_F(SeqioTest, CompressedPointCachesStreamAndReportTruncation) {
 }
 
 TEST(SeqioRealData, SydneyPc2Xz) {
-  const std::string dir = ANIMC_SHARED_DATA "/sydney_md2/";
+  ANIMC_REQUIRE_SEQUENCE("sydney_md2");
+  const std::string dir = testing_support::sequenceDir("sydney_md2");
   auto mesh = readMesh(dir + "sydney_md2.ply");
   ASSERT_TRUE(mesh.ok()) << errorOf(mesh);
   auto source = openSequence(dir + "sydney_md2.pc2.xz", dir + "sydney_md2.ply");

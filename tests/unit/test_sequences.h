@@ -1,10 +1,12 @@
 // SPDX-License-Identifier: Apache-2.0
 // Animations for the unit tests: a small synthetic bumpy grid that deforms smoothly, moves
-// rigidly, or both; and the real sequences of ../shared/data (ANIMC_SHARED_DATA).
+// rigidly, or both; and real sequences, from the data folders sequenceDir() searches.
 #pragma once
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
+#include <fstream>
 #include <limits>
 #include <string>
 #include <vector>
@@ -51,9 +53,41 @@ inline MemorySequence gridSequence(int nx, int ny, int frames, double deform, do
   return MemorySequence(gridTopology(nx, ny), std::move(all), 25.0, "grid");
 }
 
-// The first `frames` frames of ../shared/data/<name> (all of them when frames <= 0).
-inline MemorySequence sharedSequence(const std::string& name, int frames) {
-  const std::string dir = std::string(ANIMC_SHARED_DATA) + "/" + name + "/";
+// The folders searched for real sequences, in order: $ANIMC_DATA_DIR when set, the
+// repository's tests/data (the sequences whose licences let it carry them), then the folder
+// the build was configured with (ANIMC_EXTRA_DATA_DIR, by default ../shared/data).
+inline std::vector<std::string> dataDirs() {
+  std::vector<std::string> dirs;
+  if (const char* env = std::getenv("ANIMC_DATA_DIR"); env && *env) dirs.push_back(env);
+  dirs.push_back(ANIMC_REPO_DATA_DIR);
+  dirs.push_back(ANIMC_EXTRA_DATA_DIR);
+  return dirs;
+}
+
+// The folder holding <name>/<name>.pc2.xz and <name>/<name>.ply, or "" when none does.
+inline std::string sequenceDir(const std::string& name) {
+  for (const std::string& dir : dataDirs()) {
+    const std::string folder = dir + "/" + name + "/";
+    if (std::ifstream(folder + name + ".pc2.xz") && std::ifstream(folder + name + ".ply")) return folder;
+  }
+  return "";
+}
+
+inline std::string missingSequenceMessage(const std::string& name) {
+  std::string where;
+  for (const std::string& dir : dataDirs()) where += (where.empty() ? "" : ", ") + dir;
+  return "not run: sequence " + name + " not found (looked in " + where +
+         "; set ANIMC_DATA_DIR to a folder holding it)";
+}
+
+// The first `frames` frames of a real sequence (all of them when frames <= 0). The test must
+// have checked that the sequence is there (ANIMC_REQUIRE_SEQUENCE); a missing one fails it.
+inline MemorySequence realSequence(const std::string& name, int frames) {
+  const std::string dir = sequenceDir(name);
+  if (dir.empty()) {
+    ADD_FAILURE() << missingSequenceMessage(name);
+    return MemorySequence(Topology(), {});
+  }
   auto source = openSequence(dir + name + ".pc2.xz", dir + name + ".ply");
   EXPECT_TRUE(source.ok()) << source.status().message();
   if (!source.ok()) return MemorySequence(Topology(), {});
@@ -64,3 +98,11 @@ inline MemorySequence sharedSequence(const std::string& name, int frames) {
 }
 
 }  // namespace animc::testing_support
+
+// Skips the test, with one line saying why, when a real sequence it needs is in no data folder
+// (chickenCrossing's terms keep it out of the repository).
+#define ANIMC_REQUIRE_SEQUENCE(name)                                                         \
+  do {                                                                                       \
+    if (::animc::testing_support::sequenceDir(name).empty())                                 \
+      GTEST_SKIP() << ::animc::testing_support::missingSequenceMessage(name);                \
+  } while (0)

@@ -20,7 +20,7 @@ namespace {
 using testing_support::gridSequence;
 using testing_support::kgError;
 using testing_support::rmsError;
-using testing_support::sharedSequence;
+using testing_support::realSequence;
 
 struct Coded {
   std::vector<std::vector<uint8_t>> payloads;
@@ -74,7 +74,8 @@ class WaveletRealRoundTrip : public ::testing::TestWithParam<RealCase> {};
 
 TEST_P(WaveletRealRoundTrip, DecoderMatchesEncoderAndErrorIsSmall) {
   const RealCase& c = GetParam();
-  MemorySequence seq = sharedSequence(c.sequence, c.frames);
+  ANIMC_REQUIRE_SEQUENCE(c.sequence);
+  MemorySequence seq = realSequence(c.sequence, c.frames);
   ASSERT_EQ(int(seq.frames().size()), c.frames);
   WaveletOptions options;
   options.step = c.step;
@@ -104,7 +105,8 @@ TEST(WaveletCodec, LocalFramesRoundTripToo) {
 }
 
 TEST(WaveletCodec, KgErrorFallsAsTheRateRises) {
-  MemorySequence seq = sharedSequence("chickenCrossing", 20);
+  ANIMC_REQUIRE_SEQUENCE("chickenCrossing");
+  MemorySequence seq = realSequence("chickenCrossing", 20);
   double previous_kg = INFINITY;
   size_t previous_bytes = 0;
   for (double bpv : {1.0, 2.0, 4.0, 8.0}) {
@@ -126,7 +128,8 @@ TEST(WaveletCodec, KgErrorFallsAsTheRateRises) {
 }
 
 TEST(WaveletCodec, ErrorFallsAsMoreBitplanesAreDecoded) {
-  MemorySequence seq = sharedSequence("chickenCrossing", 6);
+  ANIMC_REQUIRE_SEQUENCE("chickenCrossing");
+  MemorySequence seq = realSequence("chickenCrossing", 6);
   WaveletOptions options;
   options.temporal_prediction = false;  // I-frames: each frame stands on its own
   options.step = 1e-5;
@@ -145,7 +148,8 @@ TEST(WaveletCodec, ErrorFallsAsMoreBitplanesAreDecoded) {
 }
 
 TEST(WaveletCodec, TruncatedPayloadDecodesToACoarserValidFrame) {
-  MemorySequence seq = sharedSequence("oa_angelyss_lower", 3);
+  ANIMC_REQUIRE_SEQUENCE("oa_angelyss_lower");
+  MemorySequence seq = realSequence("oa_angelyss_lower", 3);
   WaveletOptions options;
   options.temporal_prediction = false;
   options.step = 1e-5;
@@ -173,7 +177,8 @@ TEST(WaveletCodec, TruncatedPayloadDecodesToACoarserValidFrame) {
 // Closed loop: P-frames refer to the reconstructed coefficients, so the error of frame 150
 // is no larger than that of the first frames.
 TEST(WaveletCodec, DriftOverManyPFramesStaysBounded) {
-  MemorySequence seq = sharedSequence("chickenCrossing", 150);
+  ANIMC_REQUIRE_SEQUENCE("chickenCrossing");
+  MemorySequence seq = realSequence("chickenCrossing", 150);
   WaveletOptions options;
   options.step = 3e-4;
   const Coded coded = encodeAll(seq, options);
@@ -191,7 +196,8 @@ TEST(WaveletCodec, DriftOverManyPFramesStaysBounded) {
 // group start included, whose parametric frame must meet it too), and a looser target costs
 // fewer bytes.
 TEST(WaveletCodec, TargetKgBoundsTheSequenceErrorAndLooserTargetsCostLess) {
-  MemorySequence seq = sharedSequence("chickenCrossing", 24);
+  ANIMC_REQUIRE_SEQUENCE("chickenCrossing");
+  MemorySequence seq = realSequence("chickenCrossing", 24);
   size_t previous_bytes = SIZE_MAX;
   for (double target : {0.1, 0.5, 2.0}) {
     WaveletOptions options;

@@ -12,7 +12,7 @@
 namespace animc {
 namespace {
 
-using testing_support::sharedSequence;
+using testing_support::realSequence;
 using testing_support::toDouble;
 
 // Residuals as the bitplane decoder leaves them: mostly zeros (of either sign), some values.
@@ -73,9 +73,11 @@ bool sameBits(const std::vector<double>& a, const std::vector<double>& b) {
 // prediction), accept() reconstructs the inverse transform of prediction + residual / weight.
 // And choosePrediction() picks what plainChoice() does.
 TEST(WaveletFrameModel, KernelsFollowThePlainFormulas) {
+  ANIMC_REQUIRE_SEQUENCE("sydney_md2");
+  ANIMC_REQUIRE_SEQUENCE("oa_gargoyle_upper");
   for (const char* name : {"sydney_md2", "oa_gargoyle_upper"}) {
     SCOPED_TRACE(name);
-    const MemorySequence seq = sharedSequence(name, 1);
+    const MemorySequence seq = realSequence(name, 1);
     const std::vector<double> parametric = toDouble(seq.frames()[0]);
     WaveletFrameModel model(WaveletOptions(), seq.topology());
     model.setParametric(parametric);

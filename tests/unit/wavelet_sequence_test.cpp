@@ -21,10 +21,14 @@ using testing_support::decodeAll;
 using testing_support::decodedMetrics;
 using testing_support::expectSeeksMatch;
 using testing_support::kgError;
-using testing_support::sharedSequence;
+using testing_support::realSequence;
 using testing_support::tempPath;
 
 const char* const kSequences[] = {"chickenCrossing", "oa_angelyss_lower", "oa_gargoyle_upper", "sydney_md2"};
+
+// One test per real sequence, so that one the data folders lack is listed as not run.
+class WaveletOnSequence : public ::testing::TestWithParam<const char*> {};
+class WaveletProgressiveOnSequence : public ::testing::TestWithParam<const char*> {};
 
 EncodeSettings waveletSettings(double step, double bits_per_vertex, bool p_frames = true) {
   EncodeSettings s;
@@ -62,9 +66,11 @@ Encoded encodeTo(MemorySequence& seq, const EncodeSettings& settings, const std:
 // Every shared sequence, quality mode and fixed rate: the file decodes to exactly what the
 // encoder predicted (closed loop), the error is small in quality mode and each frame keeps
 // to its budget in fixed-rate mode.
-TEST(WaveletSequence, EverySharedSequenceRoundTripsAtSeveralRates) {
-  for (const char* name : kSequences) {
-    MemorySequence seq = sharedSequence(name, 60);
+TEST_P(WaveletOnSequence, RoundTripsAtSeveralRates) {
+  const char* name = GetParam();
+  ANIMC_REQUIRE_SEQUENCE(name);
+  {
+    MemorySequence seq = realSequence(name, 60);
     const uint32_t n = seq.topology().vertex_count;
     struct Rate { double step, bpv, max_kg; };
     for (const Rate rate : {Rate{1e-3, 0, 1.0}, Rate{1e-4, 0, 0.1}, Rate{1e-4, 2, 1e9}, Rate{1e-4, 8, 1e9}}) {
@@ -87,9 +93,11 @@ TEST(WaveletSequence, EverySharedSequenceRoundTripsAtSeveralRates) {
 }
 
 // More bits, less error: over fixed rates and over quality steps, on every shared sequence.
-TEST(WaveletSequence, ErrorFallsAsTheRateRises) {
-  for (const char* name : kSequences) {
-    MemorySequence seq = sharedSequence(name, 40);
+TEST_P(WaveletOnSequence, ErrorFallsAsTheRateRises) {
+  const char* name = GetParam();
+  ANIMC_REQUIRE_SEQUENCE(name);
+  {
+    MemorySequence seq = realSequence(name, 40);
     double previous_kg = INFINITY;
     uint64_t previous_bytes = 0;
     for (double bpv : {1.0, 2.0, 4.0, 8.0, 16.0}) {
@@ -116,9 +124,11 @@ TEST(WaveletSequence, ErrorFallsAsTheRateRises) {
 
 // I-frames only: each frame decodes on its own, so decoding more bitplanes or more bytes of
 // every frame can only bring the sequence closer to the original.
-TEST(WaveletSequence, ErrorFallsAsMoreOfTheStreamIsDecoded) {
-  for (const char* name : {"chickenCrossing", "sydney_md2"}) {
-    MemorySequence seq = sharedSequence(name, 30);
+TEST_P(WaveletProgressiveOnSequence, ErrorFallsAsMoreOfTheStreamIsDecoded) {
+  const char* name = GetParam();
+  ANIMC_REQUIRE_SEQUENCE(name);
+  {
+    MemorySequence seq = realSequence(name, 30);
     const std::string path = tempPath("wavelet_progressive.ams");
     encodeTo(seq, waveletSettings(1e-4, 0, false), path);
     const double full_kg = kgError(seq, decodeAll(path));
@@ -146,10 +156,17 @@ TEST(WaveletSequence, ErrorFallsAsMoreOfTheStreamIsDecoded) {
   }
 }
 
+std::string sequenceName(const ::testing::TestParamInfo<const char*>& info) { return info.param; }
+
+INSTANTIATE_TEST_SUITE_P(Real, WaveletOnSequence, ::testing::ValuesIn(kSequences), sequenceName);
+INSTANTIATE_TEST_SUITE_P(Real, WaveletProgressiveOnSequence, ::testing::Values("chickenCrossing", "sydney_md2"),
+                         sequenceName);
+
 // A stream cut very short (one bitplane, a few bytes per frame), with intra frames every 10
 // frames, still decodes to the right number of finite frames.
 TEST(WaveletSequence, ATruncatedStreamDecodesToACoarserValidSequence) {
-  MemorySequence seq = sharedSequence("chickenCrossing", 40);
+  ANIMC_REQUIRE_SEQUENCE("chickenCrossing");
+  MemorySequence seq = realSequence("chickenCrossing", 40);
   const std::string path = tempPath("wavelet_cut.ams");
   EncodeSettings settings = waveletSettings(1e-4, 0, false);
   settings.iframe_interval = 10;
@@ -170,7 +187,8 @@ TEST(WaveletSequence, ATruncatedStreamDecodesToACoarserValidSequence) {
 // contexts come from the previous frame: such files (the default) are refused progressive
 // decoding, with a message that says how to encode for it.
 TEST(WaveletSequence, ProgressiveDecodingOfPFramesIsRefused) {
-  MemorySequence seq = sharedSequence("sydney_md2", 5);
+  ANIMC_REQUIRE_SEQUENCE("sydney_md2");
+  MemorySequence seq = realSequence("sydney_md2", 5);
   const std::string path = tempPath("wavelet_p_progressive.ams");
   encodeTo(seq, waveletSettings(1e-3, 0, true), path);
   for (const WaveletDecodeControl c : {WaveletDecodeControl{2, 0}, WaveletDecodeControl{0, 100}}) {
@@ -186,7 +204,8 @@ TEST(WaveletSequence, ProgressiveDecodingOfPFramesIsRefused) {
 // valid sequence: the less is cut the smaller the error. The drift of cut frames stops at
 // each parametric frame, which is never cut and refers to nothing before it.
 TEST(WaveletSequence, ProgressivePFramesDecodeCutAndDriftStopsAtParametricFrames) {
-  MemorySequence seq = sharedSequence("chickenCrossing", 40);
+  ANIMC_REQUIRE_SEQUENCE("chickenCrossing");
+  MemorySequence seq = realSequence("chickenCrossing", 40);
   const std::string path = tempPath("wavelet_progressive_p.ams");
   EncodeSettings settings = waveletSettings(1e-4, 0, true);
   settings.wavelet.progressive_p_frames = true;
@@ -222,7 +241,8 @@ TEST(WaveletSequence, ProgressivePFramesDecodeCutAndDriftStopsAtParametricFrames
 // Closed-loop P-frames over all 400 frames of chickenCrossing: the error of late frames is
 // no larger than that of early ones, whatever the motion did in between.
 TEST(WaveletSequence, PFrameDriftStaysBoundedOverChickenCrossing) {
-  MemorySequence seq = sharedSequence("chickenCrossing", 0);
+  ANIMC_REQUIRE_SEQUENCE("chickenCrossing");
+  MemorySequence seq = realSequence("chickenCrossing", 0);
   ASSERT_EQ(seq.frames().size(), 400u);
   const std::string path = tempPath("wavelet_drift.ams");
   const Encoded e = encodeTo(seq, waveletSettings(1e-3, 0), path);
@@ -246,7 +266,8 @@ TEST(WaveletSequence, PFrameDriftStaysBoundedOverChickenCrossing) {
 
 // With intra frames every K frames, decoding frame k alone gives frame k of a full decode.
 TEST(WaveletSequence, RandomAccessMatchesAFullDecode) {
-  MemorySequence seq = sharedSequence("sydney_md2", 30);
+  ANIMC_REQUIRE_SEQUENCE("sydney_md2");
+  MemorySequence seq = realSequence("sydney_md2", 30);
   const std::string path = tempPath("wavelet_seek.ams");
   EncodeSettings settings = waveletSettings(3e-4, 0);
   settings.iframe_interval = 8;
@@ -261,7 +282,8 @@ TEST(WaveletSequence, RandomAccessMatchesAFullDecode) {
 
 // Progressive decoding is a wavelet feature: asking it of an Affine-Octree file is an error.
 TEST(WaveletSequence, ProgressiveDecodingOfAnotherCodecIsRefused) {
-  MemorySequence seq = sharedSequence("sydney_md2", 3);
+  ANIMC_REQUIRE_SEQUENCE("sydney_md2");
+  MemorySequence seq = realSequence("sydney_md2", 3);
   const std::string path = tempPath("octree_progressive.ams");
   seq.rewind();
   ASSERT_TRUE(encodeSequence(seq, EncodeSettings(), path).ok());

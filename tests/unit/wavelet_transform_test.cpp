@@ -17,7 +17,7 @@ namespace {
 using testing_support::bboxDiagonal;
 using testing_support::gridFrame;
 using testing_support::gridTopology;
-using testing_support::sharedSequence;
+using testing_support::realSequence;
 using testing_support::toDouble;
 
 double maxAbsDifference(const std::vector<double>& a, const std::vector<double>& b) {
@@ -27,13 +27,17 @@ double maxAbsDifference(const std::vector<double>& a, const std::vector<double>&
 }
 
 class WaveletTransformRoundTrip : public ::testing::TestWithParam<bool> {};
+// One test per real sequence and axes, so that a sequence the data folders lack is listed as
+// not run.
+class WaveletTransformOnSequence : public ::testing::TestWithParam<std::tuple<const char*, bool>> {};
 
-TEST_P(WaveletTransformRoundTrip, InverseUndoesForwardOnSharedSequences) {
-  for (const char* name : {"chickenCrossing", "oa_gargoyle_upper"}) {
-    SCOPED_TRACE(name);
-    MemorySequence seq = sharedSequence(name, 30);
+TEST_P(WaveletTransformOnSequence, InverseUndoesForward) {
+  const auto [name, local_frames] = GetParam();
+  ANIMC_REQUIRE_SEQUENCE(name);
+  {
+    MemorySequence seq = realSequence(name, 30);
     ASSERT_EQ(seq.frames().size(), 30u);
-    const WaveletTransform transform(seq.topology(), toDouble(seq.frames()[0]), GetParam());
+    const WaveletTransform transform(seq.topology(), toDouble(seq.frames()[0]), local_frames);
     for (size_t f : {size_t(0), size_t(29)}) {
       const std::vector<double> x = toDouble(seq.frames()[f]);
       std::vector<double> coefficients, back;
@@ -44,10 +48,16 @@ TEST_P(WaveletTransformRoundTrip, InverseUndoesForwardOnSharedSequences) {
   }
 }
 
+std::string axesName(bool local_frames) { return local_frames ? "LocalFrames" : "WorldAxes"; }
+
 INSTANTIATE_TEST_SUITE_P(Wavelet, WaveletTransformRoundTrip, ::testing::Values(false, true),
-                         [](const ::testing::TestParamInfo<bool>& info) {
-                           return info.param ? std::string("LocalFrames") : std::string("WorldAxes");
-                         });
+                         [](const ::testing::TestParamInfo<bool>& info) { return axesName(info.param); });
+INSTANTIATE_TEST_SUITE_P(
+    Real, WaveletTransformOnSequence,
+    ::testing::Combine(::testing::Values("chickenCrossing", "oa_gargoyle_upper"), ::testing::Bool()),
+    [](const ::testing::TestParamInfo<std::tuple<const char*, bool>>& info) {
+      return std::string(std::get<0>(info.param)) + "_" + axesName(std::get<1>(info.param));
+    });
 
 // The transform as plainly as it can be written. Collapse i's prediction from positions
 // xyz: its stencil's sum of weight * position, x, y, z alike, in stencil order.
@@ -110,8 +120,9 @@ bool sameBits(const std::vector<double>& a, const std::vector<double>& b) {
 // bit: on random values, and on zeros of random signs, whose sums keep or lose the sign of
 // zero depending on the order and kind of each operation.
 TEST_P(WaveletTransformRoundTrip, KernelsMatchThePlainFormulasBitForBit) {
+  ANIMC_REQUIRE_SEQUENCE("sydney_md2");
   for (const MemorySequence& seq :
-       {testing_support::gridSequence(18, 18, 1, 1.0, 0.0), sharedSequence("sydney_md2", 1)}) {
+       {testing_support::gridSequence(18, 18, 1, 1.0, 0.0), realSequence("sydney_md2", 1)}) {
     SCOPED_TRACE(testing::Message() << seq.topology().vertex_count << " vertices");
     const WaveletTransform transform(seq.topology(), toDouble(seq.frames()[0]), GetParam());
     // The case where a kernel must not read past a point: the last vertex is in stencils.
