@@ -15,6 +15,13 @@ bool isKnownCodec(uint8_t id) {
   return id == uint8_t(CodecId::kAffineOctree) || id == uint8_t(CodecId::kWavelet);
 }
 
+std::string knownCodecList() {
+  std::string list;
+  for (CodecId id : {CodecId::kAffineOctree, CodecId::kWavelet})
+    list += (list.empty() ? "" : ", ") + std::to_string(int(id)) + " (" + codecName(id) + ")";
+  return list;
+}
+
 const char* profileName(Profile p) {
   switch (p) {
     case Profile::kPaper: return "paper";

@@ -2,6 +2,7 @@
 // Every on-wire identifier of the codecs, in one place (docs/format.md mirrors this file).
 #pragma once
 #include <cstdint>
+#include <string>
 
 namespace animc {
 
@@ -17,6 +18,7 @@ enum class Profile : uint8_t {
 
 const char* codecName(CodecId id);  // "affine-octree", "wavelet"
 bool isKnownCodec(uint8_t id);
+std::string knownCodecList();  // "1 (affine-octree), 2 (wavelet)"
 const char* profileName(Profile p);
 
 }  // namespace animc

@@ -82,15 +82,18 @@ Status ContainerReader::openHeader() {
   ANIMC_ASSIGN_OR_RETURN(info_.format_version, h.u16("Format_Version"));
   ANIMC_ASSIGN_OR_RETURN(uint16_t reserved, h.u16("Reserved"));
   if (info_.format_version != kFormatVersion)
-    return Status(StatusCode::kUnsupportedVersion,
-                  "format version " + std::to_string(info_.format_version) + " (this build reads 1)");
+    return unsupported("format version " + std::to_string(info_.format_version) +
+                       " is not supported (this build reads format " + std::to_string(kFormatVersion) +
+                       "; a newer animcompress may read it)");
   if (reserved != 0) return corrupt("reserved header bits are set");
 
   ANIMC_ASSIGN_OR_RETURN(std::vector<uint8_t> head, readSection(kFileHeaderBytes, kTagHead, kMaxHeadBytes));
   ByteReader r(head.data(), head.size(), kFileHeaderBytes + 12);
   ContainerHeader& hd = info_.header;
   ANIMC_ASSIGN_OR_RETURN(uint8_t codec, r.u8("Codec_Id"));
-  if (!isKnownCodec(codec)) return corrupt("unknown codec id " + std::to_string(codec));
+  if (!isKnownCodec(codec))
+    return unsupported("codec id " + std::to_string(codec) + " is not supported (this build reads " +
+                       knownCodecList() + "; a newer animcompress may read it)");
   hd.codec = CodecId(codec);
   ANIMC_ASSIGN_OR_RETURN(uint64_t params_bytes, r.varint("Codec_Params_Length"));
   if (params_bytes > r.remaining()) return r.truncatedAt("Codec_Params");

@@ -11,7 +11,7 @@ const char* statusCodeName(StatusCode code) {
     case StatusCode::kBadInput: return "bad input";
     case StatusCode::kTruncated: return "truncated";
     case StatusCode::kCorrupt: return "corrupt";
-    case StatusCode::kUnsupportedVersion: return "unsupported version";
+    case StatusCode::kUnsupported: return "unsupported";
     case StatusCode::kLimitExceeded: return "limit exceeded";
     case StatusCode::kCancelled: return "cancelled";
   }

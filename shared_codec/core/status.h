@@ -17,7 +17,7 @@ enum class StatusCode : int {
   kBadInput = 4,         // an input sequence is unusable (NaN, differing counts, bad faces)
   kTruncated = 5,        // a container ends before a field it announces
   kCorrupt = 6,          // a container field or checksum is wrong
-  kUnsupportedVersion = 7,
+  kUnsupported = 7,      // a format version, codec id or codec profile this build does not read
   kLimitExceeded = 8,    // a count or size above the decoder's ceilings (DecoderLimits, container/format.h)
   kCancelled = 9,        // the progress callback asked to stop
 };
@@ -48,6 +48,7 @@ inline Status ioError(std::string m) { return {StatusCode::kIoError, std::move(m
 inline Status badInput(std::string m) { return {StatusCode::kBadInput, std::move(m)}; }
 inline Status truncated(std::string m) { return {StatusCode::kTruncated, std::move(m)}; }
 inline Status corrupt(std::string m) { return {StatusCode::kCorrupt, std::move(m)}; }
+inline Status unsupported(std::string m) { return {StatusCode::kUnsupported, std::move(m)}; }
 inline Status limitExceeded(std::string m) { return {StatusCode::kLimitExceeded, std::move(m)}; }
 inline Status cancelled() { return {StatusCode::kCancelled, "cancelled"}; }
 

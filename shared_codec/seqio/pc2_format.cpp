@@ -25,8 +25,7 @@ Result<std::unique_ptr<FrameSource>> openPc2(const std::string& path, const Topo
     return corrupt(path + ": not a PC2 file (bad magic)");
   int32_t version = int32_t(loadLe32(header + 12));
   if (version != kVersion)
-    return Status(StatusCode::kUnsupportedVersion,
-                  path + ": PC2 version " + std::to_string(version) + " (only 1 is supported)");
+    return unsupported(path + ": PC2 version " + std::to_string(version) + " (only 1 is supported)");
   int32_t points = int32_t(loadLe32(header + 16));
   int32_t samples = int32_t(loadLe32(header + 28));
   ANIMC_RETURN_IF_ERROR(checkPointCount(path, points, topology, mesh_name));

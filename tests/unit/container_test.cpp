@@ -230,7 +230,7 @@ TEST_F(ContainerErrors, BadMagicVersionAndCrcAreNamed) {
   bad = file_;
   bad[4] = uint8_t(kFormatVersion + 1);
   s = openWith(bad);
-  EXPECT_EQ(s.code(), StatusCode::kUnsupportedVersion) << s.message();
+  EXPECT_EQ(s.code(), StatusCode::kUnsupported) << s.message();
   EXPECT_NE(s.message().find("version 2"), std::string::npos) << s.message();
 
   bad = file_;
@@ -238,6 +238,30 @@ TEST_F(ContainerErrors, BadMagicVersionAndCrcAreNamed) {
   s = openWith(bad);
   EXPECT_EQ(s.code(), StatusCode::kCorrupt);
   EXPECT_NE(s.message().find("CRC"), std::string::npos) << s.message();
+}
+
+// The file with byte `at` of the HEAD payload set to `value` and the section's CRC made right
+// again: a file a newer encoder could have written.
+Bytes withHeadByte(Bytes file, size_t at, uint8_t value) {
+  const size_t payload = kFileHeaderBytes + 12;
+  uint64_t length = 0;
+  for (int k = 0; k < 8; ++k) length |= uint64_t(file[kFileHeaderBytes + 4 + k]) << (8 * k);
+  file[payload + at] = value;
+  const uint32_t crc = crc32Update(0, file.data() + payload, length);
+  for (int k = 0; k < 4; ++k) file[payload + length + k] = uint8_t(crc >> (8 * k));
+  return file;
+}
+
+// A codec or profile of a later release is reported as unsupported, naming what was found,
+// not as a corrupt file; the byte left as it was still decodes (the CRC repair is sound).
+TEST_F(ContainerErrors, UnknownCodecAndProfileAreUnsupported) {
+  EXPECT_TRUE(openWith(withHeadByte(file_, 0, file_[kFileHeaderBytes + 12])).ok());
+  Status s = openWith(withHeadByte(file_, 0, 9));  // Codec_Id
+  EXPECT_EQ(s.code(), StatusCode::kUnsupported) << s.message();
+  EXPECT_NE(s.message().find("codec id 9"), std::string::npos) << s.message();
+  s = openWith(withHeadByte(file_, 2, 7));  // Profile, after the 1-byte Codec_Params_Length
+  EXPECT_EQ(s.code(), StatusCode::kUnsupported) << s.message();
+  EXPECT_NE(s.message().find("profile 7"), std::string::npos) << s.message();
 }
 
 // A File_Header and a HEAD section with a correct CRC, padded so the file is long enough to

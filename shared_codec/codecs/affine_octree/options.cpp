@@ -30,6 +30,11 @@ void AffineOctreeOptions::write(ByteWriter& w) const {
 Result<AffineOctreeOptions> AffineOctreeOptions::read(ByteReader& r) {
   AffineOctreeOptions o;
   ANIMC_ASSIGN_OR_RETURN(uint8_t profile, r.u8("Profile"));
+  // A profile is a variant of the codec's bitstream (its parameters may differ too): one this
+  // build lacks is a newer file, not a broken one.
+  if (profile != uint8_t(Profile::kPaper) && profile != uint8_t(Profile::kDefault))
+    return unsupported("codec parameters: affine-octree profile " + std::to_string(profile) +
+                       " is not supported (this build reads 0 paper, 1 default; a newer animcompress may read it)");
   ANIMC_ASSIGN_OR_RETURN(o.max_error, r.f64("Max_Error"));
   ANIMC_ASSIGN_OR_RETURN(uint8_t bits, r.u8("Bits"));
   ANIMC_ASSIGN_OR_RETURN(uint8_t depth, r.u8("Max_Depth"));
