@@ -11,6 +11,7 @@
 #include "layer_frames.h"
 #include "metrics/encode_metrics.h"
 #include "metrics/encode_summary.h"
+#include "version.h"
 
 namespace animc::meshlab {
 namespace {
@@ -90,7 +91,8 @@ std::string compressLayers(MeshDocument& md, const RichParameterList& par, vcg::
   const EncodeReport& r = report.value();
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   log("Compressed " + std::to_string(r.frames) + " frames of " + std::to_string(r.vertices) +
-      " vertices (" + std::to_string(r.triangles) + " triangles) into " + path);
+      " vertices (" + std::to_string(r.triangles) + " triangles) into " + path + " (animcompress " +
+      animcVersion() + ")");
   char whole_filter[64];
   std::snprintf(whole_filter, sizeof whole_filter, "; whole filter %.3f s", seconds);
   logLines(log, formatEncodeSummary(settings.value(), r, m, whole_filter));

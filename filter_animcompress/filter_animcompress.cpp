@@ -5,6 +5,7 @@
 #include "frame_range_parameters.h"
 #include "layer_frames.h"
 #include "reconstruction_error.h"
+#include "version.h"
 
 using namespace animc::meshlab;
 
@@ -24,24 +25,33 @@ QString FilterAnimCompressPlugin::filterName(FilterIDType id) const {
   return {};
 }
 
-QString FilterAnimCompressPlugin::filterInfo(FilterIDType id) const {
+namespace {
+
+QString filterDescription(FilterAnimCompressPlugin::FilterIDType id) {
   switch (id) {
-    case FP_COMPRESS:
+    case FilterAnimCompressPlugin::FP_COMPRESS:
       return "Compresses an animation whose frames are the layers of the document (same vertices "
              "and triangles in every layer, in document order) into an .ams file with the "
              "animcompress codec library, then logs its size, bits per vertex per frame, "
              "Karni-Gotsman error, PSNR and max error. Optionally adds the frames a decoder will "
              "reconstruct as new layers and colours them by per-vertex error.";
-    case FP_RECONSTRUCTION_ERROR:
+    case FilterAnimCompressPlugin::FP_RECONSTRUCTION_ERROR:
       return "Compares two runs of layers (original frames and reconstructed ones) frame by frame. "
              "Each reconstructed vertex gets its error as vertex quality and a colour from blue "
              "(exact) to red (the colour scale's maximum, the same for every frame). Logs the RMS "
              "and max error of each frame and the figures of the whole animation.";
-    case FP_IMPORT:
+    case FilterAnimCompressPlugin::FP_IMPORT:
       return "Decodes an animcompress .ams file (all frames or a range) into one new layer per "
              "frame, labelled frame_00000, frame_00001, ... by frame number.";
   }
   return {};
+}
+
+}  // namespace
+
+// MeshLab 2020.09's plugin info has no version field: the release goes in every description.
+QString FilterAnimCompressPlugin::filterInfo(FilterIDType id) const {
+  return filterDescription(id) + " (animcompress " ANIMC_VERSION_STRING ")";
 }
 
 MeshFilterInterface::FilterClass FilterAnimCompressPlugin::getClass(QAction* a) {

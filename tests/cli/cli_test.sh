@@ -4,11 +4,13 @@
 #   encode / info / compare / bench (of frames, and of an .ams: decoding only) with --json, decode to every format and a frame range,
 #   and the error contract: non-zero exit, nothing on stdout, one "animc: " line on stderr,
 #   no output file.
-# usage: cli_test.sh ANIMC_BINARY SAMPLES_DIR
+#   and the release version (--version, "animc_version" in every JSON report).
+# usage: cli_test.sh ANIMC_BINARY SAMPLES_DIR VERSION
 set -euo pipefail
 
-ANIMC=${1:?usage: cli_test.sh ANIMC_BINARY SAMPLES_DIR}
-SAMPLES=${2:?usage: cli_test.sh ANIMC_BINARY SAMPLES_DIR}
+ANIMC=${1:?usage: cli_test.sh ANIMC_BINARY SAMPLES_DIR VERSION}
+SAMPLES=${2:?usage: cli_test.sh ANIMC_BINARY SAMPLES_DIR VERSION}
+VERSION=${3:?usage: cli_test.sh ANIMC_BINARY SAMPLES_DIR VERSION}
 PY=/usr/bin/python3  # stdlib only; a pyenv python3 on PATH may lack modules
 PC2=$SAMPLES/sydney/sydney_50.pc2.xz
 MESH=$SAMPLES/sydney/sydney_md2.ply
@@ -75,11 +77,16 @@ json_check 'd["ratio"] > 1 and 0 < d["bpvf"] < 96 and d["kg_error"] > 0 and d["p
 
 run info "$ANIMC" info "$AMS" --json
 json_check 'd["frames"] == 50 and d["vertices"] == 342' "$TMP/info.out"
+json_check "d['animc_version'] == e['animc_version'] == '$VERSION'" "$TMP/info.out" "$TMP/encode.out"
+run version "$ANIMC" --version
+[[ $(cat "$TMP/version.out") == "animc $VERSION (.ams format 1)" ]] ||
+  check_failed "animc --version printed '$(cat "$TMP/version.out")', not animc $VERSION"
 json_check 'd["file_bytes"] == e["file_bytes"]' "$TMP/info.out" "$TMP/encode.out"
 
 run compare_ams "$ANIMC" compare "$PC2" "$AMS" --mesh "$MESH" --json
 same_kg "$TMP/compare_ams.out" "$TMP/encode.out"
 json_check 'd["max_error_rel_cube"] <= 0.01 * 1.02 and d["frames"] == 50' "$TMP/compare_ams.out"
+json_check "d['animc_version'] == '$VERSION'" "$TMP/compare_ams.out"
 
 run bench "$ANIMC" bench "$PC2" --mesh "$MESH" --runs 1 --json
 json_check 'd["encode_mvps"] > 0 and d["decode_mvps"] > 0' "$TMP/bench.out"

@@ -69,7 +69,8 @@ case_dump() {
               "Max error (%)" "I-frame interval" "Output .ams file" "Add reconstructed layers" "Colour by error" \
               "Visible layers only" "First original layer" "First reconstructed layer" "Colour scale max" \
               "Compressed animation" "Last frame" "Step (% of diagonal) (Wavelet)" \
-              "Bits per vertex per frame (Wavelet)" "Target KG error (%) (Wavelet)" "Profile (Affine-Octree)"; do
+              "Bits per vertex per frame (Wavelet)" "Target KG error (%) (Wavelet)" "Profile (Affine-Octree)" \
+              "(animcompress $("$ANIMC" --version | cut -d' ' -f2))"; do
     grep -qF -- "$text" dump.txt || check_failed "dump: '$text' missing"
   done
 }

@@ -59,7 +59,7 @@ int runDecodeBench(const Args& args, long long runs) {
   const int64_t frames = int64_t(info.frame_count);
   const double decode_mvps = double(vertices) * double(frames) / median(decode_s) / 1e6;
   if (args.has("json")) {
-    JsonObject o;
+    JsonObject o = newReport();
     o.add("input", path);
     addSettings(o, ams.value()->settings());
     addSizes(o, info.file_bytes, info.static_bytes, vertices, frames);
@@ -134,7 +134,7 @@ int runBench(const std::vector<std::string>& argv) {
   const double encode_mvps = vertex_frames / median(encode_s) / 1e6;
   const double decode_mvps = vertex_frames / median(decode_s) / 1e6;
   if (args.has("json")) {
-    JsonObject o;
+    JsonObject o = newReport();
     o.add("input", args.positional()[0]);
     addSettings(o, settings.value());
     addSizes(o, report.file_bytes, report.static_bytes, report.vertices, report.frames);

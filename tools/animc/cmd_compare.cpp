@@ -34,7 +34,7 @@ int runCompare(const std::vector<std::string>& argv) {
   if (!metrics.ok()) return fail(metrics.status());
   const SequenceMetrics& m = metrics.value();
   if (args.has("json")) {
-    JsonObject o;
+    JsonObject o = newReport();
     if (ams) addSizes(o, ams->info().file_bytes, ams->info().static_bytes, m.vertices, m.frames);
     addMetrics(o, m, args.has("per-frame"));
     std::printf("%s\n", o.str().c_str());

@@ -31,7 +31,7 @@ int runEncode(const std::vector<std::string>& argv) {
   const EncodeReport& r = report.value();
   const SequenceMetrics m = metrics.finish();
   if (args.has("json")) {
-    JsonObject o;
+    JsonObject o = newReport();
     o.add("output", args.get("output"));
     addSettings(o, settings.value());
     addSizes(o, r.file_bytes, r.static_bytes, r.vertices, r.frames);

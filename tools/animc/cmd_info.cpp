@@ -19,7 +19,7 @@ int runInfo(const std::vector<std::string>& argv) {
   for (const SectionInfo& sec : info.sections)
     if (sec.tag == kTagGroup) group_bytes += sec.payload_bytes, ++groups;
   if (args.has("json")) {
-    JsonObject o;
+    JsonObject o = newReport();
     o.add("format_version", info.format_version);
     addSettings(o, source.value()->settings());
     o.add("vertices", h.vertex_count);

@@ -5,11 +5,12 @@
 #include <vector>
 
 #include "cli.h"
+#include "version.h"
 
 namespace {
 
 constexpr const char* kUsage =
-    "usage: animc <command> ...\n"
+    "usage: animc <command> ...   (animc --version prints the release)\n"
     "  encode IN -o OUT.ams [--mesh M] [--codec affine-octree|wavelet] [--iframe-interval K]\n"
     "         affine-octree: [--profile paper|default] [--max-error E] [--bits K] [--max-depth D]\n"
     "         wavelet: [--step S] [--bpv B] [--target-kg X] [--parametric-bits P]\n"
@@ -37,6 +38,10 @@ int main(int argc, char** argv) {
     return argc < 2 ? 2 : 0;
   }
   const std::string command = argv[1];
+  if (command == "--version" || command == "version") {
+    std::printf("animc %s (.ams format %u)\n", animc::animcVersion(), unsigned(animc::kFormatVersion));
+    return 0;
+  }
   const std::vector<std::string> rest(argv + 2, argv + argc);
   if (command == "encode") return runEncode(rest);
   if (command == "decode") return runDecode(rest);

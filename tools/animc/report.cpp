@@ -1,8 +1,15 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "report.h"
 
+#include "version.h"
 
 namespace animc::cli {
+
+JsonObject newReport() {
+  JsonObject o;
+  o.add("animc_version", animcVersion());
+  return o;
+}
 
 void addSettings(JsonObject& o, const EncodeSettings& s) {
   o.add("codec", codecName(s.codec));

@@ -1,0 +1,8 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "version.h"
+
+namespace animc {
+
+const char* animcVersion() { return ANIMC_VERSION_STRING; }
+
+}  // namespace animc
