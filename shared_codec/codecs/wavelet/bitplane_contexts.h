@@ -335,7 +335,7 @@ struct PlaneWalk {
   // skewed (residuals are roughly Laplacian: 0 in 59-69 % of cases); an adaptive model for
   // it saved 0.15-0.43 % of the bits, but made decoding 2-14 % slower: a model load, update
   // and store, and a range that depends on the bit, where a raw bit just halves it
-  // (docs/wavelet.md, "Decode speed, fourth pass").
+  // (docs/notes/wavelet_history.md, "Decode speed, fourth pass").
   void refine(size_t j) { known[j] = (known[j] << 1) | uint32_t(io.raw(magnitudeBit(j))); }
 
   void becomeSignificant(size_t j, int cls) {
