@@ -1,13 +1,19 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "seqio/frame_dir_sink.h"
 
+#include <fcntl.h>
+#include <stdio.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <vector>
 
 #include "seqio/off_format.h"
 #include "seqio/ply_writer.h"
-#include "seqio/text_scan.h"
 
 namespace animc {
 namespace fs = std::filesystem;
@@ -17,41 +23,78 @@ const char* extension(SequenceFormat format) {
   return format == SequenceFormat::kOff ? ".off" : ".ply";
 }
 
-// The frame number of a name this sink would write, or -1.
-int64_t frameNumber(const std::string& name, SequenceFormat format) {
-  const std::string prefix = "frame_", suffix = extension(format);
-  if (name.size() <= prefix.size() + suffix.size() || name.compare(0, prefix.size(), prefix) != 0 ||
-      name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0)
-    return -1;
-  std::string digits = name.substr(prefix.size(), name.size() - prefix.size() - suffix.size());
-  uint64_t number;
-  if (digits.find_first_not_of("0123456789") != std::string::npos ||
-      !parseUint64(digits, &number) || number > uint64_t(INT64_MAX))
-    return -1;
-  return int64_t(number);
+// "<dir>.tmp-<pid>-<n>": beside the destination (same file system, so it can be renamed into
+// place) and named like AtomicFile's temporaries, so that a leftover of a killed run is
+// recognisable.
+std::string temporaryDirName(const std::string& dir) {
+  static std::atomic<unsigned> counter{0};
+  std::string base = fs::path(dir).lexically_normal().string();
+  while (base.size() > 1 && base.back() == '/') base.pop_back();
+  return base + ".tmp-" + std::to_string(getpid()) + "-" + std::to_string(counter++);
+}
+
+bool isEmptyDirectory(const std::string& dir) {
+  std::error_code ec;
+  return fs::is_empty(dir, ec) && !ec;
+}
+
+// Puts the finished `temp` folder at `dir`, whose old content (if any) is then removed. With
+// renameat2(RENAME_EXCHANGE) readers of `dir` see the old frames or the new ones, never a mix
+// and never no folder; where the kernel or file system lacks it, the old folder is first
+// renamed aside.
+Status swapIntoPlace(const std::string& temp, const std::string& dir) {
+  std::error_code ec;
+  if (!fs::exists(dir, ec) || isEmptyDirectory(dir)) {
+    fs::remove(dir, ec);
+    if (std::rename(temp.c_str(), dir.c_str()) != 0)
+      return ioError(dir + ": cannot move the decoded frames into place: " + std::strerror(errno));
+    return Status();
+  }
+  std::string old = temp;
+  if (renameat2(AT_FDCWD, temp.c_str(), AT_FDCWD, dir.c_str(), RENAME_EXCHANGE) != 0) {
+    old = temporaryDirName(dir);
+    if (std::rename(dir.c_str(), old.c_str()) != 0)
+      return ioError(dir + ": cannot move the old frames aside: " + std::strerror(errno));
+    if (std::rename(temp.c_str(), dir.c_str()) != 0) {
+      const std::string why = std::strerror(errno);
+      std::rename(old.c_str(), dir.c_str());
+      return ioError(dir + ": cannot move the decoded frames into place: " + why);
+    }
+  }
+  fs::remove_all(old, ec);
+  if (ec) return ioError(old + ": the old frames were replaced but not removed: " + ec.message());
+  return Status();
 }
 
 class FrameDirSink : public FrameSink {
  public:
   FrameDirSink(std::string dir, SequenceFormat format, Topology topology, int64_t frame_count)
       : dir_(std::move(dir)),
+        temp_(temporaryDirName(dir_)),
         format_(format),
         topology_(std::move(topology)),
         frame_count_(frame_count) {}
 
   ~FrameDirSink() override {
-    if (finished_) return;
+    if (finished_ || !created_temp_) return;
     std::error_code ec;
     for (const std::string& path : written_) fs::remove(path, ec);
-    if (created_dir_) fs::remove(dir_, ec);  // fails, harmlessly, if someone else added files
+    fs::remove(temp_, ec);
   }
 
-  Status open() {
+  Status open(ExistingOutput existing) {
     std::error_code ec;
     if (fs::exists(dir_, ec) && !fs::is_directory(dir_, ec))
       return ioError(dir_ + ": exists and is not a directory");
-    created_dir_ = fs::create_directories(dir_, ec);
-    if (ec) return ioError(dir_ + ": cannot create the directory: " + ec.message());
+    if (existing == ExistingOutput::kRefuse && fs::exists(dir_, ec) && !isEmptyDirectory(dir_))
+      return invalidArgument(dir_ + ": the folder is not empty; frames are written only into a new or "
+                             "empty folder (--replace replaces the folder and everything in it)");
+    const fs::path parent = fs::path(temp_).parent_path();
+    if (!parent.empty() && !fs::is_directory(parent, ec))
+      return ioError(parent.string() + ": no such directory");
+    if (!fs::create_directory(temp_, ec))
+      return ioError(temp_ + ": cannot create a directory: " + (ec ? ec.message() : "it exists"));
+    created_temp_ = true;
     return Status();
   }
 
@@ -59,7 +102,7 @@ class FrameDirSink : public FrameSink {
     if (int64_t(written_.size()) == frame_count_)
       return invalidArgument(dir_ + ": more frames written than the " +
                              std::to_string(frame_count_) + " announced");
-    std::string path = (fs::path(dir_) / frameFileName(int64_t(written_.size()), format_)).string();
+    std::string path = (fs::path(temp_) / frameFileName(int64_t(written_.size()), format_)).string();
     ANIMC_RETURN_IF_ERROR(format_ == SequenceFormat::kOff ? writeOffFile(path, topology_, xyz)
                                                           : writePlyFile(path, topology_, xyz));
     written_.push_back(std::move(path));
@@ -70,39 +113,19 @@ class FrameDirSink : public FrameSink {
     if (int64_t(written_.size()) != frame_count_)
       return invalidArgument(dir_ + ": " + std::to_string(written_.size()) +
                              " frames written but " + std::to_string(frame_count_) + " announced");
-    ANIMC_RETURN_IF_ERROR(removeStaleFrames());
+    ANIMC_RETURN_IF_ERROR(swapIntoPlace(temp_, dir_));
     finished_ = true;
     return Status();
   }
 
  private:
-  // Frame files of an earlier run: higher numbers, or the other extension. A reader of the
-  // directory must not mix them into this sequence.
-  bool isStale(const std::string& name) const {
-    SequenceFormat other =
-        format_ == SequenceFormat::kOff ? SequenceFormat::kPly : SequenceFormat::kOff;
-    return frameNumber(name, format_) >= frame_count_ || frameNumber(name, other) >= 0;
-  }
-
-  Status removeStaleFrames() {
-    std::error_code ec;
-    std::vector<fs::path> stale;
-    for (fs::directory_iterator it(dir_, ec), end; !ec && it != end; it.increment(ec))
-      if (isStale(it->path().filename().string())) stale.push_back(it->path());
-    if (ec) return ioError(dir_ + ": cannot list the directory: " + ec.message());
-    for (const fs::path& path : stale) {
-      if (!fs::remove(path, ec) && ec)
-        return ioError(path.string() + ": cannot remove a stale frame: " + ec.message());
-    }
-    return Status();
-  }
-
   std::string dir_;
+  std::string temp_;
   SequenceFormat format_;
   Topology topology_;
   int64_t frame_count_;
   std::vector<std::string> written_;
-  bool created_dir_ = false;
+  bool created_temp_ = false;
   bool finished_ = false;
 };
 
@@ -116,10 +139,10 @@ std::string frameFileName(int64_t index, SequenceFormat format) {
 }
 
 Result<std::unique_ptr<FrameSink>> createFrameDirSink(const std::string& dir, SequenceFormat format,
-                                                      const Topology& topology,
-                                                      int64_t frame_count) {
+                                                      const Topology& topology, int64_t frame_count,
+                                                      ExistingOutput existing) {
   auto sink = std::make_unique<FrameDirSink>(dir, format, topology, frame_count);
-  ANIMC_RETURN_IF_ERROR(sink->open());
+  ANIMC_RETURN_IF_ERROR(sink->open(existing));
   return std::unique_ptr<FrameSink>(std::move(sink));
 }
 

@@ -10,13 +10,14 @@
 
 namespace animc {
 
-// `format` is kPly or kOff. Each frame is written atomically as it arrives; finish() removes
-// frame files an earlier run left in the directory (frame_<digits>.ply / .off with higher
-// numbers or the other extension), and a sink destroyed before finish() deletes the frames
-// it wrote.
+// `format` is kPly or kOff. Frames are written into a temporary folder beside `dir`
+// ("<dir>.tmp-<pid>-<n>"), which finish() puts in place of `dir` as a whole: a reader of `dir`
+// sees its old content or every new frame, never a mix, and a sink destroyed before finish()
+// (a decode that failed late) leaves `dir` as it was. A non-empty `dir` is refused unless
+// `existing` is kReplace, which replaces the folder with everything in it.
 Result<std::unique_ptr<FrameSink>> createFrameDirSink(const std::string& dir, SequenceFormat format,
-                                                      const Topology& topology,
-                                                      int64_t frame_count);
+                                                      const Topology& topology, int64_t frame_count,
+                                                      ExistingOutput existing);
 
 // "frame_00042.ply"
 std::string frameFileName(int64_t index, SequenceFormat format);

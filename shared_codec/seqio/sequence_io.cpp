@@ -89,10 +89,23 @@ Result<std::unique_ptr<FrameSource>> openSequence(const std::string& path,
   return openFrameFiles(std::move(paths), &mesh.topology, mesh_path);
 }
 
+Result<std::vector<std::string>> sequenceInputFiles(const std::string& path,
+                                                    const std::string& mesh_path) {
+  std::vector<std::string> files;
+  if (isPointCache(path, ".pc2") || isPointCache(path, ".mdd")) {
+    files.push_back(path);
+  } else {
+    ANIMC_ASSIGN_OR_RETURN(files, framePaths(path));
+    if (endsWithNoCase(path, ".txt")) files.push_back(path);
+  }
+  if (!mesh_path.empty()) files.push_back(mesh_path);
+  return files;
+}
+
 Result<std::unique_ptr<FrameSink>> createSequenceSink(const std::string& path,
                                                       SequenceFormat format,
                                                       const Topology& topology, double frame_rate,
-                                                      int64_t frame_count) {
+                                                      int64_t frame_count, ExistingOutput existing) {
   ANIMC_RETURN_IF_ERROR(checkSinkArguments(path, format, topology, frame_rate, frame_count));
   switch (format) {
     case SequenceFormat::kPc2:
@@ -101,7 +114,7 @@ Result<std::unique_ptr<FrameSink>> createSequenceSink(const std::string& path,
       return createMddSink(path, topology.vertex_count, frame_count, frame_rate);
     case SequenceFormat::kPly:
     case SequenceFormat::kOff:
-      return createFrameDirSink(path, format, topology, frame_count);
+      return createFrameDirSink(path, format, topology, frame_count, existing);
   }
   return invalidArgument(path + ": unknown output format");
 }

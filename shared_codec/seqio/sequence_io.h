@@ -28,13 +28,26 @@ Result<Mesh> readMesh(const std::string& path);
 Result<std::unique_ptr<FrameSource>> openSequence(const std::string& path,
                                                   const std::string& mesh_path);
 
-// PC2 / MDD: `path` is the file. PLY / OFF: `path` is a directory (created if needed) that
-// receives frame_00000.ply, frame_00001.ply, ... (binary little-endian PLY, ASCII OFF).
-// `frame_count` must be exactly the number of frames written before finish(); `frame_rate`
-// is stored by MDD only.
+// Every file openSequence(path, mesh_path) reads: the point cache or the frame files (and the
+// .txt list naming them), and the mesh. An output must be none of them.
+Result<std::vector<std::string>> sequenceInputFiles(const std::string& path,
+                                                    const std::string& mesh_path);
+
+// What a sink does with a PLY / OFF output folder that already holds files.
+enum class ExistingOutput {
+  kRefuse,   // an error: the folder may hold anything, and none of it is the sink's to delete
+  kReplace,  // the finished frames replace the folder and everything in it
+};
+
+// PC2 / MDD: `path` is the file, replaced atomically. PLY / OFF: `path` is a folder (its
+// parent must exist) that receives frame_00000.ply, frame_00001.ply, ... (binary
+// little-endian PLY, ASCII OFF) as a whole at finish() (frame_dir_sink.h). `frame_count`
+// must be exactly the number of frames written before finish(); `frame_rate` is stored by
+// MDD only.
 Result<std::unique_ptr<FrameSink>> createSequenceSink(const std::string& path,
                                                       SequenceFormat format,
                                                       const Topology& topology, double frame_rate,
-                                                      int64_t frame_count);
+                                                      int64_t frame_count,
+                                                      ExistingOutput existing = ExistingOutput::kRefuse);
 
 }  // namespace animc

@@ -240,6 +240,57 @@ expect_error bench_ams_encode_option "" "$ANIMC" bench "$AMS" --max-error 0.1
 expect_error bench_ams_missing "" "$ANIMC" bench "$TMP/no_such.ams"
 expect_error negative_bitplanes "$ERRDIR/x.pc2" "$ANIMC" decode "$W_AMS" -o "$ERRDIR/x.pc2" --bitplanes -2
 
+# --- an output that is one of the inputs is refused, by identity; the inputs stay intact ---
+VICTIM=$TMP/victim
+mkdir "$VICTIM"
+xz -dc "$PC2" >"$VICTIM/in.pc2"
+cp "$MESH" "$VICTIM/m.ply"
+cp "$AMS" "$VICTIM/x.ams"
+ln "$VICTIM/in.pc2" "$VICTIM/hardlink.pc2"
+ln -s in.pc2 "$VICTIM/symlink.pc2"
+run victim_frames "$ANIMC" decode "$AMS" -o "$VICTIM/frames" --frames 0:5
+printf 'frames/frame_00000.ply\nframes/frame_00001.ply\n' >"$VICTIM/list.txt"
+cp -a "$VICTIM" "$TMP/victim_before"
+# expect_refused NAME CMD...: run in $VICTIM, CMD must fail with one line saying it would
+# destroy an input, and leave every file of $VICTIM as it was.
+expect_refused() {
+  local name=$1 rc=0
+  shift
+  (cd "$VICTIM" && "$@") >"$TMP/$name.out" 2>"$TMP/$name.err" || rc=$?
+  ((rc != 0)) || check_failed "$name: exit 0 from: $*"
+  grep -q '^animc: .*would destroy that input' "$TMP/$name.err" ||
+    check_failed "$name: no 'would destroy that input' line: $(cat "$TMP/$name.err")"
+  diff -r --no-dereference "$TMP/victim_before" "$VICTIM" >/dev/null ||
+    check_failed "$name: changed the inputs: $(diff -rq --no-dereference "$TMP/victim_before" "$VICTIM")"
+}
+expect_refused over_pc2 "$ANIMC" encode in.pc2 --mesh m.ply -o in.pc2
+expect_refused over_mesh "$ANIMC" encode in.pc2 --mesh m.ply -o m.ply
+expect_refused over_other_spelling "$ANIMC" encode ./in.pc2 --mesh m.ply -o "$VICTIM/../victim/in.pc2"
+expect_refused over_hard_link "$ANIMC" encode in.pc2 --mesh m.ply -o hardlink.pc2
+expect_refused over_symlink "$ANIMC" encode in.pc2 --mesh m.ply -o symlink.pc2
+expect_refused over_frame "$ANIMC" encode frames -o frames/frame_00003.ply
+expect_refused over_listed_frame "$ANIMC" encode list.txt -o frames/frame_00001.ply
+expect_refused over_list "$ANIMC" encode list.txt -o list.txt
+expect_refused decode_over_ams "$ANIMC" decode x.ams -o x.ams --format pc2
+expect_refused bench_over_pc2 "$ANIMC" bench in.pc2 --mesh m.ply -o in.pc2 --runs 1
+
+# --- decoding to a folder of frames: only a new or empty folder, or --replace; a decode that
+# fails late leaves the old frames exactly as they were --------------------------------------
+cp -a "$TMP/off_frames" "$TMP/off_before"
+rc=0
+"$ANIMC" decode "$AMS" -o "$TMP/off_frames" --frames 0:3 >"$TMP/no_replace.out" 2>"$TMP/no_replace.err" || rc=$?
+((rc != 0)) && grep -q "^animc: .*not empty.*--replace" "$TMP/no_replace.err" ||
+  check_failed "decode into a folder of frames without --replace: exit $rc, $(cat "$TMP/no_replace.err")"
+rc=0
+"$ANIMC" decode "$LATE_AMS" -o "$TMP/off_frames" --replace >/dev/null 2>"$TMP/late_replace.err" || rc=$?
+((rc != 0)) || check_failed "late_replace: exit 0"
+diff -r "$TMP/off_before" "$TMP/off_frames" >/dev/null ||
+  check_failed "a decode that failed late changed the folder: $(diff -rq "$TMP/off_before" "$TMP/off_frames")"
+ls -d "$TMP"/off_frames.tmp-* >/dev/null 2>&1 && check_failed "a temporary folder was left: $(ls -d "$TMP"/off_frames.tmp-*)"
+run replace "$ANIMC" decode "$AMS" -o "$TMP/off_frames" --frames 0:3 --replace
+[[ $(ls "$TMP/off_frames") == $'frame_00000.ply\nframe_00001.ply\nframe_00002.ply' ]] ||
+  check_failed "--replace left: $(ls "$TMP/off_frames" | head -5) ..."
+
 if ((FAILURES > 0)); then
   echo "$FAILURES check(s) failed" >&2
   exit 1

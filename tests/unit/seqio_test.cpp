@@ -519,16 +519,66 @@ TEST_F(SeqioTest, SinkWithoutFinishLeavesNoFile) {
   EXPECT_NE(errorOf(sink.value()->write(frames[1].data())).find("more frames"), std::string::npos);
 }
 
-TEST_F(SeqioTest, FrameDirectorySinkReplacesAnEarlierLongerRun) {
+// Told to replace a folder, the sink replaces it as a whole: no frame of the longer earlier
+// run, of the other format or anything else is left to be mixed into the new sequence.
+TEST_F(SeqioTest, FrameDirectorySinkReplacesAnEarlierLongerRunWhenTold) {
   Frames frames = makeFrames(5, 3);
   for (int count : {3, 2}) {
-    auto sink = createSequenceSink(path("out"), SequenceFormat::kPly, smallTopology(), 25, count);
+    auto sink = createSequenceSink(path("out"), SequenceFormat::kPly, smallTopology(), 25, count,
+                                   ExistingOutput::kReplace);
     ASSERT_TRUE(sink.ok());
     ASSERT_TRUE(writeAll(*sink.value(), Frames(frames.begin(), frames.begin() + count)).ok());
   }
   auto source = openSequence(path("out"), "");
   ASSERT_TRUE(source.ok());
   EXPECT_EQ(source.value()->frameCount(), 2);
+  EXPECT_EQ(fileCount(), 1u) << "a temporary folder is left";
+  EXPECT_EQ(std::distance(fs::directory_iterator(path("out")), fs::directory_iterator()), 2);
+}
+
+// A folder that holds anything is refused unless the caller says to replace it (it used to
+// lose its frame files of the other format or with higher numbers); an empty one is used.
+TEST_F(SeqioTest, FrameDirectorySinkRefusesAFolderThatHoldsFiles) {
+  fs::create_directories(path("inputs"));
+  writeFile("inputs/frame_00000.off", "an input");
+  writeFile("inputs/frame_00007.ply", "another");
+  for (SequenceFormat format : {SequenceFormat::kPly, SequenceFormat::kOff}) {
+    auto sink = createSequenceSink(path("inputs"), format, smallTopology(), 25, 1);
+    ASSERT_FALSE(sink.ok());
+    EXPECT_NE(errorOf(sink).find("not empty"), std::string::npos) << errorOf(sink);
+  }
+  EXPECT_EQ(fileBytes(path("inputs/frame_00000.off")), "an input");
+  EXPECT_EQ(fileBytes(path("inputs/frame_00007.ply")), "another");
+  EXPECT_EQ(std::distance(fs::directory_iterator(path("inputs")), fs::directory_iterator()), 2);
+  EXPECT_EQ(fileCount(), 1u) << "a temporary folder is left";
+  fs::create_directories(path("empty"));
+  auto sink = createSequenceSink(path("empty"), SequenceFormat::kPly, smallTopology(), 25, 1);
+  ASSERT_TRUE(sink.ok()) << errorOf(sink);
+  ASSERT_TRUE(writeAll(*sink.value(), makeFrames(5, 1)).ok());
+  EXPECT_TRUE(fs::exists(path("empty/frame_00000.ply")));
+}
+
+// While frames are written the destination still holds the old sequence (what a reader, or a
+// run killed part-way, sees); a sink that fails late leaves it exactly as it was.
+TEST_F(SeqioTest, FrameDirectorySinkKeepsTheOldFramesUntilItFinishes) {
+  const Frames old_frames = makeFrames(5, 3);
+  Frames new_frames = makeFrames(5, 4);
+  for (std::vector<float>& frame : new_frames)
+    for (float& v : frame) v += 1.0f;
+  auto first = createSequenceSink(path("out"), SequenceFormat::kPly, smallTopology(), 25, 3);
+  ASSERT_TRUE(first.ok());
+  ASSERT_TRUE(writeAll(*first.value(), old_frames).ok());
+  const std::string old_bytes = fileBytes(path("out/frame_00002.ply"));
+  {
+    auto sink = createSequenceSink(path("out"), SequenceFormat::kPly, smallTopology(), 25, 4,
+                                   ExistingOutput::kReplace);
+    ASSERT_TRUE(sink.ok()) << errorOf(sink);
+    for (int f = 0; f < 3; ++f) ASSERT_TRUE(sink.value()->write(new_frames[f].data()).ok());
+    EXPECT_EQ(readFrames(*openSequence(path("out"), "").value()).value(), old_frames);
+  }  // destroyed before its fourth frame: the decode failed
+  EXPECT_EQ(readFrames(*openSequence(path("out"), "").value()).value(), old_frames);
+  EXPECT_EQ(fileBytes(path("out/frame_00002.ply")), old_bytes);
+  EXPECT_EQ(fileCount(), 1u) << "the temporary folder is left";
 }
 
 TEST_F(SeqioTest, SinkArgumentsAndFormatNames) {

@@ -12,6 +12,7 @@
 
 #include "metrics/encode_summary.h"
 #include "cli.h"
+#include "core/file_identity.h"
 #include "core/memory_sequence.h"
 #include "metrics/compare_sequences.h"
 #include "report.h"
@@ -102,6 +103,9 @@ int runBench(const std::vector<std::string>& argv) {
   if (!settings.ok()) return fail(settings.status());
   auto source = openSequence(args.positional()[0], args.get("mesh"));
   if (!source.ok()) return fail(source.status());
+  auto inputs = sequenceInputFiles(args.positional()[0], args.get("mesh"));
+  if (!inputs.ok()) return fail(inputs.status());
+  if (Status s = refuseOutputOverInput(args.get("output"), inputs.value()); !s.ok()) return fail(s);
   auto sequence = readAll(*source.value());
   if (!sequence.ok()) return fail(sequence.status());
   MemorySequence& seq = sequence.value();

@@ -2,6 +2,7 @@
 #include <cstdio>
 
 #include "cli.h"
+#include "core/file_identity.h"
 #include "seqio/sequence_io.h"
 
 namespace animc::cli {
@@ -45,11 +46,11 @@ Result<WaveletDecodeControl> progressiveControl(const Args& args) {
 
 int runDecode(const std::vector<std::string>& argv) {
   Args args;
-  Status s = args.parse(argv, {"output", "format", "frames", "bitplanes", "max-bytes"}, {"progress"});
+  Status s = args.parse(argv, {"output", "format", "frames", "bitplanes", "max-bytes"}, {"progress", "replace"});
   if (!s.ok()) return fail(s);
   if (args.positional().size() != 1 || !args.has("output"))
     return fail(invalidArgument("usage: animc decode IN.ams -o OUT [--format ply|off|pc2|mdd] [--frames A:B] "
-                                "[--bitplanes K] [--max-bytes N]"));
+                                "[--bitplanes K] [--max-bytes N] [--replace]"));
   const std::string out = args.get("output");
   std::string format = args.get("format");
   if (format.empty()) format = endsWith(out, ".pc2") ? "pc2" : endsWith(out, ".mdd") ? "mdd" : endsWith(out, ".off") ? "off" : "ply";
@@ -57,6 +58,7 @@ int runDecode(const std::vector<std::string>& argv) {
   if (!fmt.ok()) return fail(fmt.status());
   auto control = progressiveControl(args);
   if (!control.ok()) return fail(control.status());
+  if (!(s = refuseOutputOverInput(out, {args.positional()[0]})).ok()) return fail(s);
   auto source = AmsSource::open(args.positional()[0], DecoderLimits(), control.value());
   if (!source.ok()) return fail(source.status());
   AmsSource& ams = *source.value();
@@ -68,7 +70,8 @@ int runDecode(const std::vector<std::string>& argv) {
   }
   if (!s.ok()) return fail(s);
   if (!(s = ams.seek(first)).ok()) return fail(s);
-  auto sink = createSequenceSink(out, fmt.value(), ams.topology(), ams.frameRate(), last - first);
+  auto sink = createSequenceSink(out, fmt.value(), ams.topology(), ams.frameRate(), last - first,
+                                 args.has("replace") ? ExistingOutput::kReplace : ExistingOutput::kRefuse);
   if (!sink.ok()) return fail(sink.status());
   ProgressFn progress = progressLine("decode", args.has("progress"));
   std::vector<float> xyz;

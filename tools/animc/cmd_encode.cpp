@@ -2,6 +2,7 @@
 #include <cstdio>
 
 #include "cli.h"
+#include "core/file_identity.h"
 #include "metrics/encode_metrics.h"
 #include "metrics/encode_summary.h"
 #include "report.h"
@@ -23,6 +24,9 @@ int runEncode(const std::vector<std::string>& argv) {
   if (!settings.ok()) return fail(settings.status());
   auto source = openSequence(args.positional()[0], args.get("mesh"));
   if (!source.ok()) return fail(source.status());
+  auto inputs = sequenceInputFiles(args.positional()[0], args.get("mesh"));
+  if (!inputs.ok()) return fail(inputs.status());
+  if (!(s = refuseOutputOverInput(args.get("output"), inputs.value())).ok()) return fail(s);
   MetricsAccumulator metrics(source.value()->topology().vertex_count);
   auto report = encodeSequence(*source.value(), settings.value(), args.get("output"),
                                progressLine("encode", args.has("progress")), measuringObserver(metrics));

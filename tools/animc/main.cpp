@@ -17,6 +17,7 @@ constexpr const char* kUsage =
     "         [--i-frames-only | --progressive-p-frames]\n"
     "         [--progress] [--json]\n"
     "  decode IN.ams -o OUT [--format ply|off|pc2|mdd] [--frames A:B] [--progress]\n"
+    "         PLY/OFF frames go to a new or empty folder OUT, or --replace an existing one\n"
     "         [--bitplanes K] [--max-bytes N]: progressive, fewer bitplanes/bytes per frame\n"
     "         (wavelet files encoded with --progressive-p-frames or --i-frames-only)\n"
     "  info IN.ams [--json]\n"
