@@ -90,16 +90,20 @@ void FilterAnimCompressPlugin::initParameterSet(QAction* a, MeshDocument& md, Ri
 bool FilterAnimCompressPlugin::applyFilter(QAction* a, MeshDocument& md, const RichParameterList& par,
                                            vcg::CallBackPos* cb) {
   const LogFn log = [this](const std::string& line) { Log("%s", line.c_str()); };
-  switch (ID(a)) {
-    case FP_COMPRESS: {
-      const std::string why = compressLayers(md, par, cb, log);
-      return why.empty() || fail(a, why);
+  try {
+    switch (ID(a)) {
+      case FP_COMPRESS: {
+        const std::string why = compressLayers(md, par, cb, log);
+        return why.empty() || fail(a, why);
+      }
+      case FP_RECONSTRUCTION_ERROR: {
+        const std::string why = measureReconstructionError(md, par, cb, log);
+        return why.empty() || fail(a, why);
+      }
+      case FP_IMPORT: return importAnimation(md, par, cb);
     }
-    case FP_RECONSTRUCTION_ERROR: {
-      const std::string why = measureReconstructionError(md, par, cb, log);
-      return why.empty() || fail(a, why);
-    }
-    case FP_IMPORT: return importAnimation(md, par, cb);
+  } catch (...) {
+    return fail(a, currentExceptionMessage());
   }
   return fail(a, "unknown filter");
 }

@@ -11,6 +11,15 @@ namespace animc::meshlab {
 // FirstFrame (default 0) and LastFrame (default -1: the file's last frame).
 void addFrameRangeParameters(RichParameterList& par);
 
+// MemoryLimitMB, the most the new layers may take. Only the .ams open dialog offers it: a new
+// parameter of a filter would break every .mlx script that names the filter (meshlabserver
+// 2020.09 aborts on a script that does not list every parameter).
+void addMemoryLimitParameter(RichParameterList& par);
+
+// $ANIMC_MEMORY_LIMIT_MB when it is a positive integer (how scripts raise the limit), else
+// AmsImport's default.
+int64_t defaultMemoryLimitMegabytes();
+
 // The range those parameters ask for; one missing from `par` keeps its default.
 AmsImport frameRangeFrom(const RichParameterList& par);
 

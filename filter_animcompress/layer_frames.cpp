@@ -3,6 +3,9 @@
 
 #include <vcg/complex/allocate.h>
 
+#include <cstdio>
+#include <new>
+
 #include "seqio/mesh_checks.h"
 
 namespace animc::meshlab {
@@ -101,7 +104,30 @@ namespace {
 // "frame_00012"
 QString frameLabel(int64_t frame) { return QString("frame_%1").arg(frame, 5, 10, QChar('0')); }
 
+Status checkLayerMemory(const std::string& path, const Topology& topology, int64_t first, int64_t last,
+                        int64_t max_megabytes) {
+  const double megabytes = double(last - first + 1) * double(layerBytes(topology)) / (1 << 20);
+  if (megabytes <= double(max_megabytes)) return Status();
+  char text[512];
+  std::snprintf(text, sizeof text,
+                "frames %lld to %lld of %s would take about %.0f MB as layers (%u vertices and %zu "
+                "triangles each), above the memory limit of %lld MB: load fewer frames (First frame, "
+                "Last frame) or raise the limit (Memory limit (MB) when opening, or ANIMC_MEMORY_LIMIT_MB)",
+                (long long)first, (long long)last, path.c_str(), megabytes, topology.vertex_count,
+                topology.triangles.size(), (long long)max_megabytes);
+  return limitExceeded(text);
+}
+
 }  // namespace
+
+uint64_t layerBytes(const Topology& topology) {
+  // The optional attributes MeshLab enables on loaded layers (colour, quality, adjacency) take
+  // about as much again as the fixed part of each element.
+  constexpr uint64_t kLayerOverhead = 64 << 10;
+  return 2 * (uint64_t(topology.vertex_count) * sizeof(CVertexO) +
+              uint64_t(topology.triangles.size()) * sizeof(CFaceO)) +
+         kLayerOverhead;
+}
 
 Result<QList<MeshModel*>> importAms(const std::string& path, const AmsImport& range,
                                     MeshDocument* md, MeshModel* first_layer,
@@ -115,6 +141,8 @@ Result<QList<MeshModel*>> importAms(const std::string& path, const AmsImport& ra
                            std::to_string(frames - 1));
   if (md == nullptr && (first_layer == nullptr || last > range.first_frame))
     return invalidArgument("no document to add the frames to as layers");
+  ANIMC_RETURN_IF_ERROR(
+      checkLayerMemory(path, source->topology(), range.first_frame, last, range.max_layer_megabytes));
   ANIMC_RETURN_IF_ERROR(source->seek(range.first_frame));
   QList<MeshModel*> added;
   auto undo = [&](const Status& s) {
@@ -124,21 +152,27 @@ Result<QList<MeshModel*>> importAms(const std::string& path, const AmsImport& ra
   };
   std::vector<float> xyz;
   QList<MeshModel*> layers;
-  for (int64_t frame = range.first_frame; frame <= last; ++frame) {
-    Result<bool> more = source->next(xyz);
-    if (!more.ok()) return undo(more.status());
-    if (!more.value()) return undo(truncated(path + ": frame " + std::to_string(frame) + " is missing"));
-    MeshModel* layer = layers.isEmpty() && first_layer != nullptr ? first_layer : nullptr;
-    if (layer == nullptr) {
-      layer = md->addNewMesh("", frameLabel(frame), false);
-      added << layer;
-    } else {
-      layer->setLabel(frameLabel(frame));
+  try {
+    for (int64_t frame = range.first_frame; frame <= last; ++frame) {
+      Result<bool> more = source->next(xyz);
+      if (!more.ok()) return undo(more.status());
+      if (!more.value()) return undo(truncated(path + ": frame " + std::to_string(frame) + " is missing"));
+      MeshModel* layer = layers.isEmpty() && first_layer != nullptr ? first_layer : nullptr;
+      if (layer == nullptr) {
+        layer = md->addNewMesh("", frameLabel(frame), false);
+        added << layer;
+      } else {
+        layer->setLabel(frameLabel(frame));
+      }
+      fillMesh(*layer, source->topology(), xyz.data());
+      layers << layer;
+      const int percent = int(100 * (frame - range.first_frame + 1) / (last - range.first_frame + 1));
+      if (progress && !progress(percent, "decoding frames")) return undo(cancelled());
     }
-    fillMesh(*layer, source->topology(), xyz.data());
-    layers << layer;
-    const int percent = int(100 * (frame - range.first_frame + 1) / (last - range.first_frame + 1));
-    if (progress && !progress(percent, "decoding frames")) return undo(cancelled());
+  } catch (const std::bad_alloc&) {
+    // The estimate was below the limit but the machine has less: give the memory back first.
+    return undo(limitExceeded("out of memory after " + std::to_string(layers.size()) + " layers of " + path +
+                              ": load fewer frames or lower the memory limit"));
   }
   return layers;
 }

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "plugin_support.h"
 
+#include <exception>
+#include <new>
 #include <sstream>
 
 namespace animc::meshlab {
@@ -8,6 +10,18 @@ namespace animc::meshlab {
 void logLines(const LogFn& log, const std::string& text) {
   std::istringstream lines(text);
   for (std::string line; std::getline(lines, line);) log(line);
+}
+
+std::string currentExceptionMessage() {
+  try {
+    throw;
+  } catch (const std::bad_alloc&) {
+    return "out of memory (try fewer frames or layers)";
+  } catch (const std::exception& e) {
+    return std::string("unexpected error: ") + e.what();
+  } catch (...) {
+    return "unexpected error";
+  }
 }
 
 ProgressFn progressFrom(vcg::CallBackPos* cb) {

@@ -27,6 +27,7 @@ void IoAnimStreamPlugin::GetExportMaskCapability(QString&, int& capability, int&
 
 void IoAnimStreamPlugin::initPreOpenParameter(const QString&, const QString&, RichParameterList& par) {
   addFrameRangeParameters(par);
+  addMemoryLimitParameter(par);
 }
 
 void IoAnimStreamPlugin::initSaveParameter(const QString&, MeshModel&, RichParameterList& par) {
@@ -38,6 +39,15 @@ void IoAnimStreamPlugin::initSaveParameter(const QString&, MeshModel&, RichParam
 
 bool IoAnimStreamPlugin::open(const QString&, const QString& fileName, MeshModel& m, int& mask,
                               const RichParameterList& par, vcg::CallBackPos* cb, QWidget*) {
+  try {
+    return openFrames(fileName, m, mask, par, cb);
+  } catch (...) {
+    return fail("open", fileName, currentExceptionMessage());
+  }
+}
+
+bool IoAnimStreamPlugin::openFrames(const QString& fileName, MeshModel& m, int& mask,
+                                    const RichParameterList& par, vcg::CallBackPos* cb) {
   mask = 0;
   AmsImport range = frameRangeFrom(par);
   MeshDocument* md = m.parent;
@@ -54,6 +64,15 @@ bool IoAnimStreamPlugin::open(const QString&, const QString& fileName, MeshModel
 
 bool IoAnimStreamPlugin::save(const QString&, const QString& fileName, MeshModel& m, const int,
                               const RichParameterList& par, vcg::CallBackPos* cb, QWidget*) {
+  try {
+    return saveFrames(fileName, m, par, cb);
+  } catch (...) {
+    return fail("save", fileName, currentExceptionMessage());
+  }
+}
+
+bool IoAnimStreamPlugin::saveFrames(const QString& fileName, MeshModel& m, const RichParameterList& par,
+                                    vcg::CallBackPos* cb) {
   const bool all = !par.hasParameter("AllLayers") || par.getBool("AllLayers");
   const QList<MeshModel*> layers = all && m.parent != nullptr ? frameLayers(*m.parent, false)
                                                               : QList<MeshModel*>{&m};

@@ -24,6 +24,10 @@ class IoAnimStreamPlugin : public QObject, public MeshIOInterface {
             const RichParameterList& par, vcg::CallBackPos* cb = nullptr, QWidget* parent = nullptr) override;
 
  private:
+  // The bodies of open() and save(), which turn any exception these let out into a failure.
+  bool openFrames(const QString& fileName, MeshModel& m, int& mask, const RichParameterList& par,
+                  vcg::CallBackPos* cb);
+  bool saveFrames(const QString& fileName, MeshModel& m, const RichParameterList& par, vcg::CallBackPos* cb);
   // Logs the failure (meshlabserver never prints errorMessage) and returns false.
   bool fail(const QString& what, const QString& fileName, const std::string& why);
 };
