@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: Apache-2.0
 # End-to-end tests of the MeshLab plugins in the real meshlabserver (staged by
-# `cmake --install BUILD --prefix STAGE`, run headless under xvfb-run by tools/meshlabserver.sh).
+# `cmake --install BUILD --prefix STAGE`, run headless under xvfb-run by scripts/meshlabserver.sh).
 # usage: meshlab_test.sh CASE ANIMC_BINARY SOURCE_DIR STAGE_DIR
 #   CASE: dump | scripts | filter_roundtrip | io_roundtrip | wavelet | bad_layers | bad_ams
 set -euo pipefail
@@ -29,7 +29,7 @@ server() {
   local name=$1
   shift
   RC=0
-  "$SRC/tools/meshlabserver.sh" "$@" >"$name.log" 2>&1 || RC=$?
+  "$SRC/scripts/meshlabserver.sh" "$@" >"$name.log" 2>&1 || RC=$?
   if ((RC >= 128 && RC != 255)); then die "$name: meshlabserver died with status $RC"$'\n'"$(tail -20 "$name.log")"; fi
 }
 expect_ok() { ((RC == 0)) || die "$1: exit $RC"$'\n'"$(tail -30 "$1.log")"; }
@@ -48,7 +48,7 @@ expect_same_frames() {
 derive_script() {
   local sample=$1 out=$2
   shift 2
-  "$PY" "$SRC/tools/mlx_script.py" "$SRC/samples/$sample" "$@" >"$out" || die "$out: samples/$sample changed"
+  "$PY" "$SRC/scripts/mlx_script.py" "$SRC/samples/$sample" "$@" >"$out" || die "$out: samples/$sample changed"
 }
 # layer_exports FIRST COUNT PREFIX: meshlabserver arguments saving layers FIRST.. as PREFIX_k.ply,
 # and a list file PREFIX.txt naming them in order.

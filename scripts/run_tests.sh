@@ -4,8 +4,8 @@
 # again under AddressSanitizer and UBSan, where the corrupt-file tests earn their keep.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash tools/setup.sh
-bash tools/build.sh
+bash scripts/setup.sh
+bash scripts/build.sh
 (cd build && ctest --output-on-failure -j"$(nproc)" --timeout 900)
 
 # The portable build (no AVX2 kernels, what other CPUs run): its unit tests, and the golden

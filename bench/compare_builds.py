@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: Apache-2.0
 """Bits of one or more animc builds against a base build at equal PSNR (Affine-Octree codec).
 
-usage: tools/compare_builds.py BASE_ANIMC NEW_ANIMC [NEW_ANIMC ...] [--data DIR]
+usage: bench/compare_builds.py BASE_ANIMC NEW_ANIMC [NEW_ANIMC ...] [--data DIR]
                                [--profile P] [--max-errors "0.006 0.01 ..."] [--at "0.01 0.1"]
 
 Each build encodes every sequence of --data (default ../shared/data from the repository

@@ -1,18 +1,18 @@
 # SPDX-License-Identifier: Apache-2.0
 # Building plugins for Debian bookworm's MeshLab 2020.09 (../shared/DESIGN.md, "MeshLab facts").
-# Headers: src/common and vcglib from Debian's source package, fetched by tools/setup.sh into
+# Headers: src/common and vcglib from Debian's source package, fetched by scripts/setup.sh into
 # a cache outside the tree. Library: the packaged libmeshlab-common.so. The compile settings
 # below are ABI: a plugin built otherwise loads, then crashes meshlabserver.
 
 set(MESHLAB_SDK_DIR "/var/cache/animcompress/meshlab-2020.09" CACHE PATH
-    "MeshLab 2020.09 source tree holding src/common and vcglib (tools/fetch_meshlab_sdk.sh)")
+    "MeshLab 2020.09 source tree holding src/common and vcglib (scripts/fetch_meshlab_sdk.sh)")
 set(MESHLAB_LIB_DIR "/usr/lib/x86_64-linux-gnu/meshlab" CACHE PATH
     "directory of Debian's libmeshlab-common.so and plugins/")
 option(ANIMC_INSTALL_TO_SYSTEM_MESHLAB
        "cmake --install writes the plugins into MESHLAB_LIB_DIR/plugins instead of staging a private MeshLab under the prefix" OFF)
 
 if(NOT EXISTS "${MESHLAB_SDK_DIR}/src/common/interfaces.h")
-  message(FATAL_ERROR "MeshLab headers not found in ${MESHLAB_SDK_DIR}: run tools/setup.sh "
+  message(FATAL_ERROR "MeshLab headers not found in ${MESHLAB_SDK_DIR}: run scripts/setup.sh "
                       "(or configure with -DANIMC_BUILD_PLUGINS=OFF to build without the plugins)")
 endif()
 

@@ -2,9 +2,9 @@
 # SPDX-License-Identifier: Apache-2.0
 """Rate-distortion plot (KG error against bits per vertex per frame) of several codecs on
 several sequences, one panel per sequence, drawn by gnuplot (Debian's gnuplot-nox, installed
-by tools/setup.sh) into a PNG. bench.py calls draw_rd_plot() for docs/img/rate_distortion.png.
+by scripts/setup.sh) into a PNG. bench.py calls draw_rd_plot() for docs/img/rate_distortion.png.
 
-usage: tools/rd_plot.py POINTS.json OUT.png
+usage: bench/rd_plot.py POINTS.json OUT.png
 POINTS.json: {"sequence": {"series label": [[bpvf, kg_percent], ...], ...}, ...}; a label
 ending in " (points)" is drawn as markers only, the others as lines with markers."""
 import json
@@ -55,7 +55,7 @@ def draw_rd_plot(points_by_sequence, out_png):
         try:
             p = subprocess.run(['gnuplot'], input='\n'.join(script) + '\n', capture_output=True, text=True)
         except FileNotFoundError:
-            raise RuntimeError('gnuplot not found (tools/setup.sh installs gnuplot-nox)')
+            raise RuntimeError('gnuplot not found (scripts/setup.sh installs gnuplot-nox)')
         if p.returncode != 0 or not os.path.isfile(tmp_png):
             raise RuntimeError(f'gnuplot failed (exit {p.returncode}): {p.stderr.strip()[:500]}')
         os.makedirs(os.path.dirname(os.path.abspath(out_png)), exist_ok=True)

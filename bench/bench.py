@@ -2,25 +2,25 @@
 # SPDX-License-Identifier: Apache-2.0
 """Benchmark animc on every sequence of the data folder and write docs/benchmarks.md.
 
-usage: tools/bench.py [--animc PATH] [--data DIR] [--runs R] [--out FILE] [--quick] [--no-plugin]
+usage: bench/bench.py [--animc PATH] [--data DIR] [--runs R] [--out FILE] [--quick] [--no-plugin]
 
 For each sequence folder NAME/ (NAME.ply + NAME.pc2.xz) of --data (default
 ../shared/data from the repository root):
 1. `animc bench` at max error 1 %, 5 %, 10 % of the root cube (and 15 %, 25 % on
    chickenCrossing, to meet every row of the Affine-Octree paper's Table II) with both
    profiles, R runs each (medians, as animc bench reports them);
-2. an equal-KG comparison with the simple baseline (tools/baseline.py, B = 6..14 bits;
+2. an equal-KG comparison with the simple baseline (bench/baseline.py, B = 6..14 bits;
    its results are cached next to --out in baseline_cache.json, keyed by the sha256 of the
    uncompressed sequence and B) over a max-error sweep of the default profile;
 3. unless --quick: peak memory of `animc encode` / `animc decode` on a 100 000-frame
-   sequence made by tools/long_sequence.py from sydney_md2, and on a 1 000-frame one;
-4. the wavelet codec (tools/bench_wavelet.py): quality steps and the paper's 1/2/4/8 bpv
+   sequence made by bench/long_sequence.py from sydney_md2, and on a 1 000-frame one;
+4. the wavelet codec (bench/bench_wavelet.py): quality steps and the paper's 1/2/4/8 bpv
    fixed rates on every sequence, against the Affine-Octree sweep at equal KG error, with the
-   rate-distortion plot docs/img/rate_distortion.png (tools/rd_plot.py, gnuplot), and the
+   rate-distortion plot docs/img/rate_distortion.png (bench/rd_plot.py, gnuplot), and the
    parametric archive size against the paper's Cow, and the cost and cuts of progressive
-   P-frames (tools/bench_progressive.py);
+   P-frames (bench/bench_progressive.py);
 5. unless --no-plugin: encoding through the MeshLab filter against animc encode
-   (tools/bench_plugin.py; needs the staged MeshLab of `cmake --install build --prefix build/stage`).
+   (bench/bench_plugin.py; needs the staged MeshLab of `cmake --install build --prefix build/stage`).
 Progress goes to stderr; the Markdown report to --out (default docs/benchmarks.md)."""
 import argparse
 import datetime
@@ -32,7 +32,6 @@ import platform
 import re
 import shlex
 import shutil
-import struct
 import subprocess
 import sys
 import tempfile
@@ -40,7 +39,8 @@ import time
 
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-sys.path.insert(0, os.path.join(REPO, 'tools'))
+sys.path.insert(0, os.path.join(REPO, 'scripts'))
+import pc2 as pc2_format  # noqa: E402
 from long_sequence import write_long_sequence  # noqa: E402
 from bench_plugin import plugin_section  # noqa: E402
 from bench_wavelet import wavelet_section  # noqa: E402
@@ -105,8 +105,8 @@ def sequence_info(pc2_xz):
         h.update(head)
         for block in iter(lambda: f.read(1 << 20), b''):
             h.update(block)
-    vertices, frames = struct.unpack('<i8xi', head[16:32])
-    return h.hexdigest(), vertices, frames
+    header = pc2_format.parse_header(head, pc2_xz)
+    return h.hexdigest(), header.points, header.frames
 
 
 def file_sha256(path):
@@ -141,7 +141,7 @@ def baseline_points(name, pc2, sha, entries, cache_path, baseline_hash):
     missing = [b for b in BASELINE_BITS if f'{sha}:{b}' not in entries]
     if missing:
         log(f'{name}: baseline.py for B = {missing} (slow, cached afterwards)')
-        cmd = [sys.executable, os.path.join(REPO, 'tools', 'baseline.py'), pc2] + [str(b) for b in missing]
+        cmd = [sys.executable, os.path.join(REPO, 'bench', 'baseline.py'), pc2] + [str(b) for b in missing]
         p = subprocess.run(cmd, capture_output=True, text=True)
         if p.returncode != 0:
             log(f'  baseline.py FAILED (exit {p.returncode}): {p.stderr.strip()}')
@@ -288,7 +288,7 @@ def baseline_tables(sweep, points):
         rows.append([pct(me), num(r['bpvf'], 3), num(r['kg_error'], 3), num(b, 3),
                      num(b / r['bpvf'], 2) + '×' if b is not None and r['bpvf'] > 0 else 'n/a'])
     lines = table(['ME', 'our bpvf', 'KG %', 'baseline bpvf at same KG', 'baseline / ours'], rows)
-    lines += ['', 'Baseline (tools/baseline.py) points: ' +
+    lines += ['', 'Baseline (bench/baseline.py) points: ' +
               '; '.join(f'B={p["bits"]}: {p["bpvf"]:.3f} bpvf, KG {p["kg_error"]:.3f} %' for p in points)
               if points else 'Baseline: not available (baseline.py failed).']
     return lines
@@ -390,7 +390,7 @@ def write_report(path, args, sequences, wavelet_lines, memory_rows, plugin_lines
             lines += equal_psnr_table(s['results'], s['sweep']) + ['']
         lines += ['### Equal KG error against the simple baseline', '',
                   'Default profile, max-error sweep (runs = 1 where not in the table above). The baseline '
-                  '(tools/baseline.py: B-bit quantisation on the sequence box, minus the previous frame, '
+                  '(bench/baseline.py: B-bit quantisation on the sequence box, minus the previous frame, '
                   'xz -9) is measured for B = 4..14; its bpvf at our KG error is interpolated log-log '
                   'between its two neighbouring points ("n/a" outside its measured range).', '']
         lines += baseline_tables(s['sweep'], s['baseline']) + ['']
@@ -405,7 +405,7 @@ def write_report(path, args, sequences, wavelet_lines, memory_rows, plugin_lines
         lines += ['Skipped (--quick).', '']
     elif memory_rows:
         lines += [f'{LONG_SOURCE} ({memory_rows[0]["vertices"]} vertices) played back and forth '
-                  '(tools/long_sequence.py) to the frame counts below, written as an uncompressed PC2 '
+                  '(bench/long_sequence.py) to the frame counts below, written as an uncompressed PC2 '
                   f'and encoded with `animc encode IN.pc2 --mesh {LONG_SOURCE}.ply -o OUT.ams '
                   f'{" ".join(LONG_SETTINGS)}`, then decoded with `animc decode OUT.ams -o DEC.pc2`. '
                   'Times are wall-clock seconds including file reading and writing; peak RSS is the '
@@ -427,9 +427,9 @@ def write_report(path, args, sequences, wavelet_lines, memory_rows, plugin_lines
 
 def parse_args():
     p = argparse.ArgumentParser(description=__doc__.split('\n')[0])
-    default_animc = os.path.join(REPO, 'build', 'tools', 'animc', 'animc')
+    default_animc = os.path.join(REPO, 'build', 'animc', 'animc')
     p.add_argument('--animc', default=default_animc if os.path.exists(default_animc) else 'animc',
-                   help='animc binary (default: build/tools/animc/animc of the repository)')
+                   help='animc binary (default: build/animc/animc of the repository)')
     p.add_argument('--data', default=os.path.normpath(os.path.join(REPO, '..', 'shared', 'data')),
                    help='folder of sequence folders (default: ../shared/data from the repository root)')
     p.add_argument('--runs', type=int, default=5, help='animc bench runs per point (median; default 5)')
@@ -456,7 +456,7 @@ def parse_args():
 
 def main():
     args = parse_args()
-    baseline_hash = file_sha256(os.path.join(REPO, 'tools', 'baseline.py'))
+    baseline_hash = file_sha256(os.path.join(REPO, 'bench', 'baseline.py'))
     os.makedirs(os.path.dirname(args.baseline_cache), exist_ok=True)
     entries = load_baseline_cache(args.baseline_cache, baseline_hash)
     sequences = []

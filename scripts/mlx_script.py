@@ -5,7 +5,7 @@ list every parameter of its filters, so tests and benchmarks derive theirs from 
 instead of keeping copies. Every parameter named must occur exactly once: a renamed or removed
 parameter fails loudly instead of silently leaving the sample's value in place.
 
-usage: tools/mlx_script.py SCRIPT NAME=VALUE...   (writes the changed script to stdout)"""
+usage: scripts/mlx_script.py SCRIPT NAME=VALUE...   (writes the changed script to stdout)"""
 import re
 import sys
 from xml.sax.saxutils import quoteattr

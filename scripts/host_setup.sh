@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: Apache-2.0
-# Functions that tools/*.sh source (this file is not run on its own): installing the Debian
+# Functions that scripts/*.sh source (this file is not run on its own): installing the Debian
 # packages a script needs, and running MeshLab with a private home.
 
 # install_missing_packages WHO PACKAGE...: apt-get installs those of the packages that are not

@@ -3,7 +3,10 @@
 """Rebuilds samples/ from ../shared/data: the first FRAMES frames of sydney_md2 as a PC2 point
 cache (xz-compressed) beside its PLY mesh, and the first PLY_FRAMES frames as PLY files (what
 MeshLab loads as layers). Run from the repository root."""
-import lzma, os, shutil, struct, sys
+import lzma, os, shutil, sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), 'bench'))
+import pc2  # noqa: E402
 
 FRAMES = 50
 PLY_FRAMES = 24
@@ -11,14 +14,10 @@ SRC = os.path.join('..', 'shared', 'data', 'sydney_md2')
 DST = os.path.join('samples', 'sydney')
 
 def main():
-    with lzma.open(os.path.join(SRC, 'sydney_md2.pc2.xz'), 'rb') as f:
-        head = f.read(32)
-        magic, version, points, start, rate, count = struct.unpack('<12siiffi', head)
-        if magic != b'POINTCACHE2\0':
-            sys.exit('not a PC2 file')
-        body = f.read(FRAMES * points * 12)
+    frames, header = pc2.read_pc2(os.path.join(SRC, 'sydney_md2.pc2.xz'), FRAMES)
+    points, body = header.points, frames.tobytes()
     os.makedirs(DST, exist_ok=True)
-    out = struct.pack('<12siiffi', magic, version, points, start, rate, FRAMES) + body
+    out = pc2.pack_header(header._replace(frames=FRAMES)) + body
     with lzma.open(os.path.join(DST, 'sydney_50.pc2.xz'), 'wb', preset=9) as f:
         f.write(out)
     shutil.copyfile(os.path.join(SRC, 'sydney_md2.ply'), os.path.join(DST, 'sydney_md2.ply'))

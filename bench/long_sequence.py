@@ -10,28 +10,13 @@ output is written frame block by frame block, so memory stays at the size of the
 (100 000 frames of sydney_md2, 342 vertices, is ~410 MB on disk and a few MB in memory).
 PC2 layout: README of the data folder (magic, version, point count, start, rate, count,
 then float32 x y z frame after frame, little-endian)."""
-import lzma
-import struct
 import sys
 
 import numpy as np
 
-PC2_MAGIC = b'POINTCACHE2\0'
+import pc2
+
 BLOCK_FRAMES = 1000  # frames written per write() call
-
-
-def read_pc2(path):
-    """Return (frames as float32 array [F, N, 3], start frame, sample rate)."""
-    opener = lzma.open if path.endswith('.xz') else open
-    with opener(path, 'rb') as f:
-        head = f.read(32)
-        if len(head) < 32 or head[:12] != PC2_MAGIC:
-            raise ValueError(f'{path}: not a PC2 file')
-        _version, n, start, rate, frames = struct.unpack('<iiffi', head[12:32])
-        data = np.frombuffer(f.read(frames * n * 12), dtype='<f4')
-    if data.size != frames * n * 3:
-        raise ValueError(f'{path}: truncated ({data.size // 3} of {frames * n} points)')
-    return data.reshape(frames, n, 3), start, rate
 
 
 def ping_pong_indices(source_frames, first, count):
@@ -46,10 +31,10 @@ def ping_pong_indices(source_frames, first, count):
 def write_long_sequence(source, out, frames):
     """Write `frames` frames of `source` played back and forth to the PC2 file `out`.
     Returns the number of bytes written."""
-    seq, start, rate = read_pc2(source)
+    seq, header = pc2.read_pc2(source)
     n = seq.shape[1]
     with open(out, 'wb') as f:
-        f.write(PC2_MAGIC + struct.pack('<iiffi', 1, n, start, rate, frames))
+        f.write(pc2.pack_header(header._replace(frames=frames)))
         for first in range(0, frames, BLOCK_FRAMES):
             count = min(BLOCK_FRAMES, frames - first)
             f.write(seq[ping_pong_indices(len(seq), first, count)].tobytes())

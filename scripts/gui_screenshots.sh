@@ -11,7 +11,7 @@
 #                                frame shown on its own, drawn
 # The sample frames are copied to a temporary folder (the filter writes animation.ams next
 # to them); HOME/XDG point into it, so nothing is written outside it and docs/img/.
-#   usage: tools/gui_screenshots.sh        (as root when xvfb/xdotool/imagemagick are missing)
+#   usage: scripts/gui_screenshots.sh        (as root when xvfb/xdotool/imagemagick are missing)
 #   env:   ANIMC_STAGE (default build/stage), ANIMC_SHOT_FRAME (default 12),
 #          ANIMC_SHOT_LATER_FRAME (default 20), ANIMC_GUI_KEEP_TMP=1 keeps the temporary
 #          folder (with every intermediate screenshot) for debugging.
@@ -31,7 +31,7 @@ convert=/usr/bin/convert
 say() { echo "gui_screenshots: $*"; }
 die() { echo "gui_screenshots: error: $*" >&2; exit 1; }
 
-source "$root/tools/host_setup.sh"
+source "$root/scripts/host_setup.sh"
 install_missing_packages gui_screenshots xvfb xauth xdotool imagemagick x11-utils
 
 [ -x "$meshlab" ] || die "$meshlab missing; run: cmake --install build --prefix build/stage"

@@ -6,18 +6,16 @@ frame, store the differences as int32 little-endian and compress with xz -9.
 
 usage: baseline.py SEQUENCE.pc2[.xz] BITS [BITS ...]   -> one JSON line per B
 (bpvf of the whole compressed stream, KG error of the dequantised sequence)."""
-import json, lzma, struct, sys
+import json, lzma, sys
 import numpy as np
 
+import pc2
+
 def read_pc2(path):
-    opener = lzma.open if path.endswith('.xz') else open
-    with opener(path, 'rb') as f:
-        head = f.read(32)
-        if head[:12] != b'POINTCACHE2\0':
-            sys.exit(f'{path}: not a PC2 file')
-        _ver, n, _start, _rate, frames = struct.unpack('<iiffi', head[12:32])
-        data = np.frombuffer(f.read(frames * n * 12), dtype='<f4')
-    return data.reshape(frames, n, 3).astype(np.float64)
+    try:
+        return pc2.read_pc2(path)[0].astype(np.float64)
+    except ValueError as e:
+        sys.exit(str(e))
 
 def kg_error(orig, dec):
     centred = orig - orig.mean(axis=1, keepdims=True)

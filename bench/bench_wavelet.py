@@ -116,7 +116,7 @@ def wavelet_section(animc, sequences, runs, docs_dir):
              f'the paper\'s 1/2/4/8 bpv points), `--runs {runs}`, medians. "Affine-Octree default bpvf at same KG" is '
              'interpolated log-log on the default profile\'s max-error sweep of the same sequence (above); '
              '"wavelet / Affine-Octree" below 1.00× means the wavelet codec needs fewer bits at that KG '
-             'error. The baseline is tools/baseline.py as above.', '',
+             'error. The baseline is bench/baseline.py as above.', '',
              f'![KG error against bpvf, both codecs, every sequence]({PLOT})', '']
     failures = 0
     series = {}
