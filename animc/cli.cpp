@@ -3,6 +3,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -40,92 +41,58 @@ std::string Args::get(const std::string& name, const std::string& fallback) cons
   return it == values_.end() ? fallback : it->second;
 }
 
-Result<double> Args::number(const std::string& name, double fallback) const {
-  if (!has(name)) return fallback;
-  const std::string s = get(name);
-  char* end = nullptr;
-  const double v = std::strtod(s.c_str(), &end);
-  if (s.empty() || *end != '\0') return invalidArgument("--" + name + ": not a number: " + s);
-  return v;
-}
-
-Result<long long> Args::integer(const std::string& name, long long fallback) const {
-  if (!has(name)) return fallback;
-  const std::string s = get(name);
-  char* end = nullptr;
-  const long long v = std::strtoll(s.c_str(), &end, 10);
-  if (s.empty() || *end != '\0') return invalidArgument("--" + name + ": not an integer: " + s);
-  return v;
-}
-
 namespace {
 
-const std::set<std::string> kOctreeOptions = {"profile", "max-error", "bits", "max-depth"};
-const std::set<std::string> kWaveletValueOptions = {"step", "bpv", "target-kg", "parametric-bits"};
-const std::set<std::string> kWaveletSwitches = {"i-frames-only", "progressive-p-frames"};
-
-// An option of the other codec is a mistake, not something to ignore.
-Status rejectForeignOptions(const Args& args, const std::set<std::string>& foreign, const char* codec) {
-  for (const std::string& name : foreign)
-    if (args.has(name)) return invalidArgument("--" + name + " does not apply to --codec " + codec);
-  return Status();
-}
-
-Status readOctreeOptions(const Args& args, AffineOctreeOptions& o) {
-  const std::string profile = args.get("profile", "default");
-  if (profile == "paper") o.profile = Profile::kPaper;
-  else if (profile == "default") o.profile = Profile::kDefault;
-  else return invalidArgument("unknown profile '" + profile + "' (paper, default)");
-  ANIMC_ASSIGN_OR_RETURN(o.max_error, args.number("max-error", o.max_error));
-  ANIMC_ASSIGN_OR_RETURN(long long bits, args.integer("bits", o.bits));
-  ANIMC_ASSIGN_OR_RETURN(long long depth, args.integer("max-depth", o.max_depth));
-  if (bits < kMinBits || bits > kMaxBits) return invalidArgument("--bits must be in [8, 24]");
-  if (depth < 1 || depth > kMaxDepthLimit) return invalidArgument("--max-depth must be in [1, 16]");
-  o.bits = int(bits);
-  o.max_depth = int(depth);
-  return Status();
-}
-
-Status readWaveletOptions(const Args& args, WaveletOptions& o) {
-  ANIMC_ASSIGN_OR_RETURN(o.step, args.number("step", o.step));
-  ANIMC_ASSIGN_OR_RETURN(o.bits_per_vertex, args.number("bpv", o.bits_per_vertex));
-  ANIMC_ASSIGN_OR_RETURN(o.target_kg, args.number("target-kg", o.target_kg));
-  ANIMC_ASSIGN_OR_RETURN(long long bits, args.integer("parametric-bits", o.parametric_bits));
-  if (bits < kMinParametricBits || bits > kMaxParametricBits)
-    return invalidArgument("--parametric-bits must be in [" + std::to_string(kMinParametricBits) + ", " +
-                           std::to_string(kMaxParametricBits) + "]");
-  o.parametric_bits = int(bits);
-  o.temporal_prediction = !args.has("i-frames-only");
-  o.progressive_p_frames = args.has("progressive-p-frames");
-  return Status();
-}
-
-std::set<std::string> encodeOptionNames() {
-  std::set<std::string> names = {"codec", "iframe-interval"};
-  names.insert(kOctreeOptions.begin(), kOctreeOptions.end());
-  names.insert(kWaveletValueOptions.begin(), kWaveletValueOptions.end());
+std::set<std::string> flagsOfEveryCodec(bool switches) {
+  std::set<std::string> names;
+  for (const CodecEntry* codec : allCodecs())
+    for (const std::string& name : switches ? codec->switch_flags : codec->value_flags) names.insert(name);
   return names;
+}
+
+bool hasFlag(const CodecEntry& codec, const std::string& name) {
+  for (const auto* flags : {&codec.value_flags, &codec.switch_flags})
+    if (std::find(flags->begin(), flags->end(), name) != flags->end()) return true;
+  return false;
+}
+
+// An option of a codec not chosen is a mistake, not something to ignore.
+Status rejectForeignOptions(const Args& args, const CodecEntry& chosen) {
+  for (bool switches : {false, true})
+    for (const std::string& name : flagsOfEveryCodec(switches))
+      if (args.has(name) && !hasFlag(chosen, name))
+        return invalidArgument("--" + name + " does not apply to --codec " + chosen.name);
+  return Status();
 }
 
 }  // namespace
 
-const std::set<std::string> kEncodeOptions = encodeOptionNames();
-const std::set<std::string> kEncodeSwitches = kWaveletSwitches;
+const std::set<std::string>& encodeOptions() {
+  static const std::set<std::string> names = [] {
+    std::set<std::string> names = flagsOfEveryCodec(false);
+    names.insert({"codec", "iframe-interval"});
+    return names;
+  }();
+  return names;
+}
+
+const std::set<std::string>& encodeSwitches() {
+  static const std::set<std::string> names = flagsOfEveryCodec(true);
+  return names;
+}
+
+std::string codecUsage() {
+  std::string text;
+  for (const CodecEntry* codec : allCodecs())
+    text += "         " + std::string(codec->name) + ": " + codec->usage + "\n";
+  return text;
+}
 
 Result<EncodeSettings> encodeSettingsFrom(const Args& args) {
+  ANIMC_ASSIGN_OR_RETURN(const CodecEntry* codec, findCodecByName(args.get("codec", allCodecs()[0]->name)));
+  ANIMC_RETURN_IF_ERROR(rejectForeignOptions(args, *codec));
   EncodeSettings s;
-  const std::string codec = args.get("codec", "affine-octree");
-  if (codec == "affine-octree") {
-    ANIMC_RETURN_IF_ERROR(rejectForeignOptions(args, kWaveletValueOptions, "affine-octree"));
-    ANIMC_RETURN_IF_ERROR(rejectForeignOptions(args, kWaveletSwitches, "affine-octree"));
-    ANIMC_RETURN_IF_ERROR(readOctreeOptions(args, s.octree));
-  } else if (codec == "wavelet") {
-    s.codec = CodecId::kWavelet;
-    ANIMC_RETURN_IF_ERROR(rejectForeignOptions(args, kOctreeOptions, "wavelet"));
-    ANIMC_RETURN_IF_ERROR(readWaveletOptions(args, s.wavelet));
-  } else {
-    return invalidArgument("unknown codec '" + codec + "' (affine-octree, wavelet)");
-  }
+  ANIMC_ASSIGN_OR_RETURN(s.options, codec->fromFlags(args));
   ANIMC_ASSIGN_OR_RETURN(long long interval, args.integer("iframe-interval", 0));
   if (interval < 0 || interval > 0x7fffffff) return invalidArgument("--iframe-interval must be >= 0");
   s.iframe_interval = uint32_t(interval);

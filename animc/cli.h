@@ -13,28 +13,28 @@ namespace animc::cli {
 
 // "--name value" options, "--flag" switches and positional arguments. Unknown names are
 // errors, so a typo never passes silently.
-class Args {
+class Args : public OptionValues {
  public:
   // value_options take a value; switches do not.
   Status parse(const std::vector<std::string>& argv, const std::set<std::string>& value_options,
                const std::set<std::string>& switches);
   const std::vector<std::string>& positional() const { return positional_; }
-  bool has(const std::string& name) const { return values_.count(name) > 0; }
-  std::string get(const std::string& name, const std::string& fallback = "") const;
-  Result<double> number(const std::string& name, double fallback) const;
-  Result<long long> integer(const std::string& name, long long fallback) const;
+  bool has(const std::string& name) const override { return values_.count(name) > 0; }
+  std::string get(const std::string& name, const std::string& fallback = "") const override;
 
  private:
   std::vector<std::string> positional_;
   std::map<std::string, std::string> values_;
 };
 
-// --codec --iframe-interval, the Affine-Octree's --profile --max-error --bits --max-depth and
-// the wavelet's --step --bpv --target-kg --parametric-bits (options of the codec not chosen are errors).
-extern const std::set<std::string> kEncodeOptions;
-// The wavelet's --i-frames-only (no temporal prediction: every frame decodes on its own) and
-// --progressive-p-frames (P-frames a decoder may cut).
-extern const std::set<std::string> kEncodeSwitches;
+// --codec, --iframe-interval and every codec's options (codec_registry.h): those of a codec
+// not chosen are errors.
+// (Functions, not constants: the codec table is not there yet while constants are made.)
+const std::set<std::string>& encodeOptions();
+// Every codec's switches, e.g. the wavelet's --i-frames-only.
+const std::set<std::string>& encodeSwitches();
+// "  affine-octree: [--profile paper|predictive] ...\n" for each codec, for the usage text.
+std::string codecUsage();
 Result<EncodeSettings> encodeSettingsFrom(const Args& args);
 
 // Progress on stderr, at most ten updates a second, only when stderr is a terminal or

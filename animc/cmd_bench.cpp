@@ -82,9 +82,9 @@ int runDecodeBench(const Args& args, long long runs) {
 
 int runBench(const std::vector<std::string>& argv) {
   Args args;
-  std::set<std::string> options = kEncodeOptions;
+  std::set<std::string> options = encodeOptions();
   options.insert({"mesh", "runs", "output"});
-  std::set<std::string> switches = kEncodeSwitches;
+  std::set<std::string> switches = encodeSwitches();
   switches.insert({"progress", "json"});
   Status s = args.parse(argv, options, switches);
   if (!s.ok()) return fail(s);

@@ -12,9 +12,9 @@ namespace animc::cli {
 
 int runEncode(const std::vector<std::string>& argv) {
   Args args;
-  std::set<std::string> options = kEncodeOptions;
+  std::set<std::string> options = encodeOptions();
   options.insert({"output", "mesh"});
-  std::set<std::string> switches = kEncodeSwitches;
+  std::set<std::string> switches = encodeSwitches();
   switches.insert({"progress", "json"});
   Status s = args.parse(argv, options, switches);
   if (!s.ok()) return fail(s);

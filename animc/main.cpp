@@ -9,33 +9,33 @@
 
 namespace {
 
-constexpr const char* kUsage =
-    "usage: animc <command> ...   (animc --version prints the release)\n"
-    "  encode IN -o OUT.ams [--mesh M] [--codec affine-octree|wavelet] [--iframe-interval K]\n"
-    "         affine-octree: [--profile paper|default] [--max-error E] [--bits K] [--max-depth D]\n"
-    "         wavelet: [--step S] [--bpv B] [--target-kg X] [--parametric-bits P]\n"
-    "         [--i-frames-only | --progressive-p-frames]\n"
+constexpr const char* kUsageAfterEncode =
     "         [--progress] [--json]\n"
-    "  decode IN.ams -o OUT [--format ply|off|pc2|mdd] [--frames A:B] [--progress]\n"
-    "         PLY/OFF frames go to a new or empty folder OUT, or --replace an existing one\n"
+    "  decode IN.ams -o OUT [--format ply|off|pc2|mdd] [--frames A:B] [--progress] [--replace]\n"
     "         [--bitplanes K] [--max-bytes N]: progressive, fewer bitplanes/bytes per frame\n"
     "         (wavelet files encoded with --progressive-p-frames or --i-frames-only)\n"
+    "         PLY/OFF frames go to a new or empty folder OUT, or --replace an existing one\n"
     "  info IN.ams [--json]\n"
     "  compare ORIGINAL RECONSTRUCTED|IN.ams [--mesh M] [--json] [--per-frame]\n"
     "  bench IN [--mesh M] [encode options] [--runs R] [--json]\n"
     "  bench IN.ams [--runs R] [--json]: decoding only, of that file\n"
     "IN: .pc2/.mdd (optionally .xz, with --mesh), a .ply/.off frame, a folder of them or a\n"
-    ".txt list of frame files. E is a fraction of the root cube's side (0.01 = 1%).\n"
-    "S is the wavelet's finest quantisation step as a fraction of the first frame's bounding-box\n"
-    "diagonal; B caps each frame at B bits per vertex; X is the KG error (in %) to reach with\n"
-    "the fewest bits (down to what S allows).\n";
+    ".txt list of frame files.\n";
+
+std::string usage() {
+  std::string codecs;
+  for (const animc::CodecEntry* codec : animc::allCodecs()) codecs += (codecs.empty() ? "" : "|") + std::string(codec->name);
+  return "usage: animc <command> ...   (animc --version prints the release)\n"
+         "  encode IN -o OUT.ams [--mesh M] [--codec " + codecs + "] [--iframe-interval K]\n" +
+         animc::cli::codecUsage() + kUsageAfterEncode;
+}
 
 }  // namespace
 
 int main(int argc, char** argv) {
   using namespace animc::cli;
   if (argc < 2 || std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h") {
-    std::fputs(kUsage, argc < 2 ? stderr : stdout);
+    std::fputs(usage().c_str(), argc < 2 ? stderr : stdout);
     return argc < 2 ? 2 : 0;
   }
   const std::string command = argv[1];

@@ -12,20 +12,9 @@ JsonObject newReport() {
 }
 
 void addSettings(JsonObject& o, const EncodeSettings& s) {
-  o.add("codec", codecName(s.codec));
-  if (s.codec == CodecId::kWavelet) {
-    o.add("bits_per_vertex_setting", s.wavelet.bits_per_vertex);
-    o.add("step", s.wavelet.step);
-    o.add("target_kg_setting", s.wavelet.target_kg);
-    o.add("parametric_bits", s.wavelet.parametric_bits);
-    o.add("temporal_prediction", s.wavelet.temporal_prediction);
-    o.add("progressive_p_frames", s.wavelet.progressive_p_frames);
-  } else {
-    o.add("profile", profileName(s.octree.profile));
-    o.add("max_error_setting", s.octree.max_error);
-    o.add("bits", s.octree.bits);
-    o.add("max_depth", s.octree.max_depth);
-  }
+  o.add("codec", s.entry().name);
+  for (const SettingValue& setting : s.entry().settings(s.options))
+    std::visit([&](const auto& value) { o.add(setting.key, value); }, setting.value);
   o.add("iframe_interval", s.iframe_interval);
 }
 

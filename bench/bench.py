@@ -47,7 +47,7 @@ from bench_wavelet import wavelet_section  # noqa: E402
 from bench_common import (log, run_bench, loglog_interp, num, pct, mib, table,  # noqa: E402
                           failed_cell, find_sequences, START)
 
-PROFILES = ['paper', 'default']
+PROFILES = ['paper', 'predictive']
 MAX_ERRORS = [0.01, 0.05, 0.10]
 SWEEP_MAX_ERRORS = [0.001, 0.002, 0.005, 0.01, 0.02, 0.05, 0.10, 0.15, 0.25]  # default profile, runs=1
 BASELINE_BITS = list(range(4, 15))
@@ -63,7 +63,7 @@ DESIGN_REFERENCE = [(12, 0.20, 7.2), (10, 0.81, 4.8), (8, 3.3, 3.4)]
 # Long-sequence memory test (skipped with --quick).
 LONG_SOURCE = 'sydney_md2'
 LONG_FRAMES = [1000, 100000]
-LONG_SETTINGS = ['--profile', 'default', '--max-error', '0.01']
+LONG_SETTINGS = ['--profile', 'predictive', '--max-error', '0.01']
 
 # ---------------------------------------------------------------- running things
 
@@ -89,11 +89,11 @@ def sweep_sequence(animc, name, pc2, ply, main_results):
     the points already measured for the main table (the metrics do not depend on R)."""
     sweep = {}
     for me in SWEEP_MAX_ERRORS:
-        if ('default', me) in main_results:
-            sweep[me] = main_results[('default', me)]
+        if ('predictive', me) in main_results:
+            sweep[me] = main_results[('predictive', me)]
             continue
         log(f'{name}: sweep --profile default --max-error {me}')
-        sweep[me] = run_bench(animc, pc2, ply, octree_settings('default', me), 1)
+        sweep[me] = run_bench(animc, pc2, ply, octree_settings('predictive', me), 1)
     return sweep
 
 
@@ -240,8 +240,8 @@ def paper_table(results, vertex_frames):
         rows.append([pct(me), f'{ratio:g}:1', num(8.0 * size / vertex_frames, 3), f'{psnr:g}',
                      ours('paper', me, 'ratio', 2) + ':1', ours('paper', me, 'bpvf', 3),
                      ours('paper', me, 'psnr', 1),
-                     ours('default', me, 'ratio', 2) + ':1', ours('default', me, 'bpvf', 3),
-                     ours('default', me, 'psnr', 1)])
+                     ours('predictive', me, 'ratio', 2) + ':1', ours('predictive', me, 'bpvf', 3),
+                     ours('predictive', me, 'psnr', 1)])
     lines = table(['ME', 'paper ratio', 'paper bpvf', 'paper PSNR dB', 'ours (paper) ratio',
                    'ours (paper) bpvf', 'ours (paper) PSNR dB', 'ours (default) ratio',
                    'ours (default) bpvf', 'ours (default) PSNR dB'], rows)

@@ -50,7 +50,7 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("builds", nargs="+", help="animc executables, the base first")
     parser.add_argument("--data", default=os.path.join(os.path.dirname(ROOT), "shared", "data"))
-    parser.add_argument("--profile", default="default")
+    parser.add_argument("--profile", default="predictive")
     parser.add_argument("--max-errors", default="0.006 0.01 0.014 0.07 0.1 0.14")
     parser.add_argument("--at", default="0.01 0.1")
     args = parser.parse_args()

@@ -8,7 +8,7 @@ namespace {
 
 // Enum order is the script value: append, never reorder.
 const QStringList kCodecs = {"Affine-Octree", "Wavelet"};
-const QStringList kProfiles = {"default", "paper"};
+const QStringList kProfiles = {"predictive", "paper"};
 // How wavelet detail frames refer to the frame before them (animc encode: default,
 // --progressive-p-frames, --i-frames-only).
 const QStringList kWaveletFrames = {"P-frames", "progressive P-frames", "I-frames only"};
@@ -17,26 +17,28 @@ const QStringList kWaveletFrames = {"P-frames", "progressive P-frames", "I-frame
 
 void addEncodeParameters(RichParameterList& par) {
   const EncodeSettings defaults;
+  const AffineOctreeOptions octree_defaults;
+  const WaveletOptions wavelet_defaults;
   par.addParam(RichEnum("Codec", 0, kCodecs, "Codec",
                         "Affine-Octree: per-frame octree of affine motions, every vertex within the max error "
                         "(docs/affine_octree.md). Wavelet: progressive wavelet coding on a mesh hierarchy, "
                         "error set by the step or the bits per vertex (docs/wavelet.md)."));
   par.addParam(RichEnum("Profile", 0, kProfiles, "Profile (Affine-Octree)",
-                        "default: our predictive octree (smaller files); paper: the method exactly as published."));
-  par.addParam(RichFloat("MaxErrorPercent", float(100 * defaults.octree.max_error), "Max error (%) (Affine-Octree)",
+                        "predictive (the default): our predictive octree, smaller files; paper: the method exactly as published."));
+  par.addParam(RichFloat("MaxErrorPercent", float(100 * octree_defaults.max_error), "Max error (%) (Affine-Octree)",
                          "Largest vertex error, in percent of the side of the frame's bounding cube "
                          "(the paper's ME; animc encode --max-error takes the same as a fraction)."));
-  par.addParam(RichInt("Bits", defaults.octree.bits, "Bits (Affine-Octree)",
+  par.addParam(RichInt("Bits", octree_defaults.bits, "Bits (Affine-Octree)",
                        "Paper profile: bits per affine parameter and stored coordinate (8 to 24)."));
-  par.addParam(RichFloat("WaveletStepPercent", float(100 * defaults.wavelet.step), "Step (% of diagonal) (Wavelet)",
+  par.addParam(RichFloat("WaveletStepPercent", float(100 * wavelet_defaults.step), "Step (% of diagonal) (Wavelet)",
                          "Finest quantisation step of the wavelet coefficients, in percent of the diagonal of "
                          "the first frame's bounding box (animc encode --step takes the same as a fraction). "
                          "Smaller: more accurate, larger file."));
-  par.addParam(RichFloat("WaveletBitsPerVertex", float(defaults.wavelet.bits_per_vertex),
+  par.addParam(RichFloat("WaveletBitsPerVertex", float(wavelet_defaults.bits_per_vertex),
                          "Bits per vertex per frame (Wavelet)",
                          "Fixed rate: each frame is cut at this many bits per vertex (the paper's 1, 2, 4, 8); "
                          "0 = no limit, the step alone sets the quality."));
-  par.addParam(RichFloat("WaveletTargetKG", float(defaults.wavelet.target_kg), "Target KG error (%) (Wavelet)",
+  par.addParam(RichFloat("WaveletTargetKG", float(wavelet_defaults.target_kg), "Target KG error (%) (Wavelet)",
                          "Rate control by error: each frame gets the fewest bits that keep the animation's "
                          "KG error at or below this (down to what the step allows); 0 = off."));
   par.addParam(RichEnum("WaveletFrames", 0, kWaveletFrames, "Detail frames (Wavelet)",
@@ -59,7 +61,7 @@ double typedValue(const RichParameterList& par, const QString& name) {
 Status readOctreeParameters(const RichParameterList& par, AffineOctreeOptions& o) {
   const int profile = par.getEnum("Profile");
   if (profile < 0 || profile >= kProfiles.size()) return invalidArgument("unknown profile " + std::to_string(profile));
-  o.profile = profile == 0 ? Profile::kDefault : Profile::kPaper;
+  o.profile = profile == 0 ? Profile::kPredictive : Profile::kPaper;
   const double percent = typedValue(par, "MaxErrorPercent");
   if (!(percent >= 100 * kMinMaxError && percent <= 100 * kMaxMaxError))
     return invalidArgument("the max error must be between 0.0001 % and 50 % of the cube's side, not " +
@@ -88,10 +90,9 @@ Result<EncodeSettings> encodeSettingsFrom(const RichParameterList& par) {
   const int codec = par.getEnum("Codec");
   if (codec < 0 || codec >= kCodecs.size()) return invalidArgument("unknown codec " + std::to_string(codec));
   if (codec == 1) {
-    s.codec = CodecId::kWavelet;
-    ANIMC_RETURN_IF_ERROR(readWaveletParameters(par, s.wavelet));
+    ANIMC_RETURN_IF_ERROR(readWaveletParameters(par, s.wavelet()));
   } else {
-    ANIMC_RETURN_IF_ERROR(readOctreeParameters(par, s.octree));
+    ANIMC_RETURN_IF_ERROR(readOctreeParameters(par, s.octree()));
   }
   const int interval = par.getInt("IFrameInterval");
   if (interval < 0) return invalidArgument("the I-frame interval must be 0 or more");

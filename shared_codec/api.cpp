@@ -6,9 +6,6 @@
 #include <cmath>
 #include <cstdio>
 
-#include "codecs/affine_octree/affine_octree_codec.h"
-#include "codecs/wavelet/progressive_mesh.h"
-#include "codecs/wavelet/wavelet_codec.h"
 #include "container/container_writer.h"
 #include "io/byte_writer.h"
 
@@ -39,75 +36,47 @@ Status checkFrame(const std::vector<float>& xyz, const std::string& where, int64
 }
 
 // A file the default decoder would refuse is not worth writing.
-Status checkDecodable(const Topology& t, CodecId codec) {
+Status checkDecodable(const Topology& t, const CodecEntry& codec) {
   const DecoderLimits limits;
   if (t.vertex_count > limits.max_vertices || t.triangles.size() > limits.max_triangles)
     return invalidArgument("the mesh has " + std::to_string(t.vertex_count) + " vertices and " +
                            std::to_string(t.triangles.size()) + " triangles; decoders accept at most " +
                            std::to_string(limits.max_vertices) + " and " + std::to_string(limits.max_triangles));
-  if (codec == CodecId::kWavelet) {
-    const Status cost = checkHierarchyCost(t);
-    if (!cost.ok()) return invalidArgument(cost.message() + "; --codec affine-octree has no such limit");
-  }
-  return Status();
+  return codec.checkMesh(t);
 }
 
 std::vector<uint8_t> codecParameters(const EncodeSettings& s) {
   ByteWriter w;
-  if (s.codec == CodecId::kWavelet) s.wavelet.write(w);
-  else s.octree.write(w);
+  s.entry().write(s.options, w);
   return w.bytes();
 }
 
-std::unique_ptr<FrameEncoder> makeEncoder(const EncodeSettings& s, const Topology& topology) {
-  if (s.codec == CodecId::kWavelet) return makeWaveletEncoder(s.wavelet, topology);
-  return makeAffineOctreeEncoder(s.octree, topology);
-}
-
-// Fills the codec's half of settings from the HEAD section's parameters.
-Status readCodecParameters(const ContainerHeader& h, EncodeSettings& settings) {
+// The settings a file was written with, from its HEAD section.
+Result<EncodeSettings> readSettings(const ContainerHeader& h) {
+  const CodecEntry* codec = findCodec(uint8_t(h.codec));
+  if (codec == nullptr) return unsupported("codec id " + std::to_string(int(h.codec)) + " is not supported");
   ByteReader params(h.codec_params.data(), h.codec_params.size());
-  settings.codec = h.codec;
+  EncodeSettings settings;
+  ANIMC_ASSIGN_OR_RETURN(settings.options, codec->read(params));
   settings.iframe_interval = h.iframe_interval;
-  if (h.codec == CodecId::kWavelet) {
-    ANIMC_ASSIGN_OR_RETURN(settings.wavelet, WaveletOptions::read(params));
-  } else {
-    ANIMC_ASSIGN_OR_RETURN(settings.octree, AffineOctreeOptions::read(params));
-  }
-  return Status();
+  return settings;
 }
 
 }  // namespace
 
-Status EncodeSettings::validate() const {
-  switch (codec) {
-    case CodecId::kAffineOctree: return octree.validate();
-    case CodecId::kWavelet: return wavelet.validate();
-  }
-  return invalidArgument("unknown codec");
+AffineOctreeOptions& EncodeSettings::octree() {
+  if (!std::holds_alternative<AffineOctreeOptions>(options)) options = AffineOctreeOptions();
+  return std::get<AffineOctreeOptions>(options);
+}
+
+WaveletOptions& EncodeSettings::wavelet() {
+  if (!std::holds_alternative<WaveletOptions>(options)) options = WaveletOptions();
+  return std::get<WaveletOptions>(options);
 }
 
 std::string describeSettings(const EncodeSettings& s) {
-  char line[384];
-  if (s.codec == CodecId::kWavelet) {
-    const WaveletOptions& w = s.wavelet;
-    char rate[96] = "no rate limit";
-    if (w.bits_per_vertex > 0 && w.target_kg > 0)
-      std::snprintf(rate, sizeof rate, "target KG %g %% within %g bits per vertex", w.target_kg, w.bits_per_vertex);
-    else if (w.bits_per_vertex > 0)
-      std::snprintf(rate, sizeof rate, "fixed rate %g bits per vertex", w.bits_per_vertex);
-    else if (w.target_kg > 0)
-      std::snprintf(rate, sizeof rate, "target KG %g %%", w.target_kg);
-    std::snprintf(line, sizeof line, "codec: wavelet, %s, step %g of the diagonal, parametric bits %d, %s, "
-                  "iframe interval %u\n", rate, w.step, w.parametric_bits,
-                  !w.temporal_prediction ? "I-frames only" : w.progressive_p_frames ? "progressive P-frames" : "P-frames",
-                  s.iframe_interval);
-    return line;
-  }
-  std::snprintf(line, sizeof line, "codec: %s, profile %s, max error %g of the root cube, bits %d, "
-                "iframe interval %u\n", codecName(s.codec), profileName(s.octree.profile),
-                s.octree.max_error, s.octree.bits, s.iframe_interval);
-  return line;
+  return "codec: " + std::string(s.entry().name) + ", " + s.entry().describe(s.options) + ", iframe interval " +
+         std::to_string(s.iframe_interval) + "\n";
 }
 
 Result<EncodeReport> encodeSequence(FrameSource& source, const EncodeSettings& settings,
@@ -115,10 +84,10 @@ Result<EncodeReport> encodeSequence(FrameSource& source, const EncodeSettings& s
                                     const FrameObserver& observer) {
   ANIMC_RETURN_IF_ERROR(settings.validate());
   ANIMC_RETURN_IF_ERROR(checkSource(source));
-  ANIMC_RETURN_IF_ERROR(checkDecodable(source.topology(), settings.codec));
+  ANIMC_RETURN_IF_ERROR(checkDecodable(source.topology(), settings.entry()));
   const Topology& topology = source.topology();
   ContainerHeader header;
-  header.codec = settings.codec;
+  header.codec = settings.codec();
   header.codec_params = codecParameters(settings);
   header.vertex_count = topology.vertex_count;
   header.triangle_count = topology.triangles.size();
@@ -127,7 +96,7 @@ Result<EncodeReport> encodeSequence(FrameSource& source, const EncodeSettings& s
 
   ContainerWriter writer;
   ANIMC_RETURN_IF_ERROR(writer.open(out_path, header, topology));
-  std::unique_ptr<FrameEncoder> encoder = makeEncoder(settings, topology);
+  std::unique_ptr<FrameEncoder> encoder = settings.entry().makeEncoder(settings.options, topology);
   EncodeReport report;
   report.vertices = topology.vertex_count;
   report.triangles = topology.triangles.size();
@@ -171,25 +140,12 @@ Result<std::unique_ptr<AmsSource>> AmsSource::open(const std::string& path, cons
   std::unique_ptr<AmsSource> s(new AmsSource());
   s->path_ = path;
   ANIMC_ASSIGN_OR_RETURN(s->reader_, ContainerReader::open(path, limits));
-  Status st = readCodecParameters(s->reader_->info().header, s->settings_);
-  if (!st.ok()) return st.withContext(path);
-  const bool partial = progressive.max_bitplanes > 0 || progressive.max_payload_bytes > 0;
-  if (s->settings_.codec == CodecId::kWavelet) {
-    // A P-frame decoded from part of its payload leaves the decoder's coding contexts
-    // different from the encoder's unless the file was coded without them: every later frame
-    // of the group would decode wrongly.
-    if (partial && !s->settings_.wavelet.cuttable())
-      return invalidArgument(path + ": progressive decoding (fewer bitplanes or bytes) needs a file encoded with "
-                             "animc encode --codec wavelet --progressive-p-frames or --i-frames-only; this one's "
-                             "P-frames use the previous frame's coding contexts");
-    s->decoder_ = makeWaveletDecoder(s->settings_.wavelet, s->reader_->topology(), progressive);
-  } else if (partial) {
-    return invalidArgument(path + ": progressive decoding (fewer bitplanes or bytes) needs a wavelet-coded "
-                           "file; this one is " + codecName(s->settings_.codec));
-  } else {
-    s->decoder_ = makeAffineOctreeDecoder(s->settings_.octree, s->reader_->topology());
-  }
-  st = s->seek(0);
+  auto settings = readSettings(s->reader_->info().header);
+  if (!settings.ok()) return settings.status().withContext(path);
+  s->settings_ = settings.value();
+  ANIMC_ASSIGN_OR_RETURN(s->decoder_, s->settings_.entry().makeDecoder(s->settings_.options, s->reader_->topology(),
+                                                                       progressive, path));
+  Status st = s->seek(0);
   if (!st.ok()) return st;
   return s;
 }

@@ -8,10 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "codecs/affine_octree/options.h"
-#include "codecs/codec_ids.h"
-#include "codecs/frame_codec.h"
-#include "codecs/wavelet/options.h"
+#include "codecs/codec_registry.h"
 #include "container/container_reader.h"
 #include "core/sequence.h"
 #include "core/status.h"
@@ -19,12 +16,19 @@
 namespace animc {
 
 struct EncodeSettings {
-  CodecId codec = CodecId::kAffineOctree;
-  AffineOctreeOptions octree;  // used when codec is kAffineOctree
-  WaveletOptions wavelet;      // used when codec is kWavelet
+  CodecOptions options;  // the chosen codec's options (Affine-Octree's defaults by default)
   uint32_t iframe_interval = 0;  // an intra frame every K frames; 0 = the first frame only
 
-  Status validate() const;
+  CodecId codec() const { return codecOf(options).id; }
+  const CodecEntry& entry() const { return codecOf(options); }
+  // The options of that codec; the mutable ones choose that codec first (with its defaults)
+  // when another one was chosen, so `s.wavelet().step = 1e-3` selects the wavelet codec.
+  AffineOctreeOptions& octree();
+  WaveletOptions& wavelet();
+  const AffineOctreeOptions& octree() const { return std::get<AffineOctreeOptions>(options); }
+  const WaveletOptions& wavelet() const { return std::get<WaveletOptions>(options); }
+
+  Status validate() const { return entry().validate(options); }
 };
 
 // One line such as "codec: affine-octree, profile default, max error 0.01 of the root cube, ..."

@@ -1,24 +1,20 @@
 // SPDX-License-Identifier: Apache-2.0
-// Every on-wire identifier of the codecs, in one place (docs/format.md mirrors this file).
+// Every on-wire identifier of the codecs, in one place (docs/format.md 6.1 and 10.1 mirror
+// this file). Ids are never reused: a change to a codec's bytes takes a new id or profile.
 #pragma once
 #include <cstdint>
-#include <string>
 
 namespace animc {
 
 enum class CodecId : uint8_t {
-  kAffineOctree = 1,
-  kWavelet = 2,  // Guskov & Khodakovsky 2004 (docs/wavelet.md)
+  kAffineOctree = 1,  // docs/affine_octree.md
+  kWavelet = 2,       // Guskov & Khodakovsky 2004 (docs/wavelet.md)
 };
 
+// Profiles of the Affine-Octree codec (its Profile parameter).
 enum class Profile : uint8_t {
-  kPaper = 0,    // the Affine-Octree paper as published (docs/affine_octree.md, "paper")
-  kDefault = 1,  // our predictive variant of the same octree (docs/affine_octree.md, "default")
+  kPaper = 0,       // the Affine-Octree paper as published (docs/affine_octree.md, "paper")
+  kPredictive = 1,  // our predictive variant of the same octree, the default (docs/affine_octree.md)
 };
-
-const char* codecName(CodecId id);  // "affine-octree", "wavelet"
-bool isKnownCodec(uint8_t id);
-std::string knownCodecList();  // "1 (affine-octree), 2 (wavelet)"
-const char* profileName(Profile p);
 
 }  // namespace animc

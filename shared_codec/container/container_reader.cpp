@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include "container/connectivity_coder.h"
+#include "codecs/codec_registry.h"
 #include "container/crc32.h"
 #include "io/byte_reader.h"
 
@@ -91,7 +92,7 @@ Status ContainerReader::openHeader() {
   ByteReader r(head.data(), head.size(), kFileHeaderBytes + 12);
   ContainerHeader& hd = info_.header;
   ANIMC_ASSIGN_OR_RETURN(uint8_t codec, r.u8("Codec_Id"));
-  if (!isKnownCodec(codec))
+  if (findCodec(codec) == nullptr)
     return unsupported("codec id " + std::to_string(codec) + " is not supported (this build reads " +
                        knownCodecList() + "; a newer animcompress may read it)");
   hd.codec = CodecId(codec);

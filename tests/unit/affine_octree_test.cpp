@@ -35,8 +35,8 @@ class AffineOctreeRoundTrip : public ::testing::TestWithParam<Case> {};
 TEST_P(AffineOctreeRoundTrip, EveryVertexWithinMaxErrorAndDecoderMatchesEncoder) {
   MemorySequence seq = gridSequence(24, 20, 30, 1.0, 1.0);
   EncodeSettings settings;
-  settings.octree.profile = GetParam().profile;
-  settings.octree.max_error = GetParam().max_error;
+  settings.octree().profile = GetParam().profile;
+  settings.octree().max_error = GetParam().max_error;
   settings.iframe_interval = GetParam().iframe_interval;
   const std::string path = tempPath("roundtrip.ams");
   std::vector<std::vector<float>> encoder_view;
@@ -56,13 +56,13 @@ TEST_P(AffineOctreeRoundTrip, EveryVertexWithinMaxErrorAndDecoderMatchesEncoder)
 
 INSTANTIATE_TEST_SUITE_P(Profiles, AffineOctreeRoundTrip,
                          ::testing::Values(Case{Profile::kPaper, 0.01, 0}, Case{Profile::kPaper, 0.001, 7},
-                                           Case{Profile::kDefault, 0.01, 0}, Case{Profile::kDefault, 0.001, 7},
-                                           Case{Profile::kDefault, 0.1, 0}));
+                                           Case{Profile::kPredictive, 0.01, 0}, Case{Profile::kPredictive, 0.001, 7},
+                                           Case{Profile::kPredictive, 0.1, 0}));
 
 TEST(AffineOctree, RigidMotionCodesOneCellPerFrame) {
   MemorySequence seq = gridSequence(30, 30, 12, 0.0, 1.0);
   EncodeSettings settings;
-  settings.octree.profile = Profile::kPaper;
+  settings.octree().profile = Profile::kPaper;
   const std::string path = tempPath("rigid.ams");
   auto report = encodeSequence(seq, settings, path);
   ASSERT_TRUE(report.ok()) << report.status().message();

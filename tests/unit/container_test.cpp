@@ -65,7 +65,7 @@ const Bytes& validFile(Profile profile) {
   if (bytes.empty()) {
     MemorySequence seq = gridSequence(kNx, kNy, kFrames, 1.0, 0.5);
     EncodeSettings settings;
-    settings.octree.profile = profile;
+    settings.octree().profile = profile;
     settings.iframe_interval = 4;
     const std::string path = tempPath("valid.ams");
     auto report = encodeSequence(seq, settings, path);
@@ -193,7 +193,7 @@ TEST_P(ContainerAttack, DamageBehindAValidCrcNeverCrashes) {
   EXPECT_GT(refused, 0) << "the structural checks behind the CRCs never fired";
 }
 
-INSTANTIATE_TEST_SUITE_P(Profiles, ContainerAttack, ::testing::Values(Profile::kPaper, Profile::kDefault),
+INSTANTIATE_TEST_SUITE_P(Profiles, ContainerAttack, ::testing::Values(Profile::kPaper, Profile::kPredictive),
                          [](const auto& info) { return std::string(profileName(info.param)); });
 
 class ContainerErrors : public ::testing::Test {
@@ -203,7 +203,7 @@ class ContainerErrors : public ::testing::Test {
     writeBytes(path_, bytes);
     return decodesFully(path_, limits);
   }
-  const Bytes& file_ = validFile(Profile::kDefault);
+  const Bytes& file_ = validFile(Profile::kPredictive);
   const std::string path_ = tempPath("errors.ams");
 };
 

@@ -199,14 +199,14 @@ TEST_F(EncodeInput, InvalidOptionsAreRefused) {
                         Case{-0.01, 16, 10, "max error"}, Case{std::nan(""), 16, 10, "max error"},
                         Case{0.01, 30, 10, "bits"}, Case{0.01, 7, 10, "bits"}, Case{0.01, 16, 0, "depth"},
                         Case{0.01, 16, 17, "depth"}}) {
-    for (Profile profile : {Profile::kPaper, Profile::kDefault}) {
+    for (Profile profile : {Profile::kPaper, Profile::kPredictive}) {
       SCOPED_TRACE(std::string(c.word) + " " + profileName(profile));
       MemorySequence seq = gridSequence(kNx, kNy, 3, 1.0, 0.5);
       EncodeSettings settings;
-      settings.octree.profile = profile;
-      settings.octree.max_error = c.max_error;
-      settings.octree.bits = c.bits;
-      settings.octree.max_depth = c.max_depth;
+      settings.octree().profile = profile;
+      settings.octree().max_error = c.max_error;
+      settings.octree().bits = c.bits;
+      settings.octree().max_depth = c.max_depth;
       EXPECT_EQ(settings.validate().code(), StatusCode::kInvalidArgument);
       expectRefused(seq, settings, StatusCode::kInvalidArgument, {c.word});
     }

@@ -53,10 +53,10 @@ struct GoldenFile {
 std::map<std::string, GoldenFile> goldenFiles() {
   std::map<std::string, GoldenFile> files;
   EncodeSettings paper, predictive, wavelet;
-  paper.octree.profile = Profile::kPaper;
-  predictive.octree.profile = Profile::kDefault;
-  wavelet.codec = CodecId::kWavelet;
-  wavelet.wavelet.step = 1e-3;
+  paper.octree().profile = Profile::kPaper;
+  predictive.octree().profile = Profile::kPredictive;
+  wavelet.options = WaveletOptions();
+  wavelet.wavelet().step = 1e-3;
   files["affine_octree_paper.v1.ams"] = {paper, false};
   files["affine_octree_default.v1.ams"] = {predictive, true};
   files["wavelet.v1.ams"] = {wavelet, false};

@@ -27,8 +27,8 @@ TEST_P(RealDataRoundTrip, EveryDecodedVertexIsWithinMaxError) {
   MemorySequence seq = realSequence(GetParam().sequence, 0);
   ASSERT_FALSE(HasFailure());  // the whole sequence was read
   EncodeSettings settings;
-  settings.octree.profile = GetParam().profile;
-  settings.octree.max_error = GetParam().max_error;
+  settings.octree().profile = GetParam().profile;
+  settings.octree().max_error = GetParam().max_error;
   const std::string path = tempPath(std::string(GetParam().sequence) + ".ams");
   auto report = encodeSequence(seq, settings, path);
   ASSERT_TRUE(report.ok()) << report.status().message();
@@ -43,10 +43,10 @@ TEST_P(RealDataRoundTrip, EveryDecodedVertexIsWithinMaxError) {
 INSTANTIATE_TEST_SUITE_P(
     SharedData, RealDataRoundTrip,
     ::testing::Values(RealCase{"chickenCrossing", Profile::kPaper, 0.01},
-                      RealCase{"chickenCrossing", Profile::kDefault, 0.01},
-                      RealCase{"oa_angelyss_lower", Profile::kDefault, 0.05},
+                      RealCase{"chickenCrossing", Profile::kPredictive, 0.01},
+                      RealCase{"oa_angelyss_lower", Profile::kPredictive, 0.05},
                       RealCase{"oa_gargoyle_upper", Profile::kPaper, 0.05},
-                      RealCase{"sydney_md2", Profile::kDefault, 0.002},
+                      RealCase{"sydney_md2", Profile::kPredictive, 0.002},
                       RealCase{"sydney_md2", Profile::kPaper, 0.1}),
     [](const ::testing::TestParamInfo<RealCase>& info) {
       return std::string(info.param.sequence) + "_" + profileName(info.param.profile) + "_" +

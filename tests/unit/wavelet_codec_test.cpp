@@ -297,7 +297,7 @@ TEST(WaveletCodec, MeshWhoseHierarchyWouldTakeTooLongIsRefused) {
 
   MemorySequence source = fan;
   EncodeSettings settings;
-  settings.codec = CodecId::kWavelet;
+  settings.options = WaveletOptions();
   const std::string path = testing_support::tempPath("fan.ams");
   auto encoded = encodeSequence(source, settings, path);
   ASSERT_FALSE(encoded.ok());

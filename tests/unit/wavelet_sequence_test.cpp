@@ -32,10 +32,10 @@ class WaveletProgressiveOnSequence : public ::testing::TestWithParam<const char*
 
 EncodeSettings waveletSettings(double step, double bits_per_vertex, bool p_frames = true) {
   EncodeSettings s;
-  s.codec = CodecId::kWavelet;
-  s.wavelet.step = step;
-  s.wavelet.bits_per_vertex = bits_per_vertex;
-  s.wavelet.temporal_prediction = p_frames;
+  s.options = WaveletOptions();
+  s.wavelet().step = step;
+  s.wavelet().bits_per_vertex = bits_per_vertex;
+  s.wavelet().temporal_prediction = p_frames;
   return s;
 }
 
@@ -208,7 +208,7 @@ TEST(WaveletSequence, ProgressivePFramesDecodeCutAndDriftStopsAtParametricFrames
   MemorySequence seq = realSequence("chickenCrossing", 40);
   const std::string path = tempPath("wavelet_progressive_p.ams");
   EncodeSettings settings = waveletSettings(1e-4, 0, true);
-  settings.wavelet.progressive_p_frames = true;
+  settings.wavelet().progressive_p_frames = true;
   settings.iframe_interval = 10;
   const Encoded e = encodeTo(seq, settings, path);
   EXPECT_EQ(e.report.intra_frames, 4u);

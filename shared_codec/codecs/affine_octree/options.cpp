@@ -6,8 +6,16 @@
 
 namespace animc {
 
+const char* profileName(Profile p) {
+  switch (p) {
+    case Profile::kPaper: return "paper";
+    case Profile::kPredictive: return "predictive";
+  }
+  return "unknown";
+}
+
 Status AffineOctreeOptions::validate() const {
-  if (profile != Profile::kPaper && profile != Profile::kDefault)
+  if (profile != Profile::kPaper && profile != Profile::kPredictive)
     return invalidArgument("unknown profile " + std::to_string(int(profile)));
   if (!(max_error >= kMinMaxError && max_error <= kMaxMaxError))
     return invalidArgument("max error " + std::to_string(max_error) + " outside [" +
@@ -32,7 +40,7 @@ Result<AffineOctreeOptions> AffineOctreeOptions::read(ByteReader& r) {
   ANIMC_ASSIGN_OR_RETURN(uint8_t profile, r.u8("Profile"));
   // A profile is a variant of the codec's bitstream (its parameters may differ too): one this
   // build lacks is a newer file, not a broken one.
-  if (profile != uint8_t(Profile::kPaper) && profile != uint8_t(Profile::kDefault))
+  if (profile != uint8_t(Profile::kPaper) && profile != uint8_t(Profile::kPredictive))
     return unsupported("codec parameters: affine-octree profile " + std::to_string(profile) +
                        " is not supported (this build reads 0 paper, 1 default; a newer animcompress may read it)");
   ANIMC_ASSIGN_OR_RETURN(o.max_error, r.f64("Max_Error"));

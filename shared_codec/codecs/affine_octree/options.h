@@ -12,7 +12,7 @@
 namespace animc {
 
 struct AffineOctreeOptions {
-  Profile profile = Profile::kDefault;
+  Profile profile = Profile::kPredictive;
   // Largest allowed vertex error, as a fraction of the side of the root cube (the bounding
   // cube of the reference frame). 0.01 is the paper's "ME = 1%".
   double max_error = 0.01;
@@ -25,6 +25,9 @@ struct AffineOctreeOptions {
   void write(ByteWriter& w) const;
   static Result<AffineOctreeOptions> read(ByteReader& r);
 };
+
+// "paper", "predictive".
+const char* profileName(Profile p);
 
 // Ranges accepted by validate() and by the decoder.
 constexpr double kMinMaxError = 1e-6;

@@ -63,6 +63,7 @@ constexpr double kMaxTargetKg = 100;
 struct WaveletDecodeControl {
   int max_bitplanes = 0;          // decode at most this many bitplanes per frame; 0 = all
   uint64_t max_payload_bytes = 0;  // read at most this many bytes of each frame; 0 = all
+  bool partial() const { return max_bitplanes > 0 || max_payload_bytes > 0; }
 };
 
 }  // namespace animc

@@ -1,0 +1,76 @@
+// SPDX-License-Identifier: Apache-2.0
+// The codec table: one entry per codec holds everything the library, the animc tool and the
+// reports need to know of it (its id and name, its options on the command line, in the file
+// and in reports, its encoder and decoder), so that a codec, or an option of one, is added in
+// one place. docs/adding_a_codec.md lists the steps.
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "codecs/codec_ids.h"
+#include "codecs/codec_options.h"
+#include "codecs/frame_codec.h"
+#include "codecs/option_values.h"
+#include "core/sequence.h"
+#include "core/status.h"
+#include "io/byte_reader.h"
+#include "io/byte_writer.h"
+
+namespace animc {
+
+// One named setting of a codec as reports show it (`animc info --json`, ...).
+struct SettingValue {
+  std::string key;
+  std::variant<double, int64_t, bool, std::string> value;
+};
+
+struct CodecEntry {
+  CodecId id;
+  const char* name;  // on the command line and in reports: "affine-octree"
+
+  // Command line: the codec's options that take a value, its switches, and its usage (the
+  // options, then what their values mean; lines after the first indented by 11 spaces).
+  std::vector<std::string> value_flags;
+  std::vector<std::string> switch_flags;
+  const char* usage;
+  // The codec's defaults with the flags of `values` applied (range-checked).
+  Result<CodecOptions> (*fromFlags)(const OptionValues& values);
+
+  Status (*validate)(const CodecOptions& options);
+  // Codec_Params of the HEAD section (docs/format.md 10.1, 11.1).
+  void (*write)(const CodecOptions& options, ByteWriter& out);
+  Result<CodecOptions> (*read)(ByteReader& in);
+  // "profile predictive, max error 0.01 of the root cube, bits 16", for a settings line.
+  std::string (*describe)(const CodecOptions& options);
+  std::vector<SettingValue> (*settings)(const CodecOptions& options);
+
+  // Why this codec cannot code a mesh the container accepts, or ok.
+  Status (*checkMesh)(const Topology& topology);
+  std::unique_ptr<FrameEncoder> (*makeEncoder)(const CodecOptions& options, const Topology& topology);
+  // A decoder for the file's options; `file` names the file in messages (a partial `control`
+  // is refused for codecs and files that cannot be cut).
+  Result<std::unique_ptr<FrameDecoder>> (*makeDecoder)(const CodecOptions& options, const Topology& topology,
+                                                       const WaveletDecodeControl& control,
+                                                       const std::string& file);
+};
+
+// Every codec, in Codec_Id order.
+const std::vector<const CodecEntry*>& allCodecs();
+// The entry of a codec id, or null for an id this build does not implement.
+const CodecEntry* findCodec(uint8_t id);
+// The entry of a codec name, or an error listing the names.
+Result<const CodecEntry*> findCodecByName(const std::string& name);
+// The entry of the codec whose options these are.
+const CodecEntry& codecOf(const CodecOptions& options);
+
+const char* codecName(CodecId id);  // "affine-octree", "wavelet"
+std::string knownCodecList();       // "1 (affine-octree), 2 (wavelet)"
+
+// The entries of the codecs (each in its codec's folder).
+extern const CodecEntry kAffineOctreeEntry;
+extern const CodecEntry kWaveletEntry;
+
+}  // namespace animc
