@@ -71,7 +71,7 @@ class RangeEncoder {
       range_ -= bound;
     }
     m.update(bit);
-    normalize();
+    normalise();
   }
   // A symbol spanning [start, end) of 2^15 (symbol_model.h); the last span, which ends at
   // 2^15, takes whatever the scaled spans leave of the range, as a 1 bit does above.
@@ -79,14 +79,14 @@ class RangeEncoder {
     const uint32_t unit = range_ >> kProbBits;
     low_ += unit * start;
     range_ = (end < kProbOne ? unit * end : range_) - unit * start;
-    normalize();
+    normalise();
   }
   // Equiprobable bits (signs, low mantissa bits): no model, no adaptation.
   void encodeRaw(uint32_t value, int bits) {
     for (int i = bits - 1; i >= 0; --i) {
       range_ >>= 1;
       if ((value >> i) & 1) low_ += range_;
-      normalize();
+      normalise();
     }
   }
   // Ends the stream with the fewest bytes (1 to 4) that pin the decoder's code inside the
@@ -110,7 +110,7 @@ class RangeEncoder {
   }
 
  private:
-  void normalize() {
+  void normalise() {
     while (range_ < (1u << 24)) {
       range_ <<= 8;
       shiftLow();
@@ -151,7 +151,7 @@ class RangeDecoder {
     code_ -= bit ? bound : 0;
     range_ = bit ? range_ - bound : bound;
     m.update(bit);
-    normalize();
+    normalise();
     return bit;
   }
   // A bit that only becomes data (a sign, a mantissa bit): masks instead of branches, since
@@ -169,7 +169,7 @@ class RangeDecoder {
     const uint32_t mask = BitModel::maskOf(bit);
     code_ -= bound & mask;
     range_ = bound + ((range_ - bound - bound) & mask);  // range_ - bound when the bit is 1
-    normalize();
+    normalise();
     return bit;
   }
   // A symbol in two steps (symbol_model.h): the value in 15-bit units that the coded span
@@ -182,7 +182,7 @@ class RangeDecoder {
     const uint32_t unit = range_ >> kProbBits;
     code_ -= unit * start;
     range_ = (end < kProbOne ? unit * end : range_) - unit * start;
-    normalize();
+    normalise();
   }
   uint32_t decodeRaw(int bits) {
     uint32_t v = 0;
@@ -191,7 +191,7 @@ class RangeDecoder {
       const uint32_t bit = code_ >= range_;
       code_ -= range_ & BitModel::maskOf(int(bit));
       v = (v << 1) | bit;
-      normalize();
+      normalise();
     }
     return v;
   }
@@ -203,7 +203,7 @@ class RangeDecoder {
   const uint8_t* position() const { return p_; }
 
  private:
-  void normalize() {
+  void normalise() {
     while (range_ < (1u << 24)) {
       range_ <<= 8;
       code_ = (code_ << 8) | nextByte();

@@ -159,7 +159,7 @@ TEST(OctreePartition, SplitsAreStablePartitionsByOctant) {
 
 // The prior's one-pass kernel (which on AVX2 CPUs sums while it gathers, normalises frame f-2
 // point by point and solves with a row per vector) against its definition written out of the
-// frame-wide and portable pieces: normalize(), gatherPoints(), fitSums() about the first
+// frame-wide and portable pieces: normalise(), gatherPoints(), fitSums() about the first
 // point, solveFit(). Bit for bit, since encoder and decoder may run either. It must also find
 // an affine motion that the points follow exactly.
 TEST(CellKernels, GatheredMotionIsTheFitOfTheNormalisedPoints) {
@@ -173,7 +173,7 @@ TEST(CellKernels, GatheredMotionIsTheFitOfTheNormalisedPoints) {
     for (double& x : before) x = 3.0 + 7.0 * uniform(rng);  // world units
     const RootCube cube = boundingCube(before);
     std::vector<double> unit_before;
-    normalize(cube, before, unit_before);
+    normalise(cube, before, unit_before);
     for (size_t v = 0; v < count; ++v) {
       const double* b = &unit_before[3 * v];
       for (int r = 0; r < 3; ++r)  // exact motion about the cube's centre, plus nothing

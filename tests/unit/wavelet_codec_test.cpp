@@ -8,7 +8,7 @@
 
 #include "api.h"
 #include "codec_test_support.h"
-#include "codecs/affine_octree/iframe_coder.h"
+#include "codecs/common/static_position_coder.h"
 #include "codecs/wavelet/progressive_mesh.h"
 #include "codecs/wavelet/wavelet_codec.h"
 #include "test_sequences.h"
@@ -288,7 +288,7 @@ TEST(WaveletCodec, MeshWhoseHierarchyWouldTakeTooLongIsRefused) {
   const MemorySequence fan = fanSequence(3000);
   std::vector<uint8_t> parametric = {uint8_t(WaveletFrameType::kParametric)};
   std::vector<double> positions(fan.frames()[0].begin(), fan.frames()[0].end()), recon;
-  IFrameCoder(fan.topology()).encode(positions, 1e-3, parametric, recon);
+  StaticPositionCoder(fan.topology()).encode(positions, 1e-3, parametric, recon);
   auto decoder = makeWaveletDecoder(WaveletOptions(), fan.topology());
   std::vector<float> xyz;
   const Status decoded = decoder->decodeFrame(ByteReader(parametric.data(), parametric.size()), xyz, nullptr);

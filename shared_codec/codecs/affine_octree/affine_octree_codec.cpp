@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "codecs/affine_octree/iframe_coder.h"
+#include "codecs/common/static_position_coder.h"
 #include "codecs/affine_octree/octree_shared.h"
 #include "codecs/affine_octree/paper_octree.h"
 #include "codecs/affine_octree/predictive_octree.h"
@@ -39,13 +39,13 @@ struct LoopState {
   // Normalises `current` into its root cube, and returns the cube.
   RootCube prepare() {
     const RootCube cube = has_before ? current_cube : boundingCube(current);
-    normalize(cube, current, u);
+    normalise(cube, current, u);
     return cube;
   }
   void advance(const RootCube& cube) {
     before.swap(current);
     has_before = true;
-    current_cube = denormalize(cube, recon_unit, current);
+    current_cube = denormalise(cube, recon_unit, current);
   }
   void restart() {
     has_current = true;
@@ -73,7 +73,7 @@ class AffineOctreeEncoder final : public FrameEncoder {
  private:
   bool encodeInter(std::vector<uint8_t>& out, FrameCodingStats& stats) {
     const RootCube cube = state_.prepare();
-    normalize(cube, x_, q_);
+    normalise(cube, x_, q_);
     for (double c : q_)
       if (std::fabs(c) > kMaxUnitCoordinate) return false;
     PFrameInput in{&state_.u, state_.has_before ? &state_.before : nullptr, cube, &q_, innerMaxError(options_),
@@ -102,7 +102,7 @@ class AffineOctreeEncoder final : public FrameEncoder {
   }
 
   AffineOctreeOptions options_;
-  IFrameCoder intra_;
+  StaticPositionCoder intra_;
   PaperOctreeEncoder paper_;
   PredictiveOctreeEncoder predictive_;
   uint32_t vertex_count_;
@@ -146,7 +146,7 @@ class AffineOctreeDecoder final : public FrameDecoder {
   }
 
   AffineOctreeOptions options_;
-  IFrameCoder intra_;
+  StaticPositionCoder intra_;
   PaperOctreeDecoder paper_;
   PredictiveOctreeDecoder predictive_;
   LoopState state_;

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// The Affine-Octree codec as seen by the container: intra frames through IFrameCoder,
+// The Affine-Octree codec as seen by the container: intra frames through StaticPositionCoder,
 // inter frames through the profile's octree coder, closed loop on the reconstruction.
 #pragma once
 #include <memory>

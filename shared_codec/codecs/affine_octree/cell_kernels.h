@@ -39,7 +39,7 @@ void solveFit(const FitSums& s, size_t n, double lambda, const double prior_L[9]
 
 // gatherPoints() of frame f-1 (`reference`), together with the cell's motion from frame f-2
 // (`before`, in world units: each point is normalised into `cube` on the way, with
-// normalize()'s arithmetic) to f-1: solveFit() of the sums over (before, reference) about the
+// normalise()'s arithmetic) to f-1: solveFit() of the sums over (before, reference) about the
 // first before point, with no prior and the ridge weight fitCentred() gives the reference
 // points' frame. In one pass over the indices on AVX2 CPUs, where the before points are never
 // stored; `scratch` (n·kPointStride doubles) holds them on the others.

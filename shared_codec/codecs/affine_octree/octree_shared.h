@@ -1,43 +1,13 @@
 // SPDX-License-Identifier: Apache-2.0
-// What the Affine-Octree encoder and decoder compute identically from the reference frame:
-// its bounding cube, the normalised positions, and the vertex lists of the octree cells.
+// What the Affine-Octree encoder and decoder compute identically from the reference frame's
+// normalised positions (codecs/common/root_cube.h): the vertex lists of the octree cells.
 #pragma once
 #include <cstdint>
 #include <vector>
 
-#include "core/simd_math.h"
-#include "core/status.h"
+#include "codecs/common/root_cube.h"
 
 namespace animc {
-
-// The root cube of the paper: tight bounding cube of the reference frame, side S.
-struct RootCube {
-  double min[3] = {0, 0, 0};
-  double side = 1;
-};
-
-// Positions are xyz-interleaved doubles.
-RootCube boundingCube(const std::vector<double>& xyz);
-void normalize(const RootCube& cube, const std::vector<double>& xyz, std::vector<double>& out);
-// normalize()'s arithmetic for one point, (x − min) · (1 / side), x and y through a Pair: the
-// portable normalize() and the passes that normalise points as they meet them share it.
-struct PointNormaliser {
-  Pair min_xy;
-  double min_z, inv;
-  explicit PointNormaliser(const RootCube& cube)
-      : min_xy(loadPair(cube.min)), min_z(cube.min[2]), inv(1.0 / cube.side) {}
-  void apply(const double* p, double out[3]) const {
-    storePair(out, (loadPair(p) - min_xy) * splat(inv));
-    out[2] = (p[2] - min_z) * inv;
-  }
-};
-// out = cube.min + cube.side · unit, returning the bounding cube of out (what boundingCube(out)
-// returns) found in the same pass.
-RootCube denormalize(const RootCube& cube, const std::vector<double>& unit, std::vector<double>& out);
-// A decoded frame as floats, what both codecs' decoders return; kCorrupt naming the first
-// vertex with a coordinate that is NaN, infinite or beyond ±1e30, which no valid stream
-// decodes to.
-Status decodedFrameToFloats(const std::vector<double>& frame, std::vector<float>& out);
 
 // A cell: its depth and the range [begin, end) of the partition's vertex order holding its
 // vertices. (Its corner and side follow from the path to it; nothing needs them.)

@@ -72,9 +72,9 @@ class PaperOctreeDecoder {
 };
 
 // Shared arithmetic of the two sides.
-uint32_t quantizeUnit(double value, double lo, double hi, int bits);
+uint32_t quantiseUnit(double value, double lo, double hi, int bits);
 // Inline: the decoder calls these for every coded value and every vertex.
-inline double dequantizeUnit(uint32_t q, double lo, double hi, int bits) {
+inline double dequantiseUnit(uint32_t q, double lo, double hi, int bits) {
   return lo + double(q) * (hi - lo) / double((1u << bits) - 1);
 }
 inline void applyAffine34(const double a[12], const double* u, double* out) {

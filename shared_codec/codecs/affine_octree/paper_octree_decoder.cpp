@@ -38,7 +38,7 @@ Status PaperOctreeDecoder::decodeCell(Walk& w, const Cell& cell) {
   if (w.rc.decode(models_->positions_leaf)) return decodePositions(w, cell);
   double a[12];
   for (int i = 0; i < 12; ++i)
-    a[i] = dequantizeUnit(decodeWide(w.rc, models_->affine[i], bits_), kPaperAffineMin,
+    a[i] = dequantiseUnit(decodeWide(w.rc, models_->affine[i], bits_), kPaperAffineMin,
                           kPaperAffineMax, bits_);
   const uint32_t* idx = partition_.vertices(cell);
   for (uint32_t i = 0; i < cell.end - cell.begin; ++i)
@@ -60,7 +60,7 @@ Status PaperOctreeDecoder::decodePositions(Walk& w, const Cell& cell) {
           return corrupt("octree frame: stored position of vertex " +
                          std::to_string(idx[i]) + " out of range");
       } else {
-        r[a] = dequantizeUnit(decodeWide(w.rc, models_->position[a], bits_), kPaperPositionMin,
+        r[a] = dequantiseUnit(decodeWide(w.rc, models_->position[a], bits_), kPaperPositionMin,
                               kPaperPositionMax, bits_);
       }
     }

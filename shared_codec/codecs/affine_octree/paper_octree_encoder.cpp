@@ -34,8 +34,8 @@ void PaperOctreeEncoder::encodeCell(Walk& w, const Cell& cell) {
   double a[12];
   uint32_t coded[12];
   for (int i = 0; i < 12; ++i) {
-    coded[i] = quantizeUnit(fit.a[i], kPaperAffineMin, kPaperAffineMax, bits_);
-    a[i] = dequantizeUnit(coded[i], kPaperAffineMin, kPaperAffineMax, bits_);
+    coded[i] = quantiseUnit(fit.a[i], kPaperAffineMin, kPaperAffineMax, bits_);
+    a[i] = dequantiseUnit(coded[i], kPaperAffineMin, kPaperAffineMax, bits_);
   }
   double worst = 0;
   for (uint32_t i = 0; i < n; ++i) {
@@ -71,8 +71,8 @@ void PaperOctreeEncoder::encodePositions(Walk& w, const Cell& cell) {
     uint32_t coded[3];
     double p[3];
     for (int a = 0; a < 3; ++a) {
-      coded[a] = quantizeUnit(t[a], kPaperPositionMin, kPaperPositionMax, bits_);
-      p[a] = dequantizeUnit(coded[a], kPaperPositionMin, kPaperPositionMax, bits_);
+      coded[a] = quantiseUnit(t[a], kPaperPositionMin, kPaperPositionMax, bits_);
+      p[a] = dequantiseUnit(coded[a], kPaperPositionMin, kPaperPositionMax, bits_);
     }
     // Outside the range, or a grid too coarse for ME: send the exact value instead.
     const bool escape = std::hypot(p[0] - t[0], p[1] - t[1], p[2] - t[2]) > w.in.max_error;

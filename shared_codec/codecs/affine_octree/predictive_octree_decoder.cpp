@@ -78,7 +78,7 @@ __attribute__((always_inline)) inline void parametersLoop(RangeDecoder& decoder,
 // The hot loop of busy frames: a flag per vertex, then one adaptive integer per coordinate
 // (decodeIntInline() written out), added onto the prediction. A zero residual, the usual
 // one, changes nothing: the context is already zero (ResidualContexts::beginFrame()), and
-// adding +0.0 would only turn a -0.0 prediction into +0.0, which denormalize() maps to the
+// adding +0.0 would only turn a -0.0 prediction into +0.0, which denormalise() maps to the
 // same coordinate (the frame's minimum is never -0.0: frame_passes.cpp).
 __attribute__((always_inline)) inline void residualsLoop(RangeDecoder& decoder, PredictiveModels& pm,
                                                          ResidualContexts& contexts, const uint32_t* vertices,

@@ -4,8 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "codecs/affine_octree/iframe_coder.h"
-#include "codecs/affine_octree/octree_shared.h"
+#include "codecs/common/static_position_coder.h"
+#include "codecs/common/root_cube.h"
 #include "codecs/wavelet/bitplane_coder.h"
 #include "codecs/wavelet/frame_model.h"
 #include "codecs/wavelet/progressive_mesh.h"
@@ -100,7 +100,7 @@ class WaveletEncoder final : public FrameEncoder {
 
   WaveletOptions options_;
   Topology topology_;
-  IFrameCoder static_coder_;
+  StaticPositionCoder static_coder_;
   WaveletFrameModel model_;
   const float* original_ = nullptr;
   double error_bound_ = 0;
@@ -161,7 +161,7 @@ class WaveletDecoder final : public FrameDecoder {
   WaveletDecodeControl control_;
   Topology topology_;
   Status hierarchy_cost_;  // a mesh whose hierarchy would take too long is refused, not decoded
-  IFrameCoder static_coder_;
+  StaticPositionCoder static_coder_;
   WaveletFrameModel model_;
   std::vector<double> decoded_;
 };

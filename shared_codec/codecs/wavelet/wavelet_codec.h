@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // The wavelet codec (Guskov & Khodakovsky 2004) as seen by the container. Three frame types:
 // a parametric frame (the first frame of every group: positions through the static
-// IFrameCoder, then the hierarchy is rebuilt on its reconstruction), and detail I- and
+// StaticPositionCoder, then the hierarchy is rebuilt on its reconstruction), and detail I- and
 // P-frames (bitplane-coded wavelet coefficients, P-frames against a damped linear
 // extrapolation of the previous frames' reconstructed coefficients). docs/wavelet.md describes the payloads.
 #pragma once

@@ -103,7 +103,7 @@ ANIMC_TARGET_AVX2 inline FrameQuads localFrameQuads(const double* xyz, const uin
   FrameQuads f;
   f.normal = n / splatQuad(nn);
   const Quad u = t1 - splatQuad(sum3(t1 * f.normal)) * f.normal;
-  const double z = sum3(u * u);  // Eigen's normalized(): u / |u|, u itself when |u| = 0
+  const double z = sum3(u * u);  // Eigen's normalised(): u / |u|, u itself when |u| = 0
   f.tangent = z > 0 ? u / splatQuad(std::sqrt(z)) : u;
   f.bitangent = cross3(f.normal, f.tangent);
   return f;

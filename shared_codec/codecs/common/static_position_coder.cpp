@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "codecs/affine_octree/iframe_coder.h"
+#include "codecs/common/static_position_coder.h"
 
 #include <algorithm>
 #include <cmath>
@@ -23,10 +23,10 @@ constexpr double kMaxGridIndex = 1u << 30;
 
 }  // namespace
 
-IFrameCoder::IFrameCoder(const Topology& topology)
+StaticPositionCoder::StaticPositionCoder(const Topology& topology)
     : vertex_count_(topology.vertex_count), adjacency_(topology) {}
 
-void IFrameCoder::predict(const std::vector<int64_t>& q, uint32_t v, int64_t pred[3]) const {
+void StaticPositionCoder::predict(const std::vector<int64_t>& q, uint32_t v, int64_t pred[3]) const {
   // Rounded mean of the neighbours already decoded (lower index); else the previous vertex.
   int64_t sum[3] = {0, 0, 0};
   int64_t n = 0;
@@ -38,7 +38,7 @@ void IFrameCoder::predict(const std::vector<int64_t>& q, uint32_t v, int64_t pre
   }
 }
 
-void IFrameCoder::encode(const std::vector<double>& xyz, double step, std::vector<uint8_t>& out,
+void StaticPositionCoder::encode(const std::vector<double>& xyz, double step, std::vector<uint8_t>& out,
                          std::vector<double>& recon) const {
   double min[3];
   for (int a = 0; a < 3; ++a) min[a] = xyz.empty() ? 0.0 : xyz[a];
@@ -69,7 +69,7 @@ void IFrameCoder::encode(const std::vector<double>& xyz, double step, std::vecto
   for (size_t i = 0; i < xyz.size(); ++i) recon[i] = min[i % 3] + double(q[i]) * step;
 }
 
-Status IFrameCoder::decode(ByteReader& in, std::vector<double>& recon) const {
+Status StaticPositionCoder::decode(ByteReader& in, std::vector<double>& recon) const {
   double min[3];
   for (double& m : min) {
     ANIMC_ASSIGN_OR_RETURN(m, in.f64("IFrame_Min"));

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
-// Intra frames (the first frame of every group): positions on a uniform grid anchored at the
-// frame's minimum corner, each vertex predicted from the already decoded neighbours with a
+// Positions of one frame on their own, the intra frames of both codecs (the first frame of
+// every group): positions on a uniform grid anchored at the frame's minimum corner, each vertex predicted from the already decoded neighbours with a
 // lower index (the mesh is known to both sides), residuals through the range coder.
 #pragma once
 #include <cstdint>
@@ -13,9 +13,9 @@
 
 namespace animc {
 
-class IFrameCoder {
+class StaticPositionCoder {
  public:
-  explicit IFrameCoder(const Topology& topology);
+  explicit StaticPositionCoder(const Topology& topology);
 
   // step: grid spacing in the frame's units (> 0). Appends the payload to out and leaves the
   // reconstruction (what the decoder will produce) in recon.

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// The frame-wide passes of octree_shared.h: bounding cube, normalisation into it and back,
+// The frame-wide passes of root_cube.h: bounding cube, normalisation into it and back,
 // conversion to floats. They touch every coordinate of a frame or two per inter frame, so
 // the busiest have an AVX2 version besides the portable one, working on whole Quads (for
 // xyz-interleaved frames: blocks of four vertices, twelve doubles, three Quads whose lanes
@@ -8,7 +8,7 @@
 #include <cmath>
 #include <string>
 
-#include "codecs/affine_octree/octree_shared.h"
+#include "codecs/common/root_cube.h"
 #include "core/simd_math.h"
 #include "core/sequence.h"
 
@@ -62,13 +62,13 @@ bool toFloatsPortable(const double* frame, size_t size, float* out) {
   return ok;
 }
 
-void normalizePortable(const RootCube& cube, const double* xyz, size_t size, double* out) {
+void normalisePortable(const RootCube& cube, const double* xyz, size_t size, double* out) {
   const PointNormaliser normaliser(cube);
   for (size_t i = 0; i < size; i += 3) normaliser.apply(&xyz[i], &out[i]);
 }
 
 // out[i..] = min + side · unit[i..] for the vertices from `from` on, adding them to box.
-void denormalizeTail(const RootCube& cube, const double* unit, size_t from, size_t size, double* out,
+void denormaliseTail(const RootCube& cube, const double* unit, size_t from, size_t size, double* out,
                      BoxBuilder& box) {
   const Pair min_xy = loadPair(cube.min);
   const Pair side = splat(cube.side);
@@ -81,12 +81,12 @@ void denormalizeTail(const RootCube& cube, const double* unit, size_t from, size
   }
 }
 
-RootCube denormalizePortable(const RootCube& cube, const double* unit, size_t size, double* out) {
+RootCube denormalisePortable(const RootCube& cube, const double* unit, size_t size, double* out) {
   if (size == 0) return cubeOfBox(kOrigin, kOrigin);
   BoxBuilder box(kOrigin);
-  denormalizeTail(cube, unit, 0, 3, out, box);  // the first vertex, which the box starts from
+  denormaliseTail(cube, unit, 0, 3, out, box);  // the first vertex, which the box starts from
   box = BoxBuilder(out);
-  denormalizeTail(cube, unit, 3, size, out, box);
+  denormaliseTail(cube, unit, 3, size, out, box);
   return box.cube();
 }
 
@@ -115,14 +115,14 @@ ANIMC_TARGET_AVX2 bool toFloatsAvx2(const double* frame, size_t size, float* out
   return tail_ok && in_range[0] && in_range[1] && in_range[2] && in_range[3];
 }
 
-ANIMC_TARGET_AVX2 void normalizeAvx2(const RootCube& cube, const double* xyz, size_t size, double* out) {
+ANIMC_TARGET_AVX2 void normaliseAvx2(const RootCube& cube, const double* xyz, size_t size, double* out) {
   const double inv = 1.0 / cube.side;
   const Quad scale = splatQuad(inv);
   const BlockPattern min(cube.min);
   size_t i = 0;
   for (; i + kBlock <= size; i += kBlock)
     for (int k = 0; k < 3; ++k) storeQuad(&out[i + 4 * k], (loadQuad(&xyz[i + 4 * k]) - min.q[k]) * scale);
-  normalizePortable(cube, xyz + i, size - i, out + i);
+  normalisePortable(cube, xyz + i, size - i, out + i);
 }
 
 // Lane l of block Quad k holds axis (4k + l) % 3.
@@ -135,8 +135,8 @@ ANIMC_TARGET_AVX2 void foldBox(const Quad lo[3], const Quad hi[3], double min[3]
     }
 }
 
-ANIMC_TARGET_AVX2 RootCube denormalizeAvx2(const RootCube& cube, const double* unit, size_t size, double* out) {
-  if (size < kBlock) return denormalizePortable(cube, unit, size, out);
+ANIMC_TARGET_AVX2 RootCube denormaliseAvx2(const RootCube& cube, const double* unit, size_t size, double* out) {
+  if (size < kBlock) return denormalisePortable(cube, unit, size, out);
   const BlockPattern min(cube.min);
   const Quad side = splatQuad(cube.side);
   Quad lo[3], hi[3];
@@ -159,7 +159,7 @@ ANIMC_TARGET_AVX2 RootCube denormalizeAvx2(const RootCube& cube, const double* u
   foldBox(lo, hi, box_min, box_max);
   BoxBuilder box(box_min);
   box.add(box_max);
-  denormalizeTail(cube, unit, i, size, out, box);
+  denormaliseTail(cube, unit, i, size, out, box);
   return box.cube();
 }
 #endif
@@ -172,12 +172,12 @@ RootCube boundingCube(const std::vector<double>& xyz) {
   return box.cube();
 }
 
-void normalize(const RootCube& cube, const std::vector<double>& xyz, std::vector<double>& out) {
+void normalise(const RootCube& cube, const std::vector<double>& xyz, std::vector<double>& out) {
   out.resize(xyz.size());
 #if ANIMC_AVX2_PATH
-  if (cpuHasAvx2()) return normalizeAvx2(cube, xyz.data(), xyz.size(), out.data());
+  if (cpuHasAvx2()) return normaliseAvx2(cube, xyz.data(), xyz.size(), out.data());
 #endif
-  normalizePortable(cube, xyz.data(), xyz.size(), out.data());
+  normalisePortable(cube, xyz.data(), xyz.size(), out.data());
 }
 
 Status decodedFrameToFloats(const std::vector<double>& frame, std::vector<float>& out) {
@@ -194,12 +194,12 @@ Status decodedFrameToFloats(const std::vector<double>& frame, std::vector<float>
       return corrupt("decoded vertex " + std::to_string(i / 3) + " is out of range");
 }
 
-RootCube denormalize(const RootCube& cube, const std::vector<double>& unit, std::vector<double>& out) {
+RootCube denormalise(const RootCube& cube, const std::vector<double>& unit, std::vector<double>& out) {
   out.resize(unit.size());
 #if ANIMC_AVX2_PATH
-  if (cpuHasAvx2()) return denormalizeAvx2(cube, unit.data(), unit.size(), out.data());
+  if (cpuHasAvx2()) return denormaliseAvx2(cube, unit.data(), unit.size(), out.data());
 #endif
-  return denormalizePortable(cube, unit.data(), unit.size(), out.data());
+  return denormalisePortable(cube, unit.data(), unit.size(), out.data());
 }
 
 }  // namespace animc
