@@ -10,12 +10,11 @@
 #include <chrono>
 #include <cstdio>
 
-#include "metrics/encode_summary.h"
 #include "cli.h"
 #include "core/file_identity.h"
 #include "core/memory_sequence.h"
 #include "metrics/compare_sequences.h"
-#include "report.h"
+#include "report/report.h"
 #include "seqio/sequence_io.h"
 
 namespace animc::cli {

@@ -3,7 +3,7 @@
 
 #include "cli.h"
 #include "metrics/compare_sequences.h"
-#include "report.h"
+#include "report/report.h"
 #include "seqio/sequence_io.h"
 
 namespace animc::cli {

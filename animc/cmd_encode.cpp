@@ -3,9 +3,8 @@
 
 #include "cli.h"
 #include "core/file_identity.h"
-#include "metrics/encode_metrics.h"
-#include "metrics/encode_summary.h"
-#include "report.h"
+#include "report/encode_metrics.h"
+#include "report/report.h"
 #include "seqio/sequence_io.h"
 
 namespace animc::cli {

@@ -2,7 +2,7 @@
 #include <cstdio>
 
 #include "cli.h"
-#include "report.h"
+#include "report/report.h"
 
 namespace animc::cli {
 

@@ -9,8 +9,8 @@
 #include "encode_parameters.h"
 #include "error_colouring.h"
 #include "layer_frames.h"
-#include "metrics/encode_metrics.h"
-#include "metrics/encode_summary.h"
+#include "report/encode_metrics.h"
+#include "report/report.h"
 #include "version.h"
 
 namespace animc::meshlab {
@@ -69,18 +69,20 @@ std::string compressLayers(MeshDocument& md, const RichParameterList& par, vcg::
   const bool add_decoded = par.getBool("AddReconstructed");
   const bool colour = par.getBool("ColourByError");
   CompressOutput out(topology.vertex_count);
-  auto show = [&](int64_t frame, const float* original, const float* reconstruction) {
+  std::vector<Scalarm> frame_errors(topology.vertex_count);  // of the frame being shown
+  auto collect = [&](uint32_t vertex, double error) { frame_errors[vertex] = Scalarm(error); };
+  auto show = [&](int64_t frame, const float*, const float* reconstruction) {
     if (add_decoded) {
       MeshModel* decoded = md.addNewMesh("", "decoded " + layers[int(frame)]->label(), false);
       fillMesh(*decoded, topology, reconstruction);
       out.decoded_layers << decoded;
-      if (colour) storeVertexError(*decoded, original, reconstruction);
+      if (colour) storeQuality(*decoded, frame_errors);
     } else if (colour) {
-      out.original_errors.push_back(vertexErrors(original, reconstruction, topology.vertex_count));
+      out.original_errors.push_back(frame_errors);
     }
   };
   Result<EncodeReport> report = encodeSequence(*source.value(), settings.value(), path, progressFrom(cb),
-                                               measuringObserver(out.metrics, show));
+                                               measuringObserver(out.metrics, show, collect));
   if (!report.ok()) {
     for (MeshModel* m : out.decoded_layers) md.delMesh(m);
     return report.status().message();

@@ -9,16 +9,10 @@
 
 namespace animc::meshlab {
 
-// |reconstructed - original| of each of vertex_count vertices, as MeshLab stores quality.
-// xyz arrays hold 3 * vertex_count floats.
-std::vector<Scalarm> vertexErrors(const float* original, const float* reconstructed, uint32_t vertex_count);
-
-// Stores errors (one per live vertex, in order) as the vertex quality of target.
+// Stores errors (one per live vertex, in order) as the vertex quality of target. The errors
+// come from the metrics library's per-vertex callback (MetricsAccumulator::addFrame), the one
+// definition of a vertex's error.
 void storeQuality(MeshModel& target, const std::vector<Scalarm>& errors);
-
-// Stores |reconstructed - original| of every vertex as the quality of `target` (one of the
-// two, or a layer with their vertex count). xyz arrays hold 3 * vertex_count floats.
-void storeVertexError(MeshModel& target, const float* original, const float* reconstructed);
 
 // Colours `layer` from its vertex quality: blue at 0, red at scale_max and beyond.
 void colourByQuality(MeshModel& layer, float scale_max);

@@ -7,6 +7,7 @@
 #include "error_colouring.h"
 #include "layer_frames.h"
 #include "metrics/compare_sequences.h"
+#include "report/report.h"
 #include "seqio/mesh_checks.h"
 
 namespace animc::meshlab {
@@ -63,7 +64,10 @@ void colourRuns(const LayerRuns& runs, float scale, vcg::CallBackPos* cb) {
     layerPositions(*runs.originals[i], original);
     layerPositions(*runs.reconstructions[i], reconstructed);
     MeshModel& shown = *runs.reconstructions[i];
-    storeVertexError(shown, original.data(), reconstructed.data());
+    std::vector<Scalarm> errors(original.size() / 3);
+    MetricsAccumulator(uint32_t(errors.size()))
+        .addFrame(original.data(), reconstructed.data(), [&](uint32_t v, double e) { errors[v] = Scalarm(e); });
+    storeQuality(shown, errors);
     colourByQuality(shown, scale);
     if (cb != nullptr) cb(50 + 50 * (i + 1) / frames, "colouring layers");
   }

@@ -7,7 +7,7 @@
 #include "frame_range_parameters.h"
 #include "gui_rendering.h"
 #include "layer_frames.h"
-#include "metrics/encode_summary.h"
+#include "report/report.h"
 #include "plugin_support.h"
 
 using namespace animc::meshlab;

@@ -74,11 +74,6 @@ WaveletOptions& EncodeSettings::wavelet() {
   return std::get<WaveletOptions>(options);
 }
 
-std::string describeSettings(const EncodeSettings& s) {
-  return "codec: " + std::string(s.entry().name) + ", " + s.entry().describe(s.options) + ", iframe interval " +
-         std::to_string(s.iframe_interval) + "\n";
-}
-
 Result<EncodeReport> encodeSequence(FrameSource& source, const EncodeSettings& settings,
                                     const std::string& out_path, const ProgressFn& progress,
                                     const FrameObserver& observer) {

@@ -31,10 +31,6 @@ struct EncodeSettings {
   Status validate() const { return entry().validate(options); }
 };
 
-// One line such as "codec: affine-octree, profile default, max error 0.01 of the root cube, ..."
-// naming the settings of the chosen codec only.
-std::string describeSettings(const EncodeSettings& s);
-
 struct EncodeReport {
   uint32_t vertices = 0;
   uint64_t triangles = 0;

@@ -6,14 +6,12 @@
 #include <cstdio>
 #include <limits>
 
-#include "metrics/json_writer.h"
 
 namespace animc {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr int kTextDigits = 6;  // enough for a log line; JSON keeps kJsonDigits
 
 // a / b for a relative error a >= 0 over a scale b >= 0. A zero scale with a zero error is
 // still an exact result (0), with a positive error infinitely bad; a NaN error stays NaN.
@@ -72,15 +70,18 @@ struct FrameErrorSums {
   double max = 0;
 };
 
-FrameErrorSums measureError(const float* original, const float* reconstructed, uint32_t n) {
+FrameErrorSums measureError(const float* original, const float* reconstructed, uint32_t n,
+                            const VertexErrorFn& each_vertex) {
   FrameErrorSums sums;
-  for (size_t v = 0; v < n; ++v) {
-    const float* a = original + 3 * v;
-    const float* b = reconstructed + 3 * v;
+  for (uint32_t v = 0; v < n; ++v) {
+    const float* a = original + 3 * size_t(v);
+    const float* b = reconstructed + 3 * size_t(v);
     const double dx = double{b[0]} - a[0], dy = double{b[1]} - a[1], dz = double{b[2]} - a[2];
     const double sq = dx * dx + dy * dy + dz * dz;
     sums.sum_sq += sq;
-    sums.max = maxKeepingNaN(sums.max, std::sqrt(sq));
+    const double error = std::sqrt(sq);
+    sums.max = maxKeepingNaN(sums.max, error);
+    if (each_vertex) each_vertex(v, error);
   }
   return sums;
 }
@@ -92,9 +93,10 @@ MetricsAccumulator::MetricsAccumulator(uint32_t vertex_count)
       sequence_min_{kInf, kInf, kInf},
       sequence_max_{-kInf, -kInf, -kInf} {}
 
-void MetricsAccumulator::addFrame(const float* original, const float* reconstructed) {
+void MetricsAccumulator::addFrame(const float* original, const float* reconstructed,
+                                 const VertexErrorFn& each_vertex) {
   const OriginalFrameStats stats = measureOriginal(original, vertex_count_);
-  const FrameErrorSums error = measureError(original, reconstructed, vertex_count_);
+  const FrameErrorSums error = measureError(original, reconstructed, vertex_count_, each_vertex);
   for (int c = 0; c < 3; ++c) {
     sequence_min_[c] = std::min(sequence_min_[c], stats.min[c]);
     sequence_max_[c] = std::max(sequence_max_[c], stats.max[c]);
@@ -155,63 +157,6 @@ SizeFigures sizeFigures(uint64_t file_bytes, uint64_t static_bytes, uint32_t ver
   s.bpvf = divide(8.0 * bytes, samples);
   s.motion_bpvf = divide(8.0 * (bytes - static_cast<double>(static_bytes)), samples);
   return s;
-}
-
-void appendMetricsJson(const SequenceMetrics& m, bool per_frame, std::string& out) {
-  JsonObject o;
-  o.add("frames", m.frames)
-      .add("vertices", m.vertices)
-      .add("kg_error", m.kg_error)
-      .add("psnr", m.psnr)
-      .add("max_error", m.max_error)
-      .add("max_error_rel_diag", m.max_error_rel_diag)
-      .add("max_error_rel_cube", m.max_error_rel_cube)
-      .add("rms_error", m.rms_error)
-      .add("rms_error_rel_diag", m.rms_error_rel_diag)
-      .add("bbox_diagonal", m.bbox_diagonal);
-  if (per_frame) {
-    std::vector<double> rms, max;
-    rms.reserve(m.per_frame.size());
-    max.reserve(m.per_frame.size());
-    for (const FrameError& f : m.per_frame) {
-      rms.push_back(f.rms);
-      max.push_back(f.max);
-    }
-    o.add("per_frame_rms", rms).add("per_frame_max", max);
-  }
-  o.appendTo(out);
-}
-
-std::string formatMetricsText(const SequenceMetrics& m) {
-  std::string out;
-  auto line = [&out](const char* name, const std::string& value, const char* unit) {
-    out += name;
-    out += ": ";
-    out += value;
-    out += unit;
-    out += '\n';
-  };
-  auto number = [](double v) { return formatDouble(v, kTextDigits); };
-  line("frames", std::to_string(m.frames), "");
-  line("vertices", std::to_string(m.vertices), "");
-  line("kg_error", number(m.kg_error), " %");
-  line("psnr", number(m.psnr), " dB");
-  line("max_error", number(m.max_error), "");
-  line("max_error_rel_diag", number(m.max_error_rel_diag), "");
-  line("max_error_rel_cube", number(m.max_error_rel_cube), "");
-  line("rms_error", number(m.rms_error), "");
-  line("rms_error_rel_diag", number(m.rms_error_rel_diag), "");
-  line("bbox_diagonal", number(m.bbox_diagonal), "");
-  return out;
-}
-
-std::string formatSizeText(uint64_t file_bytes, uint64_t static_bytes, uint32_t vertices,
-                           int64_t frames) {
-  const SizeFigures f = sizeFigures(file_bytes, static_bytes, vertices, frames);
-  char line[256];
-  std::snprintf(line, sizeof line, "size: %llu bytes, ratio %.2f:1, %.4f bits/vertex/frame (motion only %.4f)\n",
-                (unsigned long long)file_bytes, f.ratio, f.bpvf, f.motion_bpvf);
-  return line;
 }
 
 }  // namespace animc

@@ -1,10 +1,12 @@
 // SPDX-License-Identifier: Apache-2.0
 // The project's only implementation of its quality and size figures (CLI, MeshLab plugins and
 // benchmarks all call it, so published numbers agree). Definitions follow the literature and
-// match /work/shared/tools/seqmetrics.py, the independent numpy cross-check.
+// match seqmetrics.py of the shared tools beside the repository, the independent numpy
+// cross-check (tests/cli/metrics_crosscheck.sh). Text and JSON of these figures: report/.
 #pragma once
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -36,6 +38,8 @@ struct SequenceMetrics {
   std::vector<FrameError> per_frame;
 };
 
+using VertexErrorFn = std::function<void(uint32_t vertex, double error)>;
+
 // Streams frames one at a time; memory is O(frames) for per_frame only, never O(N * frames).
 // Degenerate scales (an all-coincident original, so dmax, S_f or the KG denominator is 0) give
 // a relative figure of 0 when the error is 0 too, else +inf. An empty sequence reads as exact.
@@ -46,7 +50,9 @@ class MetricsAccumulator {
 
   // original and reconstructed: 3 * vertex_count floats each (x y z per vertex), non-null
   // unless vertex_count is 0. The original should be finite (the readers reject NaN).
-  void addFrame(const float* original, const float* reconstructed);
+  // each_vertex, when given, is called with every vertex's error |v' - v| (what MeshLab's
+  // filters colour the vertices by).
+  void addFrame(const float* original, const float* reconstructed, const VertexErrorFn& each_vertex = {});
 
   // The figures so far; may be called repeatedly, frames can still be added afterwards.
   SequenceMetrics finish() const;
@@ -72,23 +78,9 @@ struct SizeFigures {
   double motion_bpvf = 0;  // 8 * (file_bytes - static_bytes) / (N * F)
 };
 
-// One line: "size: B bytes, ratio R:1, X bits/vertex/frame (motion only Y)", ending in '\n'.
-std::string formatSizeText(uint64_t file_bytes, uint64_t static_bytes, uint32_t vertices,
-                           int64_t frames);
-
 // static_bytes: what the file spends on the connectivity and the first frame. Plain IEEE
 // division: a zero denominator yields inf (or NaN for 0/0), which JSON writes as null.
 SizeFigures sizeFigures(uint64_t file_bytes, uint64_t static_bytes, uint32_t vertices,
                         int64_t frames);
-
-// Appends one JSON object with the keys frames, vertices, kg_error, psnr, max_error,
-// max_error_rel_diag, max_error_rel_cube, rms_error, rms_error_rel_diag, bbox_diagonal and,
-// when per_frame is set, the arrays per_frame_rms and per_frame_max. No trailing newline;
-// inf and NaN are written as null.
-void appendMetricsJson(const SequenceMetrics& m, bool per_frame, std::string& out);
-
-// One "name: value" line per figure (names as in the JSON, units after the value), each line
-// ending in '\n'. Per-frame values are not listed.
-std::string formatMetricsText(const SequenceMetrics& m);
 
 }  // namespace animc

@@ -10,11 +10,11 @@
 #include "codec_test_support.h"
 #include "core/memory_sequence.h"
 #include "metrics/compare_sequences.h"
-#include "metrics/encode_metrics.h"
-#include "metrics/encode_summary.h"
-#include "test_sequences.h"
-#include "metrics/json_writer.h"
 #include "metrics/sequence_metrics.h"
+#include "report/encode_metrics.h"
+#include "report/json_writer.h"
+#include "report/report.h"
+#include "test_sequences.h"
 
 namespace animc {
 namespace {
@@ -308,10 +308,10 @@ TEST(MetricsSizeFigures, Arithmetic) {
 TEST(MetricsFormat, JsonHasEveryKeyAndNullForInf) {
   const std::vector<Frame> seq = {{0, 0, 0, 1, 0, 0}};
   const SequenceMetrics m = measure(2, seq, seq);
-  std::string out = "prefix:";
-  appendMetricsJson(m, false, out);
-  EXPECT_EQ(out,
-            "prefix:{\"frames\":1,\"vertices\":2,\"kg_error\":0,\"psnr\":null,\"max_error\":0,"
+  JsonObject o;
+  addMetrics(o, m, false);
+  EXPECT_EQ(o.str(),
+            "{\"frames\":1,\"vertices\":2,\"kg_error\":0,\"psnr\":null,\"max_error\":0,"
             "\"max_error_rel_diag\":0,\"max_error_rel_cube\":0,\"rms_error\":0,"
             "\"rms_error_rel_diag\":0,\"bbox_diagonal\":1}");
 }
@@ -320,9 +320,10 @@ TEST(MetricsFormat, JsonPerFrameArraysOnlyWhenAsked) {
   const std::vector<Frame> original = {{0, 0, 0}, {0, 0, 0}};
   const std::vector<Frame> decoded = {{0, 0, 0.5f}, {0, 0, 0}};
   const SequenceMetrics m = measure(1, original, decoded);
-  std::string without, with;
-  appendMetricsJson(m, false, without);
-  appendMetricsJson(m, true, with);
+  JsonObject without_arrays, with_arrays;
+  addMetrics(without_arrays, m, false);
+  addMetrics(with_arrays, m, true);
+  const std::string without = without_arrays.str(), with = with_arrays.str();
   EXPECT_EQ(without.find("per_frame"), std::string::npos);
   EXPECT_NE(with.find(",\"per_frame_rms\":[0.5,0],\"per_frame_max\":[0.5,0]}"),
             std::string::npos)

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "metrics/json_writer.h"
+#include "report/json_writer.h"
 
 #include <charconv>
 #include <cmath>

@@ -15,7 +15,8 @@ using FloatFrameObserver =
     std::function<void(int64_t frame, const float* original, const float* reconstructed)>;
 
 // An observer for encodeSequence that adds every frame to `metrics` (which must outlive it),
-// then hands the frame to `then` when one is given.
-FrameObserver measuringObserver(MetricsAccumulator& metrics, FloatFrameObserver then = {});
+// passing each vertex's error to `each_vertex`, then hands the frame to `then` (each when given).
+FrameObserver measuringObserver(MetricsAccumulator& metrics, FloatFrameObserver then = {},
+                                VertexErrorFn each_vertex = {});
 
 }  // namespace animc
