@@ -98,8 +98,7 @@ ANIMC_TARGET_AVX2 inline void transposeColumns(Quad a, Quad b, Quad c, Quad e, Q
 
 // Whether this CPU runs the AVX2 versions: found once, at load time, rather than through a
 // function-local static, whose guard is tested on every call and whose slow path (a call)
-// made each dispatching function save and restore its registers, ~20 instructions per call
-// where a leaf makes several. Read before its initialisation (from another static
+// made each dispatching function save and restore its registers. Read before its initialisation (from another static
 // initialiser) it is false, which selects the portable versions: same results.
 inline const bool kCpuHasAvx2 =
     (__builtin_cpu_init(), __builtin_cpu_supports("avx2") && __builtin_cpu_supports("bmi2"));

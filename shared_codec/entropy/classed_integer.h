@@ -12,8 +12,9 @@
 // 1..15 are symbols 0..14 of the Low model, whose symbol 15 escapes to the High model for
 // classes 16..30, whose symbol 15 escapes to 5 raw bits for classes 31 to kMaxMagnitudeClass.
 // (The zero flag stays a bit of its own: folded into the Low model as a 16th class, it made
-// decoding 2-3 % faster but cost 1.7 % more bits at ME 10 %, where half the values are zero
-// and the classes of the others were then learnt from half as many of them.)
+// decoding a little faster but cost more bits at coarse errors, where half the values are
+// zero and the classes of the others were then learnt from half as many of them;
+// docs/notes/affine_octree_history.md has the figures.)
 #pragma once
 #include <cstdint>
 

@@ -88,8 +88,8 @@ struct BitCostTable {
     for (int i = 0; i <= 1024; ++i) bits[i] = float(-std::log2((i + 0.5) / 1025.0));
   }
 };
-// Built before main(), not as a function's static: that one's guard was tested on every
-// call, 3 % of the encoder's instructions.
+// Built before main(), not as a function's static: that one's guard would be tested on
+// every call of this hot function.
 inline const BitCostTable kBitCostTable;
 inline double bitCost(const BitModel& m, int bit) {
   const uint32_t p = bit ? kProbOne - m.p0 : m.p0;

@@ -19,7 +19,7 @@ inline int nextAdaptationShift(uint16_t& seen) {
   static constexpr uint8_t kShift[] = {2, 3, 3, 4, 4, 4, 5, 5, 5, 5, 5, 5, 5};
   constexpr uint16_t kLearned = sizeof(kShift) - 1;  // from here on the rate stays 1/32
   // Almost every update of a busy model: a constant shift, no table load and no store of
-  // `seen` (2 % faster decoding of chickenCrossing).
+  // `seen`.
   if (__builtin_expect(seen == kLearned, 1)) return kShift[kLearned];
   const int shift = kShift[seen];
   seen += seen < kLearned;
@@ -93,7 +93,7 @@ class RangeEncoder {
   // final range whatever follows them: the decoder reads on into the next stream or into
   // zeros, and any such continuation decodes the same. The range spans at least 2^24, so two
   // bytes always do; one does unless the range straddles a multiple of 2^24 badly. (Four
-  // bytes every time cost 1.5 % of a small frame at ME 10 %.)
+  // bytes every time are a noticeable share of a small frame at coarse errors.)
   void finish() {
     int bytes = 1;
     uint64_t value = low_;

@@ -19,8 +19,8 @@ CellFrame frameOf(const double sum[3], const double lo[3], const double hi[3], s
 
 // ---- Portable versions: x and y through a Pair, z alone. ----
 // Not inlined into the dispatching functions at the end: a dispatcher would then save the
-// registers the portable loop needs on every call, the AVX2 calls included (~20 instructions
-// per call, several calls per leaf).
+// registers the portable loop needs on every call, the AVX2 calls included (several calls
+// per leaf).
 
 // Copies points out and keeps their running sum and box, starting from the first point's.
 struct PointGatherer {
@@ -127,8 +127,8 @@ __attribute__((noinline)) void normalisePoints(const double* frame, const RootCu
 
 const double kNoPrior[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
 
-// gatherWithMotion() of a single point, the most common leaf (58 % of the leaves of
-// chickenCrossing at ME 1 %): its fit is its own motion with no deformation, which is what
+// gatherWithMotion() of a single point, the most common leaf on smooth sequences at fine
+// errors: its fit is its own motion with no deformation, which is what
 // solving the sums gives for n = 1 (L = ±0, t = the motion; the spread is zero and the ridge
 // keeps the system invertible), without the solve.
 __attribute__((noinline)) void gatherOneWithMotion(const double* reference, const double* before,

@@ -170,10 +170,10 @@ ANIMC_TARGET_AVX2 void fillBucketsAvx2(const uint64_t* key, const uint32_t* orde
 #endif
 
 // Cells of at most kSmallCell vertices (most splits: leaves hold a few vertices) skip the
-// buckets, whose eight copies cost ~200 instructions per split: a count pass, then each
+// buckets, whose eight copies are a fixed cost per split: a count pass, then each
 // vertex straight to its child's next slot, the slots of all eight children as the 8-bit
 // lanes of one register (their starts are a prefix sum of the counts, one multiplication).
-// This costs ~8 instructions more per vertex than the buckets, so only small cells take it.
+// This costs more per vertex than the buckets, so only small cells take it.
 constexpr uint32_t kSmallCell = 32;
 static_assert(kSmallCell <= kBlock, "counts and slots of a small cell fit 8-bit lanes");
 
@@ -225,8 +225,8 @@ void copyBackwards(const uint32_t* from, uint32_t n, uint32_t* to) {
 }  // namespace
 
 // The cell's vertices are sorted into eight buckets, one per octant, in one pass, then copied
-// out to the children (a count pass and then a scatter pass straight to the children, as
-// before, cost 9 instructions more per vertex than the copy). Children are filled from the
+// out to the children (a count pass and then a scatter pass straight to the children costs
+// more per vertex than the copy). Children are filled from the
 // last one down, so that whatever a copy writes before its child's range lies either in a
 // child still to be filled or before the cell, where every cell has been walked already
 // (the walk is depth first, and a cell's list is dead once it is split); the buffers have

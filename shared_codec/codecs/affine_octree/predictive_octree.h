@@ -40,7 +40,7 @@ constexpr int64_t kMaxCodedMagnitude = int64_t(1) << 30;
 struct PredictiveModels {
   BitModel split[kMaxDepthLimit + 1];
   // The coded affine's corrections: the translation's by axis (the motions along the three
-  // axes differ in scale: 1-3 % fewer bits at ME 0.2 %), the linear part's all alike.
+  // axes differ in scale), the linear part's all alike.
   ClassedIntegerModel translation[3], linear;
   BitModel residuals_zero[2];
   BitModel vertex_residual[kResidualContexts];  // whether a vertex has a residual at all
@@ -91,7 +91,7 @@ struct CellPoints {
 
 // Prediction of the cell's i-th vertex from the reference frame with the leaf's coded affine.
 // (Adding a share of the vertex's own last motion beyond its cell's was tried: it amplifies
-// the reconstruction noise and cost 60-200 % more bits on chickenCrossing.)
+// the reconstruction noise and costs far more bits; docs/notes/affine_octree_history.md.)
 inline void predictVertex(const CellPoints& points, const LeafModel& m, const CentredAffine& a,
                           size_t i, double out[3]) {
   applyCentred(a, m.frame.centroid, points.referencePoint(i), out);
@@ -99,8 +99,8 @@ inline void predictVertex(const CellPoints& points, const LeafModel& m, const Ce
 // The quantisation steps of the corrections of a leaf of n vertices. Rounding a correction
 // moves all n vertices, so its share of the squared error grows as n, and the step that
 // balances that against the correction's bits shrinks as 1/√n; the linear part's also as
-// 1/radius, the lever it acts through. (Fixed steps of 0.125 residual steps, and 0.125 per
-// radius, cost 6-19 % more bits at equal PSNR: docs/affine_octree.md.)
+// 1/radius, the lever it acts through. (Fixed steps cost more bits at equal PSNR:
+// docs/affine_octree.md, step 3.)
 struct CorrectionSteps {
   double translation, linear;
 };
@@ -124,8 +124,8 @@ inline CentredAffine codedAffine(const LeafModel& m, const CorrectionSteps& step
 // (A the fit's normal matrix, fitCentred()), so a choice is weighed without predicting a
 // vertex. The translations are independent; the entries of a row of L are chosen in turn,
 // each with the ones before it as chosen. Fills coded[12] (the linear part only when
-// n >= kMinLinearVertices) and returns their bits. (Against rounding to nearest: 2-4 % fewer
-// bits at equal PSNR on the shared sequences.)
+// n >= kMinLinearVertices) and returns their bits. (Fewer bits than rounding to nearest at
+// equal PSNR: docs/affine_octree.md, step 8.)
 double quantiseCorrections(const PredictiveModels& pm, const CentredAffine& fit, const CentredAffine& prior,
                            const CorrectionSteps& steps, size_t n, const double normal[9], double weight,
                            int64_t coded[12]);

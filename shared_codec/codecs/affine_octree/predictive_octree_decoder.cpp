@@ -88,8 +88,8 @@ __attribute__((always_inline)) inline void residualsLoop(RangeDecoder& decoder, 
   for (uint32_t i = 0; i < n; ++i) {
     const size_t v = 3 * size_t(vertices[i]);
     if (!rc.decode(pm.vertex_residual[contexts.vertexContext(v)])) continue;
-    // Unrolled: most coordinates cost one zero flag, beside which counting the axes was a
-    // fifth of the loop's instructions.
+    // Unrolled: most coordinates cost one zero flag, beside which counting the axes is a
+    // large share of the loop.
 #pragma GCC unroll 3
     for (size_t c = v; c < v + 3; ++c) {
       const int ctx = contexts.contextAt(c);

@@ -29,8 +29,7 @@ int64_t cheapest(int64_t nearest, const Rate& rate, const Distortion& distortion
 
 // A value in steps (a correction or a residual), rounded half away from zero; beyond ±2^40
 // (NaN included) it is clamped, which the callers' overflow tests then catch. (Inline
-// arithmetic: std::llround and std::nearbyint are library calls, 3 % of the encoder's
-// instructions.)
+// arithmetic: std::llround and std::nearbyint are library calls in this hot loop.)
 int64_t nearestSteps(double x) {
   constexpr double kLimit = 0x1p40;
   if (!(x > -kLimit)) return -int64_t(kLimit);

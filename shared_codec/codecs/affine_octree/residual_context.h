@@ -2,8 +2,8 @@
 // Context selection for the default profile's per-vertex residuals: the size of the same
 // vertex's residual on the same axis in the previous frame (a vertex the affine missed
 // once tends to be missed again). Both sides know it, so the context costs no bits.
-// Measured on chickenCrossing: 2-7 % fewer bits than no context. Adding the already decoded
-// mesh neighbours' residuals gained 1-2 % more but halved decoding speed, so it is not used.
+// Adding the already decoded mesh neighbours' residuals saves a few more bits but halves the
+// decoding speed, so it is not used (docs/notes/affine_octree_history.md).
 #pragma once
 #include <algorithm>
 #include <cstdint>

@@ -119,8 +119,8 @@ void accumulate(const EdgeStencil& e, uint32_t v, StencilTerms& terms, double& n
 // Boundary vertex v between its boundary neighbours a and b (ring.back(), ring.front()):
 // the point of the coarser boundary edge (a, b) at v's chord-length place between them on
 // the parametric mesh. A cubic through the next boundary vertices as well (Lagrange, chord
-// parameters) was measured: -1 % bits on chickenCrossing, +2..6 % on the game meshes, whose
-// coarse boundaries are polygons with corners (docs/wavelet.md).
+// parameters) was measured: barely fewer bits on smooth meshes and more on the game meshes,
+// whose coarse boundaries are polygons with corners (docs/notes/wavelet_history.md).
 void appendBoundaryStencil(const ProgressiveMesh& pm, const Collapse& c, const std::vector<double>& xyz,
                            PredictionStencils& out) {
   const uint32_t a = pm.ring[c.ring_begin + c.ring_size - 1], b = pm.ring[c.ring_begin];

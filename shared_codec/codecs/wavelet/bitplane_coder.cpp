@@ -119,8 +119,8 @@ struct EncoderIo {
 
 // Holds the decoder by value: the walk copies it into a local for each plane, where its
 // state can live in registers. decodeData, not decode: signs and many significance bits are
-// close to random, and a branch on them mispredicts often (decode: 9 % slower at 8 bpv on
-// angelyss, with the refinement bits raw). Refinement bits are raw: no branch either way.
+// close to random, and a branch on them mispredicts often. Refinement bits are raw: no
+// branch either way.
 struct DecoderIo {
   static constexpr bool kEncodes = false;
   RangeDecoder rc;

@@ -114,7 +114,7 @@ class BitplaneState {
   // Codes blocks [0, end) of plane p, or fewer: stop(b), asked before each block, may end the
   // plane early (the encoder's byte budget). Returns the number of blocks coded. Not inlined:
   // inside the decoder's whole-block function GCC 12 keeps fewer of the walk's pointers in
-  // registers (angelyss at 8 bpv: 288 M instructions in the walk inlined, 277 M not).
+  // registers.
   template <class Io, class Stop>
   __attribute__((noinline)) size_t codePlane(Io& io, BitplaneContexts& m, int p, size_t end, Stop stop) {
     return walkPlane(io, m, p, end, stop);
@@ -122,7 +122,7 @@ class BitplaneState {
 #if ANIMC_AVX2_PATH
   // codePlane for CPUs with AVX2 and BMI2 (the decoder's choice when cpuHasAvx2()): the
   // walk's shifts by a variable amount (contexts, model rates) then take one instruction and
-  // no count register, 2 % off the decoding time at 8 bpv. The same decisions.
+  // no count register. The same decisions.
   template <class Io, class Stop>
   ANIMC_TARGET_AVX2 __attribute__((noinline)) size_t codePlaneAvx2(Io& io, BitplaneContexts& m, int p, size_t end,
                                                                   Stop stop) {
@@ -332,9 +332,9 @@ struct PlaneWalk {
   }
 
   // Refinement bits go raw, as in the paper. Only the first one after significance is
-  // skewed (residuals are roughly Laplacian: 0 in 59-69 % of cases); an adaptive model for
-  // it saved 0.15-0.43 % of the bits, but made decoding 2-14 % slower: a model load, update
-  // and store, and a range that depends on the bit, where a raw bit just halves it
+  // skewed (residuals are roughly Laplacian); an adaptive model for it saved a fraction of a
+  // percent of the bits but slowed decoding: a model load, update and store, and a range
+  // that depends on the bit, where a raw bit just halves it
   // (docs/notes/wavelet_history.md, "Decode speed, fourth pass").
   void refine(size_t j) { known[j] = (known[j] << 1) | uint32_t(io.raw(magnitudeBit(j))); }
 

@@ -25,11 +25,12 @@ struct WaveletOptions {
   // P-frames coded without temporal contexts (the last frame's bitplane history), so that a
   // decoder may cut them (progressive decoding): a cut P-frame then leaves the decoder's
   // reference off the encoder's, and that error carries through the later P-frames of the
-  // group (drift) until the next parametric frame. Costs 0.6-5 % more bits (docs/wavelet.md).
+  // group (drift) until the next parametric frame. Costs a few percent more bits
+  // (docs/benchmarks.md).
   bool progressive_p_frames = false;
   // Details in the local frame of their coarser ring (the paper) rather than world axes.
-  // Off by default: on chickenCrossing the frames' rotation by quantisation errors of the
-  // coarser levels multiplies the error 15-25x at the same step (docs/wavelet.md).
+  // Off by default: the frames' rotation by quantisation errors of the coarser levels
+  // multiplies the error at the same step (docs/wavelet.md).
   bool local_frames = false;
   // Rate control by target error, in percent of the KG error (0 = off): each detail frame is
   // cut after the shortest prefix of its bitplanes whose float output has a squared error

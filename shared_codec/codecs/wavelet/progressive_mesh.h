@@ -58,10 +58,9 @@ struct HierarchySettings {
 
 // The hierarchy's cost grew with the square of each vertex's triangle count (its ring is
 // walked and checked once per neighbour, at every level that touches it). Real meshes sum
-// 14-19 such squares per triangle, but a fan of k triangles around one vertex, which a few
-// bytes of connectivity can declare, cost k^2 before the build left fans of more than
-// kMaxCollapseTriangles alone (collapse_choice.h): ~1.4 s per parametric frame at k = 2000,
-// hours at 10^5 (now 4 ms at 10^4). Encoder and decoder still refuse meshes whose sum exceeds
+// a few tens of such squares per triangle, but a fan of k triangles around one vertex, which
+// a few bytes of connectivity can declare, would cost k^2: the build leaves fans of more than
+// kMaxCollapseTriangles alone (collapse_choice.h). Encoder and decoder still refuse meshes whose sum exceeds
 // this many per triangle plus a fixed allowance (about one vertex in 1000 triangles), and
 // vertices in more triangles than Collapse::ring_size can count (an open fan's ring has one
 // vertex more than its triangles): a second guard.

@@ -177,7 +177,7 @@ ANIMC_TARGET_AVX2 inline Quad stencilTerm(const uint32_t* offsets, const double*
 // predict() with x, y and z as lanes of one Quad: the same operations per component. Lane 3
 // sums whatever follows each point (the next point's x); nothing reads it. Two terms per
 // iteration: the count of iterations, which varies from stencil to stencil, is then easier on
-// the branch predictor (the inverse is 20 % faster than with one), and the order of the
+// the branch predictor (the inverse is faster than with one), and the order of the
 // additions is the same.
 template <bool kNearEnd>
 ANIMC_TARGET_AVX2 inline Quad predictQuad(const uint32_t* offsets, const double* weights, size_t size,
