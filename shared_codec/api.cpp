@@ -91,7 +91,7 @@ Result<EncodeReport> encodeSequence(FrameSource& source, const EncodeSettings& s
 
   ContainerWriter writer;
   ANIMC_RETURN_IF_ERROR(writer.open(out_path, header, topology));
-  std::unique_ptr<FrameEncoder> encoder = settings.entry().makeEncoder(settings.options, topology);
+  std::unique_ptr<FrameEncoder> encoder = settings.entry().makeEncoder(settings.options, topology, bestSimdPath());
   EncodeReport report;
   report.vertices = topology.vertex_count;
   report.triangles = topology.triangles.size();
@@ -139,7 +139,7 @@ Result<std::unique_ptr<AmsSource>> AmsSource::open(const std::string& path, cons
   if (!settings.ok()) return settings.status().withContext(path);
   s->settings_ = settings.value();
   ANIMC_ASSIGN_OR_RETURN(s->decoder_, s->settings_.entry().makeDecoder(s->settings_.options, s->reader_->topology(),
-                                                                       progressive, path));
+                                                                       progressive, path, bestSimdPath()));
   Status st = s->seek(0);
   if (!st.ok()) return st;
   return s;

@@ -15,6 +15,7 @@
 #include "codecs/frame_codec.h"
 #include "codecs/option_values.h"
 #include "core/sequence.h"
+#include "core/simd_math.h"
 #include "core/status.h"
 #include "io/byte_reader.h"
 #include "io/byte_writer.h"
@@ -49,12 +50,15 @@ struct CodecEntry {
 
   // Why this codec cannot code a mesh the container accepts, or ok.
   Status (*checkMesh)(const Topology& topology);
-  std::unique_ptr<FrameEncoder> (*makeEncoder)(const CodecOptions& options, const Topology& topology);
+  // The coders run the kernels of `path` (core/simd_math.h): chosen once, here, by the
+  // caller (the API passes bestSimdPath()), and the same bytes and frames either way.
+  std::unique_ptr<FrameEncoder> (*makeEncoder)(const CodecOptions& options, const Topology& topology,
+                                               SimdPath path);
   // A decoder for the file's options; `file` names the file in messages (a partial `control`
   // is refused for codecs and files that cannot be cut).
   Result<std::unique_ptr<FrameDecoder>> (*makeDecoder)(const CodecOptions& options, const Topology& topology,
                                                        const WaveletDecodeControl& control,
-                                                       const std::string& file);
+                                                       const std::string& file, SimdPath path);
 };
 
 // Every codec, in Codec_Id order.

@@ -3,7 +3,7 @@
 //  - Pair: two doubles (a point's x and y; z goes alone), the SIMD width every x86-64 and
 //    ARM64 CPU has.
 //  - Quad: four doubles (x, y, z and an unused lane), for the AVX2 versions of the hottest
-//    loops, chosen at run time on x86-64 CPUs that have AVX2 (cpuHasAvx2() below).
+//    loops, chosen at run time on x86-64 CPUs that have AVX2 (SimdPath below).
 // Every operation is the IEEE operation of each lane, so results are bit-identical to the
 // scalar formulas they replace (no reassociation, no fused multiply-add: the library is built
 // with -ffp-contract=off), whichever version runs.
@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <vector>
 
 namespace animc {
 
@@ -102,9 +103,35 @@ ANIMC_TARGET_AVX2 inline void transposeColumns(Quad a, Quad b, Quad c, Quad e, Q
 // initialiser) it is false, which selects the portable versions: same results.
 inline const bool kCpuHasAvx2 =
     (__builtin_cpu_init(), __builtin_cpu_supports("avx2") && __builtin_cpu_supports("bmi2"));
-inline bool cpuHasAvx2() { return kCpuHasAvx2; }
 
 }  // namespace animc
 #else
 #define ANIMC_AVX2_PATH 0
 #endif
+
+namespace animc {
+
+// Which version of the kernels an encoder or decoder runs. It is chosen once, where the
+// coder is made (the codec table's factories, from bestSimdPath()), and handed down to every
+// kernel, so that all of one coder's kernels agree and a test can run both versions in one
+// build: they must give the same bytes and frames.
+enum class SimdPath : uint8_t { kPortable, kAvx2 };
+
+// kAvx2 when this build has the AVX2 versions and this CPU has AVX2 and BMI2.
+inline SimdPath bestSimdPath() {
+#if ANIMC_AVX2_PATH
+  if (kCpuHasAvx2) return SimdPath::kAvx2;
+#endif
+  return SimdPath::kPortable;
+}
+
+// Every path this build and CPU can run, portable first (for tests that compare them).
+inline std::vector<SimdPath> availableSimdPaths() {
+  if (bestSimdPath() == SimdPath::kAvx2) return {SimdPath::kPortable, SimdPath::kAvx2};
+  return {SimdPath::kPortable};
+}
+
+// Whether `path` runs the AVX2 versions (never in a build without them).
+inline bool useAvx2(SimdPath path) { return ANIMC_AVX2_PATH && path == SimdPath::kAvx2; }
+
+}  // namespace animc

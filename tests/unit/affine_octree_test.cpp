@@ -112,6 +112,7 @@ TEST(AffineOctree, RandomAccessEqualsFullDecode) {
 // reach a cell the walk has yet to visit. Clustered points make many empty and one-vertex
 // children; the walk stops at random cells, as the coders' walks do.
 struct PartitionWalk {
+  explicit PartitionWalk(SimdPath path) : partition(path) {}
   OctreePartition partition;
   std::vector<double> unit;
   int levels = 10;
@@ -141,7 +142,9 @@ struct PartitionWalk {
 };
 
 TEST(OctreePartition, SplitsAreStablePartitionsByOctant) {
-  PartitionWalk w;
+  for (SimdPath path : availableSimdPaths()) {
+  SCOPED_TRACE(int(path));
+  PartitionWalk w(path);
   std::uniform_real_distribution<double> uniform(0, 1);
   for (int trial = 0; trial < 60; ++trial) {
     const uint32_t n = 1 + w.rng() % (trial % 2 ? 2000 : 300);
@@ -155,14 +158,18 @@ TEST(OctreePartition, SplitsAreStablePartitionsByOctant) {
     ASSERT_NO_FATAL_FAILURE(w.walk(w.partition.reset(w.unit, w.levels), all));
     ASSERT_NO_FATAL_FAILURE(w.walk(w.partition.restart(), all));
   }
+  }
 }
 
 // The prior's one-pass kernel (which on AVX2 CPUs sums while it gathers, normalises frame f-2
 // point by point and solves with a row per vector) against its definition written out of the
 // frame-wide and portable pieces: normalise(), gatherPoints(), fitSums() about the first
-// point, solveFit(). Bit for bit, since encoder and decoder may run either. It must also find
-// an affine motion that the points follow exactly.
+// point, solveFit(). Bit for bit, since encoder and decoder may run either: every path this
+// CPU runs against the portable pieces. It must also find an affine motion that the points
+// follow exactly.
 TEST(CellKernels, GatheredMotionIsTheFitOfTheNormalisedPoints) {
+  for (SimdPath path : availableSimdPaths()) {
+  SCOPED_TRACE(int(path));
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> uniform(-1, 1);
   const double L_true[9] = {0.02, -0.01, 0.005, 0.01, -0.03, 0.0, 0.004, 0.02, 0.01};
@@ -173,7 +180,7 @@ TEST(CellKernels, GatheredMotionIsTheFitOfTheNormalisedPoints) {
     for (double& x : before) x = 3.0 + 7.0 * uniform(rng);  // world units
     const RootCube cube = boundingCube(before);
     std::vector<double> unit_before;
-    normalise(cube, before, unit_before);
+    normalise(SimdPath::kPortable, cube, before, unit_before);
     for (size_t v = 0; v < count; ++v) {
       const double* b = &unit_before[3 * v];
       for (int r = 0; r < 3; ++r)  // exact motion about the cube's centre, plus nothing
@@ -187,16 +194,16 @@ TEST(CellKernels, GatheredMotionIsTheFitOfTheNormalisedPoints) {
     std::vector<double> out(kPointStride * n), scratch(kPointStride * n);
     CellFrame frame;
     CentredAffine motion;
-    gatherWithMotion(reference.data(), before.data(), cube, idx.data(), n, out.data(), scratch.data(), frame, motion);
+    gatherWithMotion(path, reference.data(), before.data(), cube, idx.data(), n, out.data(), scratch.data(), frame, motion);
 
     std::vector<double> want_out(kPointStride * n), before_points(kPointStride * n, 0.0);
-    const CellFrame want_frame = gatherPoints(reference.data(), idx.data(), n, want_out.data());
+    const CellFrame want_frame = gatherPoints(SimdPath::kPortable, reference.data(), idx.data(), n, want_out.data());
     for (size_t i = 0; i < n; ++i)
       for (int a = 0; a < 3; ++a) before_points[kPointStride * i + a] = unit_before[3 * size_t(idx[i]) + a];
     const double origin[3] = {before_points[0], before_points[1], before_points[2]};
     const double no_prior[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
     CentredAffine want;
-    solveFit(fitSums(before_points.data(), want_out.data(), n, origin), n, ridgeWeight(n, want_frame), no_prior,
+    solveFit(fitSums(SimdPath::kPortable, before_points.data(), want_out.data(), n, origin), n, ridgeWeight(n, want_frame), no_prior,
              want);
 
     EXPECT_EQ(out, want_out) << n;
@@ -219,6 +226,7 @@ TEST(CellKernels, GatheredMotionIsTheFitOfTheNormalisedPoints) {
     // (10^-3 · n · r², against a spread of about n · r² / 10 here) by about 1 %.
     for (int k = 0; k < 9; ++k) EXPECT_NEAR(motion.L[k], L_true[k], 6e-4) << n << " L" << k;
   }
+  }
 }
 
 // A leaf's points for the two tests below: reference u in a small cell, target q = u moved by
@@ -234,7 +242,7 @@ struct LeafFixture {
     for (double& x : xyz) x = 0.4 + 0.05 * uniform(rng);
     std::vector<uint32_t> idx(n);
     for (uint32_t i = 0; i < n; ++i) idx[i] = i;
-    frame = gatherPoints(xyz.data(), idx.data(), n, u.data());
+    frame = gatherPoints(bestSimdPath(), xyz.data(), idx.data(), n, u.data());
     for (size_t i = 0; i < n; ++i)
       for (int a = 0; a < 3; ++a)
         q[kPointStride * i + a] = u[kPointStride * i + a] + 0.01 + 0.03 * (u[kPointStride * i + (a + 1) % 3] - 0.4) +
@@ -264,7 +272,7 @@ TEST(PredictiveOctree, FitNormalMatrixIsTheCurvatureOfItsObjective) {
     const LeafFixture leaf(n, rng);
     CentredAffine fit;
     double normal[9];
-    fitCentred(leaf.u.data(), leaf.q.data(), n, leaf.frame, leaf.prior_L, fit, normal);
+    fitCentred(bestSimdPath(), leaf.u.data(), leaf.q.data(), n, leaf.frame, leaf.prior_L, fit, normal);
     for (int trial = 0; trial < 5; ++trial) {
       CentredAffine moved = fit;
       double want = 0;
@@ -301,7 +309,7 @@ TEST(PredictiveOctree, CorrectionsAreRoundedForRatePlusDistortion) {
     const LeafFixture leaf(n, rng);
     CentredAffine fit;
     double normal[9];
-    fitCentred(leaf.u.data(), leaf.q.data(), n, leaf.frame, leaf.prior_L, fit, normal);
+    fitCentred(bestSimdPath(), leaf.u.data(), leaf.q.data(), n, leaf.frame, leaf.prior_L, fit, normal);
     const CorrectionSteps steps = correctionSteps(leaf.frame, n, 0.002);
     LeafModel model{leaf.frame, prior};
     int64_t nearest[12], coded[12];

@@ -46,6 +46,7 @@ double squaredError(const std::vector<double>& a, const std::vector<double>& b) 
 void encode(const Coefficients& c, double step, std::vector<uint8_t>& bytes, std::vector<double>& encoder_view,
             uint64_t budget = 0, const BitplaneHistory* context = nullptr, BitplaneHistory* history = nullptr) {
   BitplaneEncodeSettings settings;
+  settings.path = bestSimdPath();
   settings.step = step;
   settings.byte_budget = budget;
   settings.context = context;
@@ -58,6 +59,7 @@ Status decode(const std::vector<uint8_t>& bytes, size_t size, const Coefficients
   std::vector<uint8_t> exact(bytes.begin(), bytes.begin() + size);  // exact-size copy for ASan
   ByteReader in(exact.data(), exact.size());
   BitplaneDecodeSettings settings;
+  settings.path = bestSimdPath();
   settings.step = step;
   settings.max_planes = max_planes;
   settings.context = context;
@@ -87,11 +89,13 @@ TEST(WaveletBitplane, ReconstructionMatchesItsFormulaForEveryMagnitude) {
   for (int i = 0; i < 21; ++i) k.push_back(rng() >> (1 + rng() % 31));
   std::vector<uint8_t> negative(k.size());
   for (size_t i = 0; i < k.size(); ++i) negative[i] = uint8_t(i % 3 == 1);
+  for (SimdPath path : availableSimdPaths())
   for (int q : {0, 5}) {
+    SCOPED_TRACE(int(path));
     const double scale = std::ldexp(0.3, q);
     std::vector<double> out(k.size());
     std::vector<uint8_t> lengths(k.size()), signs(k.size());
-    reconstructCoefficients(k.data(), negative.data(), k.size(), q, scale, out.data(), lengths.data(), signs.data());
+    reconstructCoefficients(path, k.data(), negative.data(), k.size(), q, scale, out.data(), lengths.data(), signs.data());
     for (size_t i = 0; i < k.size(); ++i) {
       const double magnitude = k[i] == 0 ? 0.0 : (double(k[i]) + (k[i] == 1 ? kFreshOffset : kRefinedOffset)) * scale;
       const double expected = negative[i] ? -magnitude : magnitude;
@@ -202,13 +206,14 @@ TEST(WaveletBitplane, TemporalContextRoundTripsAndHelps) {
 TEST(WaveletBitplane, CutPreviewMatchesAForcedCut) {
   const Coefficients c = makeCoefficients(300, 10);
   auto workspace = makeBitplaneWorkspace();
-  const BitplaneCutPreview preview(c.values.data(), c.layout(), 0.01, workspace.get());
+  const BitplaneCutPreview preview(bestSimdPath(), c.values.data(), c.layout(), 0.01, workspace.get());
   ASSERT_GT(preview.planeCount(), 4);
   for (int planes : {1, 3, preview.planeCount()})
     for (size_t blocks : {size_t(1), preview.blockCount() / 2, preview.blockCount()}) {
       std::vector<double> expected, decoded;
       preview.decoded(planes, blocks, expected);
       BitplaneEncodeSettings settings;
+      settings.path = bestSimdPath();
       settings.step = 0.01;
       settings.max_planes = planes;
       settings.last_plane_blocks = blocks;

@@ -28,7 +28,7 @@ struct Coded {
 };
 
 Coded encodeAll(const MemorySequence& seq, const WaveletOptions& options, size_t intra_every = 0) {
-  auto encoder = makeWaveletEncoder(options, seq.topology());
+  auto encoder = makeWaveletEncoder(options, seq.topology(), bestSimdPath());
   Coded coded;
   for (size_t f = 0; f < seq.frames().size(); ++f) {
     std::vector<uint8_t> out;
@@ -45,7 +45,7 @@ Coded encodeAll(const MemorySequence& seq, const WaveletOptions& options, size_t
 
 std::vector<std::vector<float>> decodeAll(const MemorySequence& seq, const WaveletOptions& options,
                                           const Coded& coded, const WaveletDecodeControl& control = {}) {
-  auto decoder = makeWaveletDecoder(options, seq.topology(), control);
+  auto decoder = makeWaveletDecoder(options, seq.topology(), control, bestSimdPath());
   std::vector<std::vector<float>> frames;
   for (const auto& p : coded.payloads) {
     std::vector<float> xyz;
@@ -159,7 +159,7 @@ TEST(WaveletCodec, TruncatedPayloadDecodesToACoarserValidFrame) {
   for (size_t keep : {full.size() / 8, full.size() / 4, full.size() / 2, full.size()}) {
     WaveletDecodeControl control;
     control.max_payload_bytes = keep;
-    auto decoder = makeWaveletDecoder(options, seq.topology(), control);
+    auto decoder = makeWaveletDecoder(options, seq.topology(), control, bestSimdPath());
     std::vector<float> xyz;
     for (size_t f = 0; f < 3; ++f) {
       // The decoder reads at most `keep` bytes of a detail frame; parametric frames are whole.
@@ -241,7 +241,7 @@ TEST(WaveletCodec, DetailFrameWithoutParametricFrameIsRejected) {
   MemorySequence seq = gridSequence(12, 12, 3, 1.0, 0.0);
   WaveletOptions options;
   const Coded coded = encodeAll(seq, options);
-  auto decoder = makeWaveletDecoder(options, seq.topology());
+  auto decoder = makeWaveletDecoder(options, seq.topology(), {}, bestSimdPath());
   std::vector<float> xyz;
   const Status s = decoder->decodeFrame(ByteReader(coded.payloads[1].data(), coded.payloads[1].size()), xyz, nullptr);
   EXPECT_EQ(s.code(), StatusCode::kCorrupt);
@@ -253,7 +253,7 @@ TEST(WaveletCodec, GarbagePayloadsNeverCrash) {
   const Coded coded = encodeAll(seq, options);
   std::mt19937 rng(11);
   for (int trial = 0; trial < 300; ++trial) {
-    auto decoder = makeWaveletDecoder(options, seq.topology());
+    auto decoder = makeWaveletDecoder(options, seq.topology(), {}, bestSimdPath());
     std::vector<float> xyz;
     const auto& first = coded.payloads[0];
     ASSERT_TRUE(decoder->decodeFrame(ByteReader(first.data(), first.size()), xyz, nullptr).ok());
@@ -289,7 +289,7 @@ TEST(WaveletCodec, MeshWhoseHierarchyWouldTakeTooLongIsRefused) {
   std::vector<uint8_t> parametric = {uint8_t(WaveletFrameType::kParametric)};
   std::vector<double> positions(fan.frames()[0].begin(), fan.frames()[0].end()), recon;
   StaticPositionCoder(fan.topology()).encode(positions, 1e-3, parametric, recon);
-  auto decoder = makeWaveletDecoder(WaveletOptions(), fan.topology());
+  auto decoder = makeWaveletDecoder(WaveletOptions(), fan.topology(), {}, bestSimdPath());
   std::vector<float> xyz;
   const Status decoded = decoder->decodeFrame(ByteReader(parametric.data(), parametric.size()), xyz, nullptr);
   EXPECT_EQ(decoded.code(), StatusCode::kLimitExceeded) << decoded.message();

@@ -75,11 +75,12 @@ bool sameBits(const std::vector<double>& a, const std::vector<double>& b) {
 TEST(WaveletFrameModel, KernelsFollowThePlainFormulas) {
   ANIMC_REQUIRE_SEQUENCE("sydney_md2");
   ANIMC_REQUIRE_SEQUENCE("oa_gargoyle_upper");
+  for (SimdPath path : availableSimdPaths())
   for (const char* name : {"sydney_md2", "oa_gargoyle_upper"}) {
-    SCOPED_TRACE(name);
+    SCOPED_TRACE(std::string(name) + ", path " + std::to_string(int(path)));
     const MemorySequence seq = realSequence(name, 1);
     const std::vector<double> parametric = toDouble(seq.frames()[0]);
-    WaveletFrameModel model(WaveletOptions(), seq.topology());
+    WaveletFrameModel model(WaveletOptions(), seq.topology(), path);
     model.setParametric(parametric);
     const WaveletTransform& transform = model.transform();
     const ProgressiveMesh& pm = transform.hierarchy();

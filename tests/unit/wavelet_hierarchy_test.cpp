@@ -125,7 +125,7 @@ void expectSoundBase(const ProgressiveMesh& pm) {
 void expectExactReconstruction(const Topology& topology, const std::vector<double>& parametric,
                                const std::vector<double>& frame) {
   for (bool local_frames : {false, true}) {
-    const WaveletTransform transform(topology, parametric, local_frames);
+    const WaveletTransform transform(bestSimdPath(), topology, parametric, local_frames);
     std::vector<double> coefficients, back;
     transform.forward(frame.data(), coefficients);
     transform.inverse(coefficients, back);
@@ -223,7 +223,7 @@ TEST(WaveletHierarchy, SeamCopiesAreWeldedAndBothComponentsSimplified) {
 
   // The copies move with their originals, so their details vanish; all is reconstructed.
   const SeamMesh moved = seamMesh(12, 10, 0.7);
-  const WaveletTransform transform(mesh.topology, mesh.xyz, false);
+  const WaveletTransform transform(bestSimdPath(), mesh.topology, mesh.xyz, false);
   std::vector<double> coefficients;
   transform.forward(moved.xyz.data(), coefficients);
   for (const auto& copy : mesh.copies)
@@ -299,6 +299,11 @@ TEST_P(WaveletHierarchyOnSequence, IsCoveredAndRebuiltIdentically) {
     EXPECT_LE(a.base.size(), max_base);
     for (int n : boundaryLoopSizes(a.base_triangles, a.vertex_count)) EXPECT_GE(n, 3);
     EXPECT_TRUE(sameHierarchy(a, buildProgressiveMesh(seq.topology(), xyz))) << "not deterministic";
+    for (SimdPath path : availableSimdPaths()) {  // the cost kernels of every path agree
+      HierarchySettings settings;
+      settings.path = path;
+      EXPECT_TRUE(sameHierarchy(a, buildProgressiveMesh(seq.topology(), xyz, settings))) << int(path);
+    }
   }
 }
 

@@ -37,7 +37,7 @@ TEST_P(WaveletTransformOnSequence, InverseUndoesForward) {
   {
     MemorySequence seq = realSequence(name, 30);
     ASSERT_EQ(seq.frames().size(), 30u);
-    const WaveletTransform transform(seq.topology(), toDouble(seq.frames()[0]), local_frames);
+    const WaveletTransform transform(bestSimdPath(), seq.topology(), toDouble(seq.frames()[0]), local_frames);
     for (size_t f : {size_t(0), size_t(29)}) {
       const std::vector<double> x = toDouble(seq.frames()[f]);
       std::vector<double> coefficients, back;
@@ -116,15 +116,16 @@ bool sameBits(const std::vector<double>& a, const std::vector<double>& b) {
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
 }
 
-// The kernels this build and CPU run (AVX2 or portable) against the plain formulas, bit for
-// bit: on random values, and on zeros of random signs, whose sums keep or lose the sign of
-// zero depending on the order and kind of each operation.
+// The kernels of every path this build and CPU run (portable, AVX2) against the plain
+// formulas, bit for bit: on random values, and on zeros of random signs, whose sums keep or
+// lose the sign of zero depending on the order and kind of each operation.
 TEST_P(WaveletTransformRoundTrip, KernelsMatchThePlainFormulasBitForBit) {
   ANIMC_REQUIRE_SEQUENCE("sydney_md2");
+  for (SimdPath path : availableSimdPaths())
   for (const MemorySequence& seq :
        {testing_support::gridSequence(18, 18, 1, 1.0, 0.0), realSequence("sydney_md2", 1)}) {
-    SCOPED_TRACE(testing::Message() << seq.topology().vertex_count << " vertices");
-    const WaveletTransform transform(seq.topology(), toDouble(seq.frames()[0]), GetParam());
+    SCOPED_TRACE(testing::Message() << seq.topology().vertex_count << " vertices, path " << int(path));
+    const WaveletTransform transform(path, seq.topology(), toDouble(seq.frames()[0]), GetParam());
     // The case where a kernel must not read past a point: the last vertex is in stencils.
     const std::vector<uint32_t>& stencil_vertices = transform.stencils().vertex;
     EXPECT_NE(std::count(stencil_vertices.begin(), stencil_vertices.end(), seq.topology().vertex_count - 1), 0);
@@ -149,7 +150,7 @@ TEST(WaveletTransform, LocalDetailsAreInvariantUnderRigidMotion) {
   const std::vector<double> rest = toDouble(gridFrame(18, 18, 0, 1.0, 0.0));
   const std::vector<double> moved = toDouble(gridFrame(18, 18, 9, 0.0, 1.0));
   const std::vector<double> rest_rigid = toDouble(gridFrame(18, 18, 0, 0.0, 1.0));
-  const WaveletTransform transform(topology, rest, true);
+  const WaveletTransform transform(bestSimdPath(), topology, rest, true);
   std::vector<double> a, b;
   transform.forward(rest_rigid.data(), a);
   transform.forward(moved.data(), b);

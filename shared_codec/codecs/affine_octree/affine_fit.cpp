@@ -44,12 +44,12 @@ bool fitAffinePaper(const std::vector<double>& u, const std::vector<double>& q, 
 
 // Plain loops rather than Eigen: the matrices are 3x3, and this runs for every cell the
 // encoder's search visits and every leaf the decoder reads.
-void fitCentred(const double* u, const double* q, size_t n, const CellFrame& frame,
+void fitCentred(SimdPath path, const double* u, const double* q, size_t n, const CellFrame& frame,
                 const double prior_L[9], CentredAffine& out, double normal[9]) {
 #if ANIMC_AVX2_PATH
-  if (cpuHasAvx2()) return fitCentredAvx2(u, q, n, frame, prior_L, out, normal);
+  if (useAvx2(path)) return fitCentredAvx2(u, q, n, frame, prior_L, out, normal);
 #endif
-  solveFit(fitSums(u, q, n, frame.centroid), n, ridgeWeight(n, frame), prior_L, out, normal);
+  solveFit(fitSums(path, u, q, n, frame.centroid), n, ridgeWeight(n, frame), prior_L, out, normal);
 }
 
 void solveFit(const FitSums& s, size_t n, double lambda, const double prior_L[9], CentredAffine& out,

@@ -47,7 +47,7 @@ inline double ridgeWeight(size_t n, const CellFrame& frame) { return kRidge * do
 // `normal` (optional, row-major 3x3) receives the fit's normal matrix A, the spread of the
 // points about their centroid plus the ridge: moving the fit by (δt, δL) adds
 // n·|δt|² + Σᵣ δLᵣᵀ·A·δLᵣ (δLᵣ a row of δL) to its squared error plus ridge penalty.
-void fitCentred(const double* u, const double* q, size_t n, const CellFrame& frame,
+void fitCentred(SimdPath path, const double* u, const double* q, size_t n, const CellFrame& frame,
                 const double prior_L[9], CentredAffine& out, double normal[9] = nullptr);
 
 // x and y of the result go through the two lanes of a Pair, z alone; each lane computes

@@ -29,6 +29,8 @@ double innerMaxError(const AffineOctreeOptions& options) {
 
 // State both sides keep: the last two reconstructed frames.
 struct LoopState {
+  explicit LoopState(SimdPath simd_path) : path(simd_path) {}
+  SimdPath path;
   std::vector<double> current, before;
   bool has_current = false, has_before = false;
   std::vector<double> u, recon_unit;
@@ -39,13 +41,13 @@ struct LoopState {
   // Normalises `current` into its root cube, and returns the cube.
   RootCube prepare() {
     const RootCube cube = has_before ? current_cube : boundingCube(current);
-    normalise(cube, current, u);
+    normalise(path, cube, current, u);
     return cube;
   }
   void advance(const RootCube& cube) {
     before.swap(current);
     has_before = true;
-    current_cube = denormalise(cube, recon_unit, current);
+    current_cube = denormalise(path, cube, recon_unit, current);
   }
   void restart() {
     has_current = true;
@@ -55,9 +57,9 @@ struct LoopState {
 
 class AffineOctreeEncoder final : public FrameEncoder {
  public:
-  AffineOctreeEncoder(const AffineOctreeOptions& options, const Topology& topology)
-      : options_(options), intra_(topology), paper_(options.bits), predictive_(topology.vertex_count),
-        vertex_count_(topology.vertex_count) {}
+  AffineOctreeEncoder(const AffineOctreeOptions& options, const Topology& topology, SimdPath path)
+      : options_(options), intra_(topology), paper_(options.bits, path), predictive_(topology.vertex_count, path),
+        vertex_count_(topology.vertex_count), state_(path) {}
 
   void encodeFrame(const float* xyz, bool intra, std::vector<uint8_t>& out,
                    FrameCodingStats& stats) override {
@@ -73,7 +75,7 @@ class AffineOctreeEncoder final : public FrameEncoder {
  private:
   bool encodeInter(std::vector<uint8_t>& out, FrameCodingStats& stats) {
     const RootCube cube = state_.prepare();
-    normalise(cube, x_, q_);
+    normalise(state_.path, cube, x_, q_);
     for (double c : q_)
       if (std::fabs(c) > kMaxUnitCoordinate) return false;
     PFrameInput in{&state_.u, state_.has_before ? &state_.before : nullptr, cube, &q_, innerMaxError(options_),
@@ -112,8 +114,9 @@ class AffineOctreeEncoder final : public FrameEncoder {
 
 class AffineOctreeDecoder final : public FrameDecoder {
  public:
-  AffineOctreeDecoder(const AffineOctreeOptions& options, const Topology& topology)
-      : options_(options), intra_(topology), paper_(options.bits), predictive_(topology.vertex_count) {}
+  AffineOctreeDecoder(const AffineOctreeOptions& options, const Topology& topology, SimdPath path)
+      : options_(options), intra_(topology), paper_(options.bits, path), predictive_(topology.vertex_count, path),
+        state_(path) {}
 
   Status decodeFrame(ByteReader payload, std::vector<float>& xyz, bool* intra) override {
     ANIMC_ASSIGN_OR_RETURN(uint8_t type, payload.u8("Frame_Type"));
@@ -129,7 +132,7 @@ class AffineOctreeDecoder final : public FrameDecoder {
       return corrupt("unknown frame type " + std::to_string(type));
     }
     if (intra) *intra = type == kIntraFrame;
-    return decodedFrameToFloats(state_.current, xyz);
+    return decodedFrameToFloats(state_.path, state_.current, xyz);
   }
 
  private:
@@ -160,13 +163,13 @@ double intraStep(const AffineOctreeOptions& options, double side) {
 }
 
 std::unique_ptr<FrameEncoder> makeAffineOctreeEncoder(const AffineOctreeOptions& options,
-                                                      const Topology& topology) {
-  return std::make_unique<AffineOctreeEncoder>(options, topology);
+                                                      const Topology& topology, SimdPath path) {
+  return std::make_unique<AffineOctreeEncoder>(options, topology, path);
 }
 
 std::unique_ptr<FrameDecoder> makeAffineOctreeDecoder(const AffineOctreeOptions& options,
-                                                      const Topology& topology) {
-  return std::make_unique<AffineOctreeDecoder>(options, topology);
+                                                      const Topology& topology, SimdPath path) {
+  return std::make_unique<AffineOctreeDecoder>(options, topology, path);
 }
 
 }  // namespace animc

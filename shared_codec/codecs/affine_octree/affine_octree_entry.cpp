@@ -57,16 +57,17 @@ std::vector<SettingValue> settings(const CodecOptions& options) {
 
 Status checkMesh(const Topology&) { return Status(); }
 
-std::unique_ptr<FrameEncoder> makeEncoder(const CodecOptions& o, const Topology& topology) {
-  return makeAffineOctreeEncoder(octree(o), topology);
+std::unique_ptr<FrameEncoder> makeEncoder(const CodecOptions& o, const Topology& topology, SimdPath path) {
+  return makeAffineOctreeEncoder(octree(o), topology, path);
 }
 
 Result<std::unique_ptr<FrameDecoder>> makeDecoder(const CodecOptions& o, const Topology& topology,
-                                                  const WaveletDecodeControl& control, const std::string& file) {
+                                                  const WaveletDecodeControl& control, const std::string& file,
+                                                  SimdPath path) {
   if (control.partial())
     return invalidArgument(file + ": progressive decoding (fewer bitplanes or bytes) needs a wavelet-coded "
                            "file; this one is affine-octree");
-  return makeAffineOctreeDecoder(octree(o), topology);
+  return makeAffineOctreeDecoder(octree(o), topology, path);
 }
 
 }  // namespace

@@ -18,9 +18,9 @@ constexpr size_t kPointStride = 4;
 
 // Copies the points idx[0..n) (n >= 1) of an xyz-interleaved frame to out
 // (n·kPointStride doubles) and returns their centroid and radius.
-CellFrame gatherPoints(const double* frame, const uint32_t* idx, size_t n, double* out);
+CellFrame gatherPoints(SimdPath path, const double* frame, const uint32_t* idx, size_t n, double* out);
 // gatherPoints() without measuring them.
-void copyPoints(const double* frame, const uint32_t* idx, size_t n, double* out);
+void copyPoints(SimdPath path, const double* frame, const uint32_t* idx, size_t n, double* out);
 
 // Over n gathered points, d = u − c and m = q − u: Σ m, Σ d, Σ d·dᵀ and Σ m·dᵀ (row-major),
 // each summed in point order. c is any origin near the points (the fit does not depend on it
@@ -29,7 +29,7 @@ struct FitSums {
   double m[3], d[3];
   double cov[9], cross[9];
 };
-FitSums fitSums(const double* u, const double* q, size_t n, const double c[3]);
+FitSums fitSums(SimdPath path, const double* u, const double* q, size_t n, const double c[3]);
 // The least-squares motion q ≈ u + t + L·(u − centroid) from those sums, with L pulled
 // towards prior_L by the ridge weight lambda: t = Σm / n and
 // L = (Σ m·dᵀ − t·(Σd)ᵀ + λ·prior)·(Σ d·dᵀ − (Σd)·(Σd)ᵀ / n + λ·I)⁻¹; `normal`, if given,
@@ -43,7 +43,7 @@ void solveFit(const FitSums& s, size_t n, double lambda, const double prior_L[9]
 // first before point, with no prior and the ridge weight fitCentred() gives the reference
 // points' frame. In one pass over the indices on AVX2 CPUs, where the before points are never
 // stored; `scratch` (n·kPointStride doubles) holds them on the others.
-void gatherWithMotion(const double* reference, const double* before, const RootCube& cube, const uint32_t* idx,
+void gatherWithMotion(SimdPath path, const double* reference, const double* before, const RootCube& cube, const uint32_t* idx,
                       size_t n, double* out, double* scratch, CellFrame& frame, CentredAffine& motion);
 
 #if ANIMC_AVX2_PATH
@@ -54,7 +54,7 @@ void fitCentredAvx2(const double* u, const double* q, size_t n, const CellFrame&
 #endif
 
 // applyCentred() of every gathered point, written to recon at the point's vertex idx[i].
-void predictPoints(const double* u, size_t n, const double c[3], const CentredAffine& a,
+void predictPoints(SimdPath path, const double* u, size_t n, const double c[3], const CentredAffine& a,
                    const uint32_t* idx, double* recon);
 
 }  // namespace animc

@@ -114,7 +114,7 @@ Cell OctreePartition::reset(const std::vector<double>& unit_xyz, int levels) {
   for (int b = 0; b < 2; ++b) order_[b].resize(kPadding + size_t(n));
   buckets_.resize(kPadding + 8 * size_t(n));
 #if ANIMC_AVX2_PATH
-  if (cpuHasAvx2()) mortonKeysAvx2(unit_xyz.data(), n, deep, key_.data());
+  if (useAvx2(path_)) mortonKeysAvx2(unit_xyz.data(), n, deep, key_.data());
   else
 #endif
     mortonKeysPortable(unit_xyz.data(), n, deep, key_.data());
@@ -239,7 +239,7 @@ void OctreePartition::split(const Cell& cell, Cell children[8]) {
   static_assert(kCopyChunk <= kPadding, "a copy may reach kCopyChunk slots before its range");
   uint32_t count[8];
 #if ANIMC_AVX2_PATH
-  if (cpuHasAvx2()) fillBucketsAvx2(key_.data(), order, n, shift, &buckets_[kPadding], count);
+  if (useAvx2(path_)) fillBucketsAvx2(key_.data(), order, n, shift, &buckets_[kPadding], count);
   else
 #endif
     fillBucketsPortable(key_.data(), order, n, shift, &buckets_[kPadding], count);
@@ -259,7 +259,7 @@ void OctreePartition::splitSmall(const Cell& cell, Cell children[8]) {
   const int shift = octantShift(cell.depth);
   uint32_t* out = &order_[(cell.depth & 1) ^ 1][kPadding + cell.begin];
 #if ANIMC_AVX2_PATH
-  const uint64_t counts = cpuHasAvx2() ? splitSmallAvx2(key_.data(), order, n, shift, out)
+  const uint64_t counts = useAvx2(path_) ? splitSmallAvx2(key_.data(), order, n, shift, out)
                                        : splitSmallPortable(key_.data(), order, n, shift, out);
 #else
   const uint64_t counts = splitSmallPortable(key_.data(), order, n, shift, out);

@@ -26,6 +26,8 @@ class OctreePartition {
  public:
   static constexpr int kGridBits = 16;  // >= the deepest allowed octree level
 
+  explicit OctreePartition(SimdPath path) : path_(path) {}
+
   // Takes a new reference frame and returns the root cell holding all its vertices. Cells
   // split down to depth `levels` at most (the tree's depth limit).
   Cell reset(const std::vector<double>& unit_xyz, int levels);
@@ -52,6 +54,7 @@ class OctreePartition {
   std::vector<uint32_t> buckets_;
   // Slots in front of the vertex lists and the buckets, which split() may overwrite.
   static constexpr uint32_t kPadding = 8;
+  SimdPath path_;
 };
 
 }  // namespace animc

@@ -39,7 +39,7 @@ struct PaperFrameStats {
 
 class PaperOctreeEncoder {
  public:
-  explicit PaperOctreeEncoder(int bits) : bits_(bits) {}
+  PaperOctreeEncoder(int bits, SimdPath path) : bits_(bits), partition_(path) {}
   void reset() { models_ = std::make_unique<PaperModels>(); }
   // Codes one frame; recon receives the decoder's reconstruction (normalised units).
   void encode(const PFrameInput& in, std::vector<uint8_t>& out, std::vector<double>& recon,
@@ -57,7 +57,7 @@ class PaperOctreeEncoder {
 
 class PaperOctreeDecoder {
  public:
-  explicit PaperOctreeDecoder(int bits) : bits_(bits) {}
+  PaperOctreeDecoder(int bits, SimdPath path) : bits_(bits), partition_(path) {}
   void reset() { models_ = std::make_unique<PaperModels>(); }
   Status decode(const PFrameInput& in, ByteReader payload, std::vector<double>& recon);
 

@@ -81,8 +81,10 @@ struct LeafModel {
 // instead of hopping through the vertex index; the leaf's model is found on the way. The
 // buffers only grow, so cells allocate nothing.
 struct CellPoints {
+  explicit CellPoints(SimdPath simd_path) : path(simd_path) {}
+  SimdPath path;
   std::vector<double> reference, target;  // target: when the input has it
-  std::vector<double> scratch;            // CPUs without AVX2: frame f-2's points
+  std::vector<double> scratch;            // the portable path: frame f-2's points
   LeafModel model;
   void gather(const PFrameInput& in, const uint32_t* idx, size_t n);
   const double* referencePoint(size_t i) const { return &reference[kPointStride * i]; }
@@ -136,7 +138,8 @@ struct PredictiveFrameStats {
 
 class PredictiveOctreeEncoder {
  public:
-  explicit PredictiveOctreeEncoder(uint32_t vertex_count) : contexts_(vertex_count) {}
+  PredictiveOctreeEncoder(uint32_t vertex_count, SimdPath path)
+      : contexts_(vertex_count), partition_(path), points_(path), path_(path) {}
   void reset() {
     models_ = std::make_unique<PredictiveModels>();
     contexts_.restart();
@@ -164,13 +167,15 @@ class PredictiveOctreeEncoder {
   ResidualContexts contexts_;
   OctreePartition partition_;
   CellPoints points_;
+  SimdPath path_;
   std::vector<Node> plan_;
   std::vector<int64_t> residual_;
 };
 
 class PredictiveOctreeDecoder {
  public:
-  explicit PredictiveOctreeDecoder(uint32_t vertex_count) : contexts_(vertex_count) {}
+  PredictiveOctreeDecoder(uint32_t vertex_count, SimdPath path)
+      : contexts_(vertex_count), partition_(path), points_(path), path_(path) {}
   void reset() {
     models_ = std::make_unique<PredictiveModels>();
     contexts_.restart();
@@ -188,6 +193,7 @@ class PredictiveOctreeDecoder {
   ResidualContexts contexts_;
   OctreePartition partition_;
   CellPoints points_;
+  SimdPath path_;
 };
 
 }  // namespace animc

@@ -53,7 +53,7 @@ void PredictiveOctreeDecoder::decodeLeaf(Walk& w, const Cell& cell) {
   points_.gather(w.in, idx, n);
   const LeafModel& m = points_.model;
   const CentredAffine a = codedAffine(m, correctionSteps(m.frame, n, w.step), coded);
-  predictPoints(points_.reference.data(), n, m.frame.centroid, a, idx, w.recon.data());
+  predictPoints(path_, points_.reference.data(), n, m.frame.centroid, a, idx, w.recon.data());
   if (!w.rc.decode(pm.residuals_zero[n <= kMinLinearVertices])) decodeResiduals(w, idx, n);
 }
 
@@ -128,14 +128,14 @@ ANIMC_TARGET_AVX2 void residualsAvx2(RangeDecoder& rc, PredictiveModels& pm, Res
 void PredictiveOctreeDecoder::decodeParameters(Walk& w, uint32_t n, int64_t coded[12]) {
   const bool linear = n >= kMinLinearVertices;
 #if ANIMC_AVX2_PATH
-  if (cpuHasAvx2()) return parametersAvx2(w.rc, w.raw, *models_, linear, coded);
+  if (useAvx2(path_)) return parametersAvx2(w.rc, w.raw, *models_, linear, coded);
 #endif
   parametersPortable(w.rc, w.raw, *models_, linear, coded);
 }
 
 void PredictiveOctreeDecoder::decodeResiduals(Walk& w, const uint32_t* vertices, uint32_t n) {
 #if ANIMC_AVX2_PATH
-  if (cpuHasAvx2()) return residualsAvx2(w.rc, *models_, contexts_, vertices, n, w.step, w.recon.data());
+  if (useAvx2(path_)) return residualsAvx2(w.rc, *models_, contexts_, vertices, n, w.step, w.recon.data());
 #endif
   residualsPortable(w.rc, *models_, contexts_, vertices, n, w.step, w.recon.data());
 }

@@ -150,7 +150,7 @@ double PredictiveOctreeEncoder::evaluateLeaf(Walk& w, const Cell& cell, Node& no
   const LeafModel& m = points_.model;
   CentredAffine fit;
   double normal[9];
-  fitCentred(points_.reference.data(), points_.target.data(), n, m.frame, m.prior.L, fit, normal);
+  fitCentred(path_, points_.reference.data(), points_.target.data(), n, m.frame, m.prior.L, fit, normal);
   const CorrectionSteps steps = correctionSteps(m.frame, n, w.step);
   const PredictiveModels& pm = *models_;
   double bits = quantiseCorrections(pm, fit, m.prior, steps, n, normal, w.bits_per_squared_error, node.coded);
@@ -214,7 +214,7 @@ void PredictiveOctreeEncoder::codeLeaf(Walk& w, const Cell& cell, const Node& no
   points_.gather(w.in, idx, n);
   const LeafModel& m = points_.model;
   const CentredAffine a = codedAffine(m, correctionSteps(m.frame, n, w.step), node.coded);
-  predictPoints(points_.reference.data(), n, m.frame.centroid, a, idx, w.recon->data());
+  predictPoints(path_, points_.reference.data(), n, m.frame.centroid, a, idx, w.recon->data());
   residual_.resize(3 * size_t(n));
   bool all_zero = true;
   for (uint32_t i = 0; i < n; ++i) {

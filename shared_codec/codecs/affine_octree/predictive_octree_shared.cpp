@@ -16,13 +16,13 @@ void CellPoints::gather(const PFrameInput& in, const uint32_t* idx, size_t n) {
     scratch.resize(size);
   }
   if (in.before) {
-    gatherWithMotion(in.reference->data(), in.before->data(), in.cube, idx, n, reference.data(), scratch.data(),
+    gatherWithMotion(path, in.reference->data(), in.before->data(), in.cube, idx, n, reference.data(), scratch.data(),
                      model.frame, model.prior);
   } else {
-    model.frame = gatherPoints(in.reference->data(), idx, n, reference.data());
+    model.frame = gatherPoints(path, in.reference->data(), idx, n, reference.data());
     model.prior = CentredAffine();
   }
-  if (in.target) copyPoints(in.target->data(), idx, n, target.data());
+  if (in.target) copyPoints(path, in.target->data(), idx, n, target.data());
 }
 
 }  // namespace animc

@@ -172,19 +172,19 @@ RootCube boundingCube(const std::vector<double>& xyz) {
   return box.cube();
 }
 
-void normalise(const RootCube& cube, const std::vector<double>& xyz, std::vector<double>& out) {
+void normalise(SimdPath path, const RootCube& cube, const std::vector<double>& xyz, std::vector<double>& out) {
   out.resize(xyz.size());
 #if ANIMC_AVX2_PATH
-  if (cpuHasAvx2()) return normaliseAvx2(cube, xyz.data(), xyz.size(), out.data());
+  if (useAvx2(path)) return normaliseAvx2(cube, xyz.data(), xyz.size(), out.data());
 #endif
   normalisePortable(cube, xyz.data(), xyz.size(), out.data());
 }
 
-Status decodedFrameToFloats(const std::vector<double>& frame, std::vector<float>& out) {
+Status decodedFrameToFloats(SimdPath path, const std::vector<double>& frame, std::vector<float>& out) {
   out.resize(frame.size());
 #if ANIMC_AVX2_PATH
-  const bool in_range = cpuHasAvx2() ? toFloatsAvx2(frame.data(), frame.size(), out.data())
-                                     : toFloatsPortable(frame.data(), frame.size(), out.data());
+  const bool in_range = useAvx2(path) ? toFloatsAvx2(frame.data(), frame.size(), out.data())
+                                       : toFloatsPortable(frame.data(), frame.size(), out.data());
 #else
   const bool in_range = toFloatsPortable(frame.data(), frame.size(), out.data());
 #endif
@@ -194,10 +194,11 @@ Status decodedFrameToFloats(const std::vector<double>& frame, std::vector<float>
       return corrupt("decoded vertex " + std::to_string(i / 3) + " is out of range");
 }
 
-RootCube denormalise(const RootCube& cube, const std::vector<double>& unit, std::vector<double>& out) {
+RootCube denormalise(SimdPath path, const RootCube& cube, const std::vector<double>& unit,
+                     std::vector<double>& out) {
   out.resize(unit.size());
 #if ANIMC_AVX2_PATH
-  if (cpuHasAvx2()) return denormaliseAvx2(cube, unit.data(), unit.size(), out.data());
+  if (useAvx2(path)) return denormaliseAvx2(cube, unit.data(), unit.size(), out.data());
 #endif
   return denormalisePortable(cube, unit.data(), unit.size(), out.data());
 }

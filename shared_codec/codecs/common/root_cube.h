@@ -19,7 +19,7 @@ struct RootCube {
 
 // Positions are xyz-interleaved doubles.
 RootCube boundingCube(const std::vector<double>& xyz);
-void normalise(const RootCube& cube, const std::vector<double>& xyz, std::vector<double>& out);
+void normalise(SimdPath path, const RootCube& cube, const std::vector<double>& xyz, std::vector<double>& out);
 // normalise()'s arithmetic for one point, (x − min) · (1 / side), x and y through a Pair: the
 // portable normalise() and the passes that normalise points as they meet them share it.
 struct PointNormaliser {
@@ -34,10 +34,11 @@ struct PointNormaliser {
 };
 // out = cube.min + cube.side · unit, returning the bounding cube of out (what boundingCube(out)
 // returns) found in the same pass.
-RootCube denormalise(const RootCube& cube, const std::vector<double>& unit, std::vector<double>& out);
+RootCube denormalise(SimdPath path, const RootCube& cube, const std::vector<double>& unit,
+                     std::vector<double>& out);
 // A decoded frame as floats, what both codecs' decoders return; kCorrupt naming the first
 // vertex with a coordinate that is NaN, infinite or beyond ±1e30, which no valid stream
 // decodes to.
-Status decodedFrameToFloats(const std::vector<double>& frame, std::vector<float>& out);
+Status decodedFrameToFloats(SimdPath path, const std::vector<double>& frame, std::vector<float>& out);
 
 }  // namespace animc

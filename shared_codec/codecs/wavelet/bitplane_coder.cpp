@@ -74,10 +74,10 @@ ANIMC_TARGET_AVX2 void reconstructAvx2(const uint32_t* k, const uint8_t* negativ
 
 }  // namespace
 
-void reconstructCoefficients(const uint32_t* k, const uint8_t* negative, size_t n, int q, double scale, double* out,
+void reconstructCoefficients([[maybe_unused]] SimdPath path, const uint32_t* k, const uint8_t* negative, size_t n, int q, double scale, double* out,
                              uint8_t* bit_lengths, uint8_t* was_negative) {
 #if ANIMC_AVX2_PATH
-  if (cpuHasAvx2()) return reconstructAvx2(k, negative, n, q, scale, out, bit_lengths, was_negative);
+  if (useAvx2(path)) return reconstructAvx2(k, negative, n, q, scale, out, bit_lengths, was_negative);
 #endif
   reconstructPortable(k, negative, n, q, scale, out, bit_lengths, was_negative);
 }
@@ -144,7 +144,7 @@ void encodeBitplanes(const double* values, const BitplaneLayout& layout,
   WorkspaceRef ref(workspace);
   BitplaneWorkspace& ws = *ref.ws;
   BitplaneState& s = ws.state;
-  s.start(layout, settings.context);
+  s.start(layout, settings.context, settings.path);
   s.quantise(values, settings.step);
   const int top = s.topPlane();
   const int lowest = settings.max_planes > 0 ? std::max(0, top - settings.max_planes) : 0;
@@ -193,11 +193,11 @@ void encodeBitplanes(const double* values, const BitplaneLayout& layout,
   s.finish(top, planes, stop, settings.step, decoded, history);
 }
 
-BitplaneCutPreview::BitplaneCutPreview(const double* values, const BitplaneLayout& layout, double step,
-                                       BitplaneWorkspace* workspace)
+BitplaneCutPreview::BitplaneCutPreview(SimdPath path, const double* values, const BitplaneLayout& layout,
+                                       double step, BitplaneWorkspace* workspace)
     : layout_(layout), step_(step), workspace_(workspace) {
   BitplaneState& s = workspace_->state;
-  s.start(layout, nullptr);
+  s.start(layout, nullptr, path);
   s.quantise(values, step);
   planes_ = s.topPlane();
 }
@@ -217,7 +217,7 @@ Status decodeBitplanes(ByteReader& in, const BitplaneLayout& layout,
   WorkspaceRef ref(workspace);
   BitplaneWorkspace& ws = *ref.ws;
   BitplaneState& s = ws.state;
-  s.start(layout, settings.context);
+  s.start(layout, settings.context, settings.path);
   const size_t blocks = s.blockCount();
   if (top == 0) {
     s.finish(0, 0, blocks, settings.step, decoded, history);
@@ -257,7 +257,7 @@ Status decodeBitplanes(ByteReader& in, const BitplaneLayout& layout,
     const size_t end = i + 1 == planes ? size_t(stop) : blocks;
     const auto never = [](size_t) { return false; };
 #if ANIMC_AVX2_PATH
-    if (cpuHasAvx2()) {
+    if (useAvx2(settings.path)) {
       s.codePlaneAvx2(io, ws.models, p, end, never);
       continue;
     }

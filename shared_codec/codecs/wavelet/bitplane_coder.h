@@ -22,6 +22,7 @@
 #include <memory>
 #include <vector>
 
+#include "core/simd_math.h"
 #include "core/status.h"
 #include "io/byte_reader.h"
 
@@ -71,6 +72,7 @@ struct BitplaneEncodeSettings {
   size_t last_plane_blocks = 0;
   // Temporal contexts from the previous frame (null: none). Its size must be layout.count().
   const BitplaneHistory* context = nullptr;
+  SimdPath path = SimdPath::kPortable;  // the kernels' version (core/simd_math.h): same bytes
 };
 
 // values: layout.count() entries in coding order. Appends the block to out; decoded receives
@@ -85,7 +87,7 @@ void encodeBitplanes(const double* values, const BitplaneLayout& layout,
 // stops after `blocks` blocks, what the decoder would reconstruct (no coding involved).
 class BitplaneCutPreview {
  public:
-  BitplaneCutPreview(const double* values, const BitplaneLayout& layout, double step,
+  BitplaneCutPreview(SimdPath path, const double* values, const BitplaneLayout& layout, double step,
                      BitplaneWorkspace* workspace);
   int planeCount() const { return planes_; }
   size_t blockCount() const { return (layout_.vertices + kBlockVertices - 1) / kBlockVertices; }
@@ -102,6 +104,7 @@ struct BitplaneDecodeSettings {
   double step = 1;
   int max_planes = 0;  // decode at most this many planes; 0 = all that were sent
   const BitplaneHistory* context = nullptr;  // must be what the encoder used
+  SimdPath path = SimdPath::kPortable;  // the kernels' version (core/simd_math.h): same frames
 };
 
 // Reads one block from in (which must end where the block ends, or earlier if the payload

@@ -59,7 +59,7 @@ constexpr double kRefinedOffset = 0.5;
 // sign * (k == 0 ? 0 : (k + offset) * scale), the sign applied to zeros too; and, when
 // bit_lengths is given, what they leave for the next frame's temporal contexts (the bit
 // length of k plus q, 0 for k = 0, and the sign).
-void reconstructCoefficients(const uint32_t* k, const uint8_t* negative, size_t n, int q, double scale, double* out,
+void reconstructCoefficients(SimdPath path, const uint32_t* k, const uint8_t* negative, size_t n, int q, double scale, double* out,
                              uint8_t* bit_lengths, uint8_t* was_negative);
 
 template <class Io>
@@ -67,7 +67,8 @@ struct PlaneWalk;
 
 class BitplaneState {
  public:
-  void start(const BitplaneLayout& layout, const BitplaneHistory* context) {
+  void start(const BitplaneLayout& layout, const BitplaneHistory* context, SimdPath path) {
+    path_ = path;
     classes_ = layout.classes;
     parents_ = layout.parents;
     vertices_ = layout.vertices;
@@ -120,7 +121,7 @@ class BitplaneState {
     return walkPlane(io, m, p, end, stop);
   }
 #if ANIMC_AVX2_PATH
-  // codePlane for CPUs with AVX2 and BMI2 (the decoder's choice when cpuHasAvx2()): the
+  // codePlane for the AVX2 path (SimdPath::kAvx2, CPUs with AVX2 and BMI2): the
   // walk's shifts by a variable amount (contexts, model rates) then take one instruction and
   // no count register. The same decisions.
   template <class Io, class Stop>
@@ -185,7 +186,7 @@ class BitplaneState {
       history->negative.resize(count);
     }
     for (const CutRange& r : ranges.range)
-      reconstructCoefficients(known + r.begin, negative_.data() + r.begin, r.end - r.begin, r.q, std::ldexp(step, r.q),
+      reconstructCoefficients(path_, known + r.begin, negative_.data() + r.begin, r.end - r.begin, r.q, std::ldexp(step, r.q),
                               decoded.data() + r.begin, history ? history->bits.data() + r.begin : nullptr,
                               history ? history->negative.data() + r.begin : nullptr);
   }
@@ -209,6 +210,7 @@ class BitplaneState {
   const uint8_t* classes_ = nullptr;
   const uint32_t* parents_ = nullptr;
   size_t vertices_ = 0, blocks_ = 0;
+  SimdPath path_ = SimdPath::kPortable;  // the reconstruction's kernels, set by start()
   std::vector<uint32_t> known_;          // magnitude >> (current plane), 0 while insignificant
   std::vector<uint8_t> negative_;
   std::vector<uint8_t> vertex_mask_;     // significant components of each vertex

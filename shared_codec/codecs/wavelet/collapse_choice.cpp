@@ -153,7 +153,7 @@ void VertexCollapses::prepare(const std::vector<double>& xyz, uint32_t v, bool c
 // lane the same IEEE operations as one target at a time.
 void VertexCollapses::computeCosts(FanGeometry& fan, double curve) const {
 #if ANIMC_AVX2_PATH
-  if (cpuHasAvx2()) return computeCostsAvx2(fan, curve);
+  if (useAvx2(fan.path)) return computeCostsAvx2(fan, curve);
 #endif
   Pair* const planes = firstOf(fan.planes, 5 * fan.triangles);
   Pair* planes_end = planes;

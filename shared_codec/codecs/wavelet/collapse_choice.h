@@ -36,6 +36,7 @@ struct CollapseOption {
 struct FanGeometry {
   uint32_t vertex = kNoVertex;  // whose fan it holds (its ring as last prepared)
   size_t triangles = 0;
+  SimdPath path = SimdPath::kPortable;  // the cost kernels' version (the hierarchy build's)
 
   // By axis (structure of arrays), so that ring vertices i and i + 1, or triangles i and
   // i + 1, load as one Pair. The ring arrays repeat the first vertex after the last (where a

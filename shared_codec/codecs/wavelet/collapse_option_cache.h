@@ -32,7 +32,8 @@ class CollapseOptionCache {
     VertexCollapses collapses;  // its ring is v's closed ring, or open fan on a boundary
   };
 
-  explicit CollapseOptionCache(uint32_t vertex_count) : changed_by_(vertex_count, 0) {
+  CollapseOptionCache(uint32_t vertex_count, SimdPath path) : changed_by_(vertex_count, 0) {
+    fan_.path = path;
     entries_.reserve(vertex_count);
     for (uint32_t v = 0; v < vertex_count; ++v) entries_.emplace_back(&arena_);
   }

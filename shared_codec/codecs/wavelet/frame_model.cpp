@@ -49,11 +49,11 @@ void aroundStops(size_t begin, size_t end, const std::array<uint32_t, 2>& stops,
 
 }  // namespace
 
-WaveletFrameModel::WaveletFrameModel(const WaveletOptions& options, const Topology& topology)
-    : options_(options), topology_(topology) {}
+WaveletFrameModel::WaveletFrameModel(const WaveletOptions& options, const Topology& topology, SimdPath path)
+    : options_(options), topology_(topology), path_(path) {}
 
 void WaveletFrameModel::setParametric(const std::vector<double>& parametric_xyz) {
-  transform_ = std::make_unique<WaveletTransform>(topology_, parametric_xyz, options_.local_frames);
+  transform_ = std::make_unique<WaveletTransform>(path_, topology_, parametric_xyz, options_.local_frames);
   const ProgressiveMesh& pm = transform_->hierarchy();
   order_ = pm.base;
   for (size_t i = pm.collapses.size(); i-- > 0;) order_.push_back(pm.collapses[i].vertex);
@@ -158,10 +158,10 @@ ANIMC_TARGET_AVX2 void addEnergiesAvx2(const EnergyInputs& in, size_t begin, siz
 #endif
 
 template <bool kTwo>
-void addEnergies(const EnergyInputs& in, size_t begin, size_t end,
+void addEnergies([[maybe_unused]] SimdPath path, const EnergyInputs& in, size_t begin, size_t end,
                  [[maybe_unused]] const std::array<uint32_t, 2>& stops, EnergySums& s) {
 #if ANIMC_AVX2_PATH
-  if (cpuHasAvx2())
+  if (useAvx2(path))
     return aroundStops(
         begin, end, stops, [&](size_t from, size_t to) { addEnergiesAvx2<kTwo>(in, from, to, s); },
         [&](size_t from, size_t to) { addEnergiesPortable<kTwo>(in, from, to, s); });
@@ -181,9 +181,9 @@ Prediction WaveletFrameModel::choosePrediction(const std::vector<double>& coeffi
                         previous_.data(), before_previous_.data(), intra_reference_.data()};
   for (const PredictionRun& r : runs_) {
     if (two)
-      addEnergies<true>(in, r.begin, r.end, quad_stops_, sums[r.group]);
+      addEnergies<true>(path_, in, r.begin, r.end, quad_stops_, sums[r.group]);
     else
-      addEnergies<false>(in, r.begin, r.end, quad_stops_, sums[r.group]);
+      addEnergies<false>(path_, in, r.begin, r.end, quad_stops_, sums[r.group]);
   }
   Prediction best;
   for (int group = 0; group < kPredictionGroups; ++group) {
@@ -340,7 +340,7 @@ void WaveletFrameModel::residual(const std::vector<double>& coefficients, const 
   forEachRun(prediction, [&](size_t begin, size_t end, const References& references, auto predictor) {
     const CodingInputs in{order_.data(), transform_->weights().data(), references};
 #if ANIMC_AVX2_PATH
-    if (cpuHasAvx2())
+    if (useAvx2(path_))
       return aroundStops(
           begin, end, quad_stops_, [&](size_t from, size_t to) { residualAvx2<predictor()>(in, c, from, to, r); },
           [&](size_t from, size_t to) { residualPortable<predictor()>(in, c, from, to, r); });
@@ -357,7 +357,7 @@ void WaveletFrameModel::addResidual(const std::vector<double>& decoded_residual,
   forEachRun(prediction, [&](size_t begin, size_t end, const References& references, auto predictor) {
     const CodingInputs in{order_.data(), transform_->weights().data(), references};
 #if ANIMC_AVX2_PATH
-    if (cpuHasAvx2())
+    if (useAvx2(path_))
       return aroundStops(
           begin, end, quad_stops_, [&](size_t from, size_t to) { addResidualAvx2<predictor()>(in, r, from, to, c); },
           [&](size_t from, size_t to) { addResidualPortable<predictor()>(in, r, from, to, c); });

@@ -41,7 +41,9 @@ struct Prediction {
 
 class WaveletFrameModel {
  public:
-  WaveletFrameModel(const WaveletOptions& options, const Topology& topology);
+  // path: the kernels' version (core/simd_math.h) of the model and its transform.
+  WaveletFrameModel(const WaveletOptions& options, const Topology& topology, SimdPath path);
+  SimdPath simdPath() const { return path_; }
 
   // Rebuilds the hierarchy on a new parametric mesh (a decoded parametric frame), which is
   // also the reconstruction of that frame.
@@ -92,6 +94,7 @@ class WaveletFrameModel {
 
   WaveletOptions options_;
   const Topology& topology_;
+  SimdPath path_;
   std::unique_ptr<WaveletTransform> transform_;
   std::vector<uint32_t> order_;     // vertices in coding order: base, then coarse to fine
   std::vector<uint8_t> classes_;    // significance class of each vertex, in coding order

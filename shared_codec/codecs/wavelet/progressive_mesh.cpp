@@ -95,7 +95,7 @@ ProgressiveMesh buildProgressiveMesh(const Topology& topology, const std::vector
   LevelMesh mesh(topology);
   std::vector<uint8_t> removed(topology.vertex_count, 0);
   double max_length = settings.first_length_factor * meanEdgeLength(topology, parametric_xyz);
-  CollapseOptionCache cache(topology.vertex_count);
+  CollapseOptionCache cache(topology.vertex_count, settings.path);
   if (settings.weld_seams && weldSeams(mesh, parametric_xyz, cache, removed, pm) > 0) {
     pm.level_count = 1;
     mesh.rebuildIncidence();

@@ -10,6 +10,7 @@
 
 #include "codecs/wavelet/level_mesh.h"
 #include "core/sequence.h"
+#include "core/simd_math.h"
 #include "core/status.h"
 
 namespace animc {
@@ -54,6 +55,7 @@ struct HierarchySettings {
   double min_normal_cosine = 0.3;    // a collapse may not turn a triangle by more than ~72 deg
   bool collapse_boundaries = true;   // false keeps every boundary vertex in the base
   bool weld_seams = true;            // false keeps coincident vertices apart
+  SimdPath path = SimdPath::kPortable;  // the collapse costs' kernels (same hierarchy either way)
 };
 
 // The hierarchy's cost grew with the square of each vertex's triangle count (its ring is

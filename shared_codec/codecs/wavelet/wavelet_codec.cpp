@@ -32,8 +32,8 @@ Prediction unpackSelectors(uint8_t byte) {
 
 class WaveletEncoder final : public FrameEncoder {
  public:
-  WaveletEncoder(const WaveletOptions& options, const Topology& topology)
-      : options_(options), topology_(topology), static_coder_(topology_), model_(options, topology_) {}
+  WaveletEncoder(const WaveletOptions& options, const Topology& topology, SimdPath path)
+      : options_(options), topology_(topology), static_coder_(topology_), model_(options, topology_, path) {}
 
   void encodeFrame(const float* xyz, bool intra, std::vector<uint8_t>& out, FrameCodingStats& stats) override {
     original_ = xyz;
@@ -51,6 +51,7 @@ class WaveletEncoder final : public FrameEncoder {
     }
     model_.residual(coefficients_, prediction, residual_);
     BitplaneEncodeSettings settings;
+    settings.path = model_.simdPath();
     settings.step = model_.step();
     settings.checkpoints = options_.truncatable;
     settings.context = model_.contextFor(prediction);
@@ -68,7 +69,7 @@ class WaveletEncoder final : public FrameEncoder {
   // Sets the shortest cut whose output meets the frame's error bound; false when nothing at
   // all (a zero residual) meets it.
   bool cutForTarget(const Prediction& prediction, BitplaneEncodeSettings& settings) {
-    const BitplaneCutPreview preview(residual_.data(), model_.layout(), settings.step, model_.workspace());
+    const BitplaneCutPreview preview(model_.simdPath(), residual_.data(), model_.layout(), settings.step, model_.workspace());
     const int hint = preview.planeCount() - planes_dropped_;
     const BitplaneCut cut = shortestCut(preview.planeCount(), preview.blockCount(), error_bound_, hint,
                                         [&](const BitplaneCut& c) {
@@ -110,9 +111,10 @@ class WaveletEncoder final : public FrameEncoder {
 
 class WaveletDecoder final : public FrameDecoder {
  public:
-  WaveletDecoder(const WaveletOptions& options, const Topology& topology, const WaveletDecodeControl& control)
+  WaveletDecoder(const WaveletOptions& options, const Topology& topology, const WaveletDecodeControl& control,
+                 SimdPath path)
       : control_(control), topology_(topology), hierarchy_cost_(checkHierarchyCost(topology_)),
-        static_coder_(topology_), model_(options, topology_) {}
+        static_coder_(topology_), model_(options, topology_, path) {}
 
   Status decodeFrame(ByteReader payload, std::vector<float>& xyz, bool* intra) override {
     ANIMC_RETURN_IF_ERROR(hierarchy_cost_);
@@ -135,7 +137,7 @@ class WaveletDecoder final : public FrameDecoder {
       return corrupt("unknown wavelet frame type " + std::to_string(type));
     }
     if (intra) *intra = type == uint8_t(WaveletFrameType::kParametric);
-    return decodedFrameToFloats(model_.reconstruction(), xyz);
+    return decodedFrameToFloats(model_.simdPath(), model_.reconstruction(), xyz);
   }
 
  private:
@@ -143,6 +145,7 @@ class WaveletDecoder final : public FrameDecoder {
   Status decodeDetails(ByteReader& payload, const Prediction& prediction, bool cut) {
     if (!model_.canPredict(prediction)) return corrupt("detail frame without the frames it refers to");
     BitplaneDecodeSettings settings;
+    settings.path = model_.simdPath();
     settings.step = model_.step();
     settings.max_planes = control_.max_bitplanes;
     settings.context = model_.contextFor(prediction);
@@ -168,13 +171,14 @@ class WaveletDecoder final : public FrameDecoder {
 
 }  // namespace
 
-std::unique_ptr<FrameEncoder> makeWaveletEncoder(const WaveletOptions& options, const Topology& topology) {
-  return std::make_unique<WaveletEncoder>(options, topology);
+std::unique_ptr<FrameEncoder> makeWaveletEncoder(const WaveletOptions& options, const Topology& topology,
+                                                 SimdPath path) {
+  return std::make_unique<WaveletEncoder>(options, topology, path);
 }
 
 std::unique_ptr<FrameDecoder> makeWaveletDecoder(const WaveletOptions& options, const Topology& topology,
-                                                 const WaveletDecodeControl& control) {
-  return std::make_unique<WaveletDecoder>(options, topology, control);
+                                                 const WaveletDecodeControl& control, SimdPath path) {
+  return std::make_unique<WaveletDecoder>(options, topology, control, path);
 }
 
 }  // namespace animc

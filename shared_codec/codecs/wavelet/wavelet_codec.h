@@ -9,17 +9,20 @@
 
 #include "codecs/frame_codec.h"
 #include "codecs/wavelet/options.h"
+#include "core/simd_math.h"
 
 namespace animc {
 
 // kDetailPredicted is followed by one byte of prediction selectors (docs/wavelet.md).
 enum class WaveletFrameType : uint8_t { kParametric = 0, kDetailIntra = 1, kDetailPredicted = 2 };
 
-std::unique_ptr<FrameEncoder> makeWaveletEncoder(const WaveletOptions& options, const Topology& topology);
-// control: progressive decoding (fewer bitplanes, fewer bytes per frame); the default
-// decodes everything. A P-frame decoded with less than the encoder sent drifts from the
-// encoder's reconstruction until the next parametric frame.
+// path: the kernels' version (core/simd_math.h), the same bytes and frames either way.
+std::unique_ptr<FrameEncoder> makeWaveletEncoder(const WaveletOptions& options, const Topology& topology,
+                                                 SimdPath path);
+// control: progressive decoding (fewer bitplanes, fewer bytes per frame); {} decodes
+// everything. A P-frame decoded with less than the encoder sent drifts from the encoder's
+// reconstruction until the next parametric frame.
 std::unique_ptr<FrameDecoder> makeWaveletDecoder(const WaveletOptions& options, const Topology& topology,
-                                                 const WaveletDecodeControl& control = {});
+                                                 const WaveletDecodeControl& control, SimdPath path);
 
 }  // namespace animc

@@ -67,12 +67,13 @@ Status checkMesh(const Topology& topology) {
   return Status();
 }
 
-std::unique_ptr<FrameEncoder> makeEncoder(const CodecOptions& o, const Topology& topology) {
-  return makeWaveletEncoder(wavelet(o), topology);
+std::unique_ptr<FrameEncoder> makeEncoder(const CodecOptions& o, const Topology& topology, SimdPath path) {
+  return makeWaveletEncoder(wavelet(o), topology, path);
 }
 
 Result<std::unique_ptr<FrameDecoder>> makeDecoder(const CodecOptions& o, const Topology& topology,
-                                                  const WaveletDecodeControl& control, const std::string& file) {
+                                                  const WaveletDecodeControl& control, const std::string& file,
+                                                  SimdPath path) {
   // A P-frame decoded from part of its payload leaves the decoder's coding contexts different
   // from the encoder's unless the file was coded without them: every later frame of the group
   // would decode wrongly.
@@ -80,7 +81,7 @@ Result<std::unique_ptr<FrameDecoder>> makeDecoder(const CodecOptions& o, const T
     return invalidArgument(file + ": progressive decoding (fewer bitplanes or bytes) needs a file encoded with "
                            "animc encode --codec wavelet --progressive-p-frames or --i-frames-only; this one's "
                            "P-frames use the previous frame's coding contexts");
-  return makeWaveletDecoder(wavelet(o), topology, control);
+  return makeWaveletDecoder(wavelet(o), topology, control, path);
 }
 
 }  // namespace

@@ -255,28 +255,31 @@ ANIMC_TARGET_AVX2 void inverseAvx2(const CollapseTables& t, const double* coeffi
 }
 #endif
 
-// The loops on the fastest kernel this CPU runs (all give the same bits).
+// The loops on the kernels of `path` (all give the same bits).
 template <class Frames>
-void runForward(const CollapseTables& t, const double* xyz, double* coefficients, const Frames& frames) {
+void runForward([[maybe_unused]] SimdPath path, const CollapseTables& t, const double* xyz, double* coefficients,
+                const Frames& frames) {
 #if ANIMC_AVX2_PATH
-  if (cpuHasAvx2()) return forwardAvx2(t, xyz, coefficients, frames);
+  if (useAvx2(path)) return forwardAvx2(t, xyz, coefficients, frames);
 #endif
   forwardPortable(t, xyz, coefficients, frames);
 }
 
 template <class Frames>
-void runInverse(const CollapseTables& t, const double* coefficients, double* xyz, const Frames& frames) {
+void runInverse([[maybe_unused]] SimdPath path, const CollapseTables& t, const double* coefficients, double* xyz,
+                const Frames& frames) {
 #if ANIMC_AVX2_PATH
-  if (cpuHasAvx2()) return inverseAvx2(t, coefficients, xyz, frames);
+  if (useAvx2(path)) return inverseAvx2(t, coefficients, xyz, frames);
 #endif
   inversePortable(t, coefficients, xyz, frames);
 }
 
 }  // namespace
 
-WaveletTransform::WaveletTransform(const Topology& topology, const std::vector<double>& parametric_xyz,
-                                   bool local_frames, const HierarchySettings& settings)
-    : local_frames_(local_frames), pm_(buildProgressiveMesh(topology, parametric_xyz, settings)),
+WaveletTransform::WaveletTransform(SimdPath path, const Topology& topology, const std::vector<double>& parametric_xyz,
+                                   bool local_frames, HierarchySettings settings)
+    : path_(path), local_frames_(local_frames),
+      pm_(buildProgressiveMesh(topology, parametric_xyz, (settings.path = path, settings))),
       stencils_(buildPredictor(pm_, parametric_xyz)),
       level_of_(topology.vertex_count, -1) {
   buildCollapseTables();
@@ -351,9 +354,9 @@ void WaveletTransform::forward(const double* xyz, std::vector<double>& coefficie
   copyKept(xyz, coefficients.data());
   const CollapseTables t = tables();
   if (local_frames_)
-    runForward(t, xyz, coefficients.data(), RingFrames{t});
+    runForward(path_, t, xyz, coefficients.data(), RingFrames{t});
   else
-    runForward(t, xyz, coefficients.data(), WorldAxes());
+    runForward(path_, t, xyz, coefficients.data(), WorldAxes());
 }
 
 void WaveletTransform::inverse(const std::vector<double>& coefficients, std::vector<double>& xyz) const {
@@ -362,9 +365,9 @@ void WaveletTransform::inverse(const std::vector<double>& coefficients, std::vec
   copyKept(coefficients.data(), xyz.data());
   const CollapseTables t = tables();
   if (local_frames_)
-    runInverse(t, coefficients.data(), xyz.data(), RingFrames{t});
+    runInverse(path_, t, coefficients.data(), xyz.data(), RingFrames{t});
   else
-    runInverse(t, coefficients.data(), xyz.data(), WorldAxes());
+    runInverse(path_, t, coefficients.data(), xyz.data(), WorldAxes());
 }
 
 }  // namespace animc

@@ -20,8 +20,9 @@ class WaveletTransform {
  public:
   // local_frames = false keeps details in world axes (docs/wavelet.md: local frames turn
   // position errors of the coarse levels into detail errors, level after level).
-  WaveletTransform(const Topology& topology, const std::vector<double>& parametric_xyz,
-                   bool local_frames = true, const HierarchySettings& settings = {});
+  // path: the kernels' version (core/simd_math.h), of the hierarchy's build too.
+  WaveletTransform(SimdPath path, const Topology& topology, const std::vector<double>& parametric_xyz,
+                   bool local_frames = true, HierarchySettings settings = {});
 
   // coefficients (3 * N, vertex indexed): a base vertex keeps its position; a removed vertex
   // holds its detail as (normal, tangent, bitangent) components.
@@ -46,6 +47,7 @@ class WaveletTransform {
   // The positions (or coefficients) of the base vertices (those no collapse removes), from -> to.
   void copyKept(const double* from, double* to) const;
 
+  SimdPath path_;
   bool local_frames_;
   ProgressiveMesh pm_;
   PredictionStencils stencils_;
