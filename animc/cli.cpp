@@ -9,6 +9,9 @@
 #include <cstdlib>
 #include <memory>
 
+#include "core/file_identity.h"
+#include "seqio/sequence_io.h"
+
 namespace animc::cli {
 
 Status Args::parse(const std::vector<std::string>& argv, const std::set<std::string>& value_options,
@@ -98,6 +101,15 @@ Result<EncodeSettings> encodeSettingsFrom(const Args& args) {
   s.iframe_interval = uint32_t(interval);
   ANIMC_RETURN_IF_ERROR(s.validate());
   return s;
+}
+
+Result<EncodeInput> openEncodeInput(const Args& args) {
+  EncodeInput in;
+  ANIMC_ASSIGN_OR_RETURN(in.settings, encodeSettingsFrom(args));
+  ANIMC_ASSIGN_OR_RETURN(in.source, openSequence(args.positional()[0], args.get("mesh")));
+  ANIMC_ASSIGN_OR_RETURN(std::vector<std::string> inputs, sequenceInputFiles(args.positional()[0], args.get("mesh")));
+  ANIMC_RETURN_IF_ERROR(refuseOutputOverInput(args.get("output"), inputs));
+  return in;
 }
 
 namespace {

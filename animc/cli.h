@@ -3,6 +3,7 @@
 // errors to exit codes.
 #pragma once
 #include <map>
+#include <memory>
 #include <set>
 #include <string>
 #include <vector>
@@ -36,6 +37,14 @@ const std::set<std::string>& encodeSwitches();
 // "  affine-octree: [--profile paper|predictive] ...\n" for each codec, for the usage text.
 std::string codecUsage();
 Result<EncodeSettings> encodeSettingsFrom(const Args& args);
+
+// What encode and bench start from: the settings of the flags and the input sequence (the
+// first positional argument, with --mesh), once -o is known to be none of the input's files.
+struct EncodeInput {
+  EncodeSettings settings;
+  std::unique_ptr<FrameSource> source;
+};
+Result<EncodeInput> openEncodeInput(const Args& args);
 
 // Progress on stderr, at most ten updates a second, only when stderr is a terminal or
 // --progress was given.

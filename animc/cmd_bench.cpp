@@ -11,7 +11,6 @@
 #include <cstdio>
 
 #include "cli.h"
-#include "core/file_identity.h"
 #include "core/memory_sequence.h"
 #include "metrics/compare_sequences.h"
 #include "report/report.h"
@@ -98,14 +97,10 @@ int runBench(const std::vector<std::string>& argv) {
           return fail(invalidArgument("bench of an .ams file decodes it only: --" + name + " does not apply"));
     return runDecodeBench(args, runs.value());
   }
-  auto settings = encodeSettingsFrom(args);
-  if (!settings.ok()) return fail(settings.status());
-  auto source = openSequence(args.positional()[0], args.get("mesh"));
-  if (!source.ok()) return fail(source.status());
-  auto inputs = sequenceInputFiles(args.positional()[0], args.get("mesh"));
-  if (!inputs.ok()) return fail(inputs.status());
-  if (Status s = refuseOutputOverInput(args.get("output"), inputs.value()); !s.ok()) return fail(s);
-  auto sequence = readAll(*source.value());
+  auto input = openEncodeInput(args);
+  if (!input.ok()) return fail(input.status());
+  const EncodeSettings& settings = input.value().settings;
+  auto sequence = readAll(*input.value().source);
   if (!sequence.ok()) return fail(sequence.status());
   MemorySequence& seq = sequence.value();
   const std::string out = args.has("output") ? args.get("output")
@@ -117,7 +112,7 @@ int runBench(const std::vector<std::string>& argv) {
     if (progress) progress(int(100 * r / runs.value()), "encoding and decoding");
     seq.rewind();
     const auto t0 = Clock::now();
-    auto rep = encodeSequence(seq, settings.value(), out);
+    auto rep = encodeSequence(seq, settings, out);
     if (!rep.ok()) return fail(rep.status());
     encode_s.push_back(std::chrono::duration<double>(Clock::now() - t0).count());
     report = rep.value();
@@ -139,7 +134,7 @@ int runBench(const std::vector<std::string>& argv) {
   if (args.has("json")) {
     JsonObject o = newReport();
     o.add("input", args.positional()[0]);
-    addSettings(o, settings.value());
+    addSettings(o, settings);
     addSizes(o, report.file_bytes, report.static_bytes, report.vertices, report.frames);
     addMetrics(o, metrics.value(), false);
     o.add("intra_frames", report.intra_frames);
@@ -154,7 +149,7 @@ int runBench(const std::vector<std::string>& argv) {
   }
   std::printf("%s: %u vertices x %lld frames, %lld runs\n", args.positional()[0].c_str(), report.vertices,
               (long long)report.frames, runs.value());
-  std::fputs(formatEncodeResult(settings.value(), report).c_str(), stdout);
+  std::fputs(formatEncodeResult(settings, report).c_str(), stdout);
   std::fputs(formatMetricsText(metrics.value()).c_str(), stdout);
   std::printf("encode: %.2f M vertices/s (median %.4f s)\ndecode: %.2f M vertices/s (median %.4f s)\n",
               encode_mvps, median(encode_s), decode_mvps, median(decode_s));

@@ -2,7 +2,6 @@
 #include <cstdio>
 
 #include "cli.h"
-#include "core/file_identity.h"
 #include "report/encode_metrics.h"
 #include "report/report.h"
 #include "seqio/sequence_io.h"
@@ -19,15 +18,12 @@ int runEncode(const std::vector<std::string>& argv) {
   if (!s.ok()) return fail(s);
   if (args.positional().size() != 1 || !args.has("output"))
     return fail(invalidArgument("usage: animc encode IN -o OUT.ams [options]"));
-  auto settings = encodeSettingsFrom(args);
-  if (!settings.ok()) return fail(settings.status());
-  auto source = openSequence(args.positional()[0], args.get("mesh"));
-  if (!source.ok()) return fail(source.status());
-  auto inputs = sequenceInputFiles(args.positional()[0], args.get("mesh"));
-  if (!inputs.ok()) return fail(inputs.status());
-  if (!(s = refuseOutputOverInput(args.get("output"), inputs.value())).ok()) return fail(s);
-  MetricsAccumulator metrics(source.value()->topology().vertex_count);
-  auto report = encodeSequence(*source.value(), settings.value(), args.get("output"),
+  auto input = openEncodeInput(args);
+  if (!input.ok()) return fail(input.status());
+  const EncodeSettings& settings = input.value().settings;
+  FrameSource& source = *input.value().source;
+  MetricsAccumulator metrics(source.topology().vertex_count);
+  auto report = encodeSequence(source, settings, args.get("output"),
                                progressLine("encode", args.has("progress")), measuringObserver(metrics));
   if (!report.ok()) return fail(report.status());
   endProgressLine();
@@ -36,7 +32,7 @@ int runEncode(const std::vector<std::string>& argv) {
   if (args.has("json")) {
     JsonObject o = newReport();
     o.add("output", args.get("output"));
-    addSettings(o, settings.value());
+    addSettings(o, settings);
     addSizes(o, r.file_bytes, r.static_bytes, r.vertices, r.frames);
     addMetrics(o, m, false);
     o.add("intra_frames", r.intra_frames);
@@ -49,7 +45,7 @@ int runEncode(const std::vector<std::string>& argv) {
   std::printf("%s: %u vertices, %llu triangles, %lld frames (%llu intra)\n", args.get("output").c_str(),
               r.vertices, (unsigned long long)r.triangles, (long long)r.frames,
               (unsigned long long)r.intra_frames);
-  std::fputs(formatEncodeSummary(settings.value(), r, m).c_str(), stdout);
+  std::fputs(formatEncodeSummary(settings, r, m).c_str(), stdout);
   return 0;
 }
 

@@ -61,6 +61,22 @@ struct CodecEntry {
                                                        const std::string& file, SimdPath path);
 };
 
+// CodecEntry's validate, write and read for an options type with the members validate(),
+// write(ByteWriter&) and static read(ByteReader&), as both codecs' options have.
+template <class Options>
+Status validateOptions(const CodecOptions& o) {
+  return std::get<Options>(o).validate();
+}
+template <class Options>
+void writeOptions(const CodecOptions& o, ByteWriter& out) {
+  std::get<Options>(o).write(out);
+}
+template <class Options>
+Result<CodecOptions> readOptions(ByteReader& in) {
+  ANIMC_ASSIGN_OR_RETURN(Options o, Options::read(in));
+  return CodecOptions(o);
+}
+
 // Every codec, in Codec_Id order.
 const std::vector<const CodecEntry*>& allCodecs();
 // The entry of a codec id, or null for an id this build does not implement.

@@ -30,15 +30,6 @@ Result<CodecOptions> fromFlags(const OptionValues& values) {
   return CodecOptions(o);
 }
 
-Status validate(const CodecOptions& o) { return octree(o).validate(); }
-
-void write(const CodecOptions& o, ByteWriter& out) { octree(o).write(out); }
-
-Result<CodecOptions> read(ByteReader& in) {
-  ANIMC_ASSIGN_OR_RETURN(AffineOctreeOptions o, AffineOctreeOptions::read(in));
-  return CodecOptions(o);
-}
-
 std::string describe(const CodecOptions& options) {
   const AffineOctreeOptions& o = octree(options);
   char text[160];
@@ -80,9 +71,9 @@ const CodecEntry kAffineOctreeEntry = {
     "[--profile paper|predictive] [--max-error E] [--bits K] [--max-depth D]\n"
     "           E: the largest vertex error, a fraction of the root cube's side (0.01 = 1%)",
     fromFlags,
-    validate,
-    write,
-    read,
+    validateOptions<AffineOctreeOptions>,
+    writeOptions<AffineOctreeOptions>,
+    readOptions<AffineOctreeOptions>,
     describe,
     settings,
     checkMesh,

@@ -42,7 +42,7 @@ Result<AffineOctreeOptions> AffineOctreeOptions::read(ByteReader& r) {
   // build lacks is a newer file, not a broken one.
   if (profile != uint8_t(Profile::kPaper) && profile != uint8_t(Profile::kPredictive))
     return unsupported("codec parameters: affine-octree profile " + std::to_string(profile) +
-                       " is not supported (this build reads 0 paper, 1 default; a newer animcompress may read it)");
+                       " is not supported (this build reads 0 paper, 1 predictive; a newer animcompress may read it)");
   ANIMC_ASSIGN_OR_RETURN(o.max_error, r.f64("Max_Error"));
   ANIMC_ASSIGN_OR_RETURN(uint8_t bits, r.u8("Bits"));
   ANIMC_ASSIGN_OR_RETURN(uint8_t depth, r.u8("Max_Depth"));

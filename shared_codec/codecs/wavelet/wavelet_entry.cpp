@@ -26,15 +26,6 @@ Result<CodecOptions> fromFlags(const OptionValues& values) {
   return CodecOptions(o);
 }
 
-Status validate(const CodecOptions& o) { return wavelet(o).validate(); }
-
-void write(const CodecOptions& o, ByteWriter& out) { wavelet(o).write(out); }
-
-Result<CodecOptions> read(ByteReader& in) {
-  ANIMC_ASSIGN_OR_RETURN(WaveletOptions o, WaveletOptions::read(in));
-  return CodecOptions(o);
-}
-
 std::string describe(const CodecOptions& options) {
   const WaveletOptions& w = wavelet(options);
   char rate[96] = "no rate limit";
@@ -97,9 +88,9 @@ const CodecEntry kWaveletEntry = {
     "           diagonal; B caps each frame at B bits per vertex; X is the KG error (in %) to\n"
     "           reach with the fewest bits (down to what S allows)",
     fromFlags,
-    validate,
-    write,
-    read,
+    validateOptions<WaveletOptions>,
+    writeOptions<WaveletOptions>,
+    readOptions<WaveletOptions>,
     describe,
     settings,
     checkMesh,
