@@ -163,6 +163,10 @@ json_check 'd["frames"] == 50 and d["kg_error"] > e["kg_error"]' "$TMP/w_cmp_byt
 # ... and of a file with progressive P-frames: cut frames drift, but still decode.
 run w_prog "$ANIMC" encode "$PC2" --mesh "$MESH" -o "$TMP/wp.ams" --codec wavelet --step 1e-4 --progressive-p-frames --json
 json_check 'd["temporal_prediction"] == True and d["progressive_p_frames"] == True' "$TMP/w_prog.out"
+# A codec's option on the command line, in the file and in the reports, from its entry alone.
+run w_local "$ANIMC" encode "$PC2" --mesh "$MESH" -o "$TMP/wl.ams" --codec wavelet --local-frames --json
+run w_local_info "$ANIMC" info "$TMP/wl.ams" --json
+json_check 'd["local_frames"] == True and e["local_frames"] == False' "$TMP/w_local_info.out" "$TMP/w_prog.out"
 run w_prog_info "$ANIMC" info "$TMP/wp.ams"
 grep -q "progressive P-frames" "$TMP/w_prog_info.out" || check_failed "animc info does not say the P-frames are progressive"
 run w_prog_dec "$ANIMC" decode "$TMP/wp.ams" -o "$TMP/wp_4.pc2" --bitplanes 4

@@ -23,6 +23,7 @@ Result<CodecOptions> fromFlags(const OptionValues& values) {
   o.parametric_bits = int(bits);
   o.temporal_prediction = !values.has("i-frames-only");
   o.progressive_p_frames = values.has("progressive-p-frames");
+  o.local_frames = values.has("local-frames");
   return CodecOptions(o);
 }
 
@@ -36,9 +37,10 @@ std::string describe(const CodecOptions& options) {
   else if (w.target_kg > 0)
     std::snprintf(rate, sizeof rate, "target KG %g %%", w.target_kg);
   char text[256];
-  std::snprintf(text, sizeof text, "%s, step %g of the diagonal, parametric bits %d, %s", rate, w.step,
+  std::snprintf(text, sizeof text, "%s, step %g of the diagonal, parametric bits %d, %s%s", rate, w.step,
                 w.parametric_bits,
-                !w.temporal_prediction ? "I-frames only" : w.progressive_p_frames ? "progressive P-frames" : "P-frames");
+                !w.temporal_prediction ? "I-frames only" : w.progressive_p_frames ? "progressive P-frames" : "P-frames",
+                w.local_frames ? ", details in local frames" : "");
   return text;
 }
 
@@ -49,7 +51,8 @@ std::vector<SettingValue> settings(const CodecOptions& options) {
           {"target_kg_setting", w.target_kg},
           {"parametric_bits", int64_t(w.parametric_bits)},
           {"temporal_prediction", w.temporal_prediction},
-          {"progressive_p_frames", w.progressive_p_frames}};
+          {"progressive_p_frames", w.progressive_p_frames},
+          {"local_frames", w.local_frames}};
 }
 
 Status checkMesh(const Topology& topology) {
@@ -81,9 +84,9 @@ const CodecEntry kWaveletEntry = {
     CodecId::kWavelet,
     "wavelet",
     {"step", "bpv", "target-kg", "parametric-bits"},
-    {"i-frames-only", "progressive-p-frames"},
+    {"i-frames-only", "progressive-p-frames", "local-frames"},
     "[--step S] [--bpv B] [--target-kg X] [--parametric-bits P]\n"
-    "           [--i-frames-only | --progressive-p-frames]\n"
+    "           [--i-frames-only | --progressive-p-frames] [--local-frames]\n"
     "           S: the finest quantisation step, a fraction of the first frame's bounding-box\n"
     "           diagonal; B caps each frame at B bits per vertex; X is the KG error (in %) to\n"
     "           reach with the fewest bits (down to what S allows)",
