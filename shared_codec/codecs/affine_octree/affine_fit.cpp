@@ -44,7 +44,7 @@ bool fitAffinePaper(const std::vector<double>& u, const std::vector<double>& q, 
 
 // Plain loops rather than Eigen: the matrices are 3x3, and this runs for every cell the
 // encoder's search visits and every leaf the decoder reads.
-void fitCentred(SimdPath path, const double* u, const double* q, size_t n, const CellFrame& frame,
+void fitCentred([[maybe_unused]] SimdPath path, const double* u, const double* q, size_t n, const CellFrame& frame,
                 const double prior_L[9], CentredAffine& out, double normal[9]) {
 #if ANIMC_AVX2_PATH
   if (useAvx2(path)) return fitCentredAvx2(u, q, n, frame, prior_L, out, normal);

@@ -322,14 +322,14 @@ ANIMC_TARGET_AVX2 void fitCentredAvx2(const double* u, const double* q, size_t n
 }
 #endif
 
-CellFrame gatherPoints(SimdPath path, const double* frame, const uint32_t* idx, size_t n, double* out) {
+CellFrame gatherPoints([[maybe_unused]] SimdPath path, const double* frame, const uint32_t* idx, size_t n, double* out) {
 #if ANIMC_AVX2_PATH
   if (useAvx2(path)) return gatherPointsAvx2(frame, idx, n, out);
 #endif
   return gatherPointsPortable(frame, idx, n, out);
 }
 
-void gatherWithMotion(SimdPath path, const double* reference, const double* before, const RootCube& cube, const uint32_t* idx,
+void gatherWithMotion([[maybe_unused]] SimdPath path, const double* reference, const double* before, const RootCube& cube, const uint32_t* idx,
                       size_t n, double* out, double* scratch, CellFrame& frame, CentredAffine& motion) {
   if (n == 1) return gatherOneWithMotion(reference, before, cube, idx[0], out, frame, motion);
 #if ANIMC_AVX2_PATH
@@ -338,21 +338,21 @@ void gatherWithMotion(SimdPath path, const double* reference, const double* befo
   gatherWithMotionPortable(reference, before, cube, idx, n, out, scratch, frame, motion);
 }
 
-void copyPoints(SimdPath path, const double* frame, const uint32_t* idx, size_t n, double* out) {
+void copyPoints([[maybe_unused]] SimdPath path, const double* frame, const uint32_t* idx, size_t n, double* out) {
 #if ANIMC_AVX2_PATH
   if (useAvx2(path)) return copyPointsAvx2(frame, idx, n, out);
 #endif
   copyPointsPortable(frame, idx, n, out);
 }
 
-FitSums fitSums(SimdPath path, const double* u, const double* q, size_t n, const double c[3]) {
+FitSums fitSums([[maybe_unused]] SimdPath path, const double* u, const double* q, size_t n, const double c[3]) {
 #if ANIMC_AVX2_PATH
   if (useAvx2(path)) return fitSumsAvx2(u, q, n, c);
 #endif
   return fitSumsPortable(u, q, n, c);
 }
 
-void predictPoints(SimdPath path, const double* u, size_t n, const double c[3], const CentredAffine& a,
+void predictPoints([[maybe_unused]] SimdPath path, const double* u, size_t n, const double c[3], const CentredAffine& a,
                    const uint32_t* idx, double* recon) {
 #if ANIMC_AVX2_PATH
   if (useAvx2(path)) return predictPointsAvx2(u, n, c, a, idx, recon);

@@ -172,7 +172,7 @@ RootCube boundingCube(const std::vector<double>& xyz) {
   return box.cube();
 }
 
-void normalise(SimdPath path, const RootCube& cube, const std::vector<double>& xyz, std::vector<double>& out) {
+void normalise([[maybe_unused]] SimdPath path, const RootCube& cube, const std::vector<double>& xyz, std::vector<double>& out) {
   out.resize(xyz.size());
 #if ANIMC_AVX2_PATH
   if (useAvx2(path)) return normaliseAvx2(cube, xyz.data(), xyz.size(), out.data());
@@ -180,7 +180,7 @@ void normalise(SimdPath path, const RootCube& cube, const std::vector<double>& x
   normalisePortable(cube, xyz.data(), xyz.size(), out.data());
 }
 
-Status decodedFrameToFloats(SimdPath path, const std::vector<double>& frame, std::vector<float>& out) {
+Status decodedFrameToFloats([[maybe_unused]] SimdPath path, const std::vector<double>& frame, std::vector<float>& out) {
   out.resize(frame.size());
 #if ANIMC_AVX2_PATH
   const bool in_range = useAvx2(path) ? toFloatsAvx2(frame.data(), frame.size(), out.data())
@@ -194,7 +194,7 @@ Status decodedFrameToFloats(SimdPath path, const std::vector<double>& frame, std
       return corrupt("decoded vertex " + std::to_string(i / 3) + " is out of range");
 }
 
-RootCube denormalise(SimdPath path, const RootCube& cube, const std::vector<double>& unit,
+RootCube denormalise([[maybe_unused]] SimdPath path, const RootCube& cube, const std::vector<double>& unit,
                      std::vector<double>& out) {
   out.resize(unit.size());
 #if ANIMC_AVX2_PATH
