@@ -125,7 +125,7 @@ int runBench(const std::vector<std::string>& argv) {
   seq.rewind();
   auto ams = AmsSource::open(out);
   if (!ams.ok()) return fail(ams.status());
-  auto metrics = compareSequences(seq, *ams.value());
+  auto metrics = compareSequences(seq, *ams.value(), {}, PerFrameErrors::kDrop);
   if (!args.has("output")) unlink(out.c_str());
   if (!metrics.ok()) return fail(metrics.status());
   const double vertex_frames = double(report.vertices) * double(report.frames);

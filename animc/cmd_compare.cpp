@@ -30,7 +30,8 @@ int runCompare(const std::vector<std::string>& argv) {
     recon = std::move(r).value();
   }
   FrameSource& other = ams ? static_cast<FrameSource&>(*ams) : *recon;
-  auto metrics = compareSequences(*original.value(), other);
+  auto metrics = compareSequences(*original.value(), other, {},
+                                  args.has("per-frame") ? PerFrameErrors::kKeep : PerFrameErrors::kDrop);
   if (!metrics.ok()) return fail(metrics.status());
   const SequenceMetrics& m = metrics.value();
   if (args.has("json")) {

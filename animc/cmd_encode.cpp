@@ -22,7 +22,7 @@ int runEncode(const std::vector<std::string>& argv) {
   if (!input.ok()) return fail(input.status());
   const EncodeSettings& settings = input.value().settings;
   FrameSource& source = *input.value().source;
-  MetricsAccumulator metrics(source.topology().vertex_count);
+  MetricsAccumulator metrics(source.topology().vertex_count, PerFrameErrors::kDrop);
   auto report = encodeSequence(source, settings, args.get("output"),
                                progressLine("encode", args.has("progress")), measuringObserver(metrics));
   if (!report.ok()) return fail(report.status());

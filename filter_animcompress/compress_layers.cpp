@@ -20,7 +20,7 @@ namespace {
 // errors of the original layers when they are the ones to colour. It leaves the originals
 // alone: the encode may still fail on a later frame, and then they must stay as they were.
 struct CompressOutput {
-  explicit CompressOutput(uint32_t vertices) : metrics(vertices) {}
+  explicit CompressOutput(uint32_t vertices) : metrics(vertices, PerFrameErrors::kDrop) {}
   MetricsAccumulator metrics;
   QList<MeshModel*> decoded_layers;
   std::vector<std::vector<Scalarm>> original_errors;  // one per frame

@@ -4,13 +4,13 @@
 namespace animc {
 
 Result<SequenceMetrics> compareSequences(FrameSource& original, FrameSource& reconstructed,
-                                         const ProgressFn& progress) {
+                                         const ProgressFn& progress, PerFrameErrors per_frame) {
   const uint32_t n = original.topology().vertex_count;
   if (reconstructed.topology().vertex_count != n)
     return badInput(reconstructed.where() + ": " + std::to_string(reconstructed.topology().vertex_count) +
                     " vertices, the original has " + std::to_string(n));
   const int64_t frames = original.frameCount();
-  MetricsAccumulator metrics(n);
+  MetricsAccumulator metrics(n, per_frame);
   std::vector<float> a, b;
   for (;;) {
     ANIMC_ASSIGN_OR_RETURN(bool more_a, original.next(a));

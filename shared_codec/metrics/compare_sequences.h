@@ -14,6 +14,7 @@ namespace animc {
 // progress, when given, is called after each frame with the percent of original.frameCount()
 // done (when that count is known) and "measuring errors"; false from it ends with kCancelled.
 Result<SequenceMetrics> compareSequences(FrameSource& original, FrameSource& reconstructed,
-                                         const ProgressFn& progress = {});
+                                         const ProgressFn& progress = {},
+                                         PerFrameErrors per_frame = PerFrameErrors::kKeep);
 
 }  // namespace animc

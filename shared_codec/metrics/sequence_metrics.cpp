@@ -88,10 +88,11 @@ FrameErrorSums measureError(const float* original, const float* reconstructed, u
 
 }  // namespace
 
-MetricsAccumulator::MetricsAccumulator(uint32_t vertex_count)
+MetricsAccumulator::MetricsAccumulator(uint32_t vertex_count, PerFrameErrors per_frame)
     : vertex_count_(vertex_count),
       sequence_min_{kInf, kInf, kInf},
-      sequence_max_{-kInf, -kInf, -kInf} {}
+      sequence_max_{-kInf, -kInf, -kInf},
+      keep_(per_frame) {}
 
 void MetricsAccumulator::addFrame(const float* original, const float* reconstructed,
                                  const VertexErrorFn& each_vertex) {
@@ -111,11 +112,12 @@ void MetricsAccumulator::addFrame(const float* original, const float* reconstruc
   max_error_rel_cube_ = maxKeepingNaN(max_error_rel_cube_, relativeTo(error.max, cube_scale));
   previous_side_ = side;
 
+  ++frames_;
+  if (keep_ == PerFrameErrors::kDrop) return;
   FrameError frame;
   frame.rms = vertex_count_ > 0 ? std::sqrt(error.sum_sq / vertex_count_) : 0.0;
   frame.max = error.max;
   per_frame_.push_back(frame);
-  ++frames_;
 }
 
 SequenceMetrics MetricsAccumulator::finish() const {

@@ -40,13 +40,19 @@ struct SequenceMetrics {
 
 using VertexErrorFn = std::function<void(uint32_t vertex, double error)>;
 
-// Streams frames one at a time; memory is O(frames) for per_frame only, never O(N * frames).
+// Whether the per-frame errors (SequenceMetrics::per_frame, 16 bytes a frame) are kept: an
+// encode or a comparison that reports only the totals drops them, so that its memory does not
+// grow with the frame count.
+enum class PerFrameErrors { kKeep, kDrop };
+
+// Streams frames one at a time; memory is O(frames) for per_frame only (kKeep), never
+// O(N * frames).
 // Degenerate scales (an all-coincident original, so dmax, S_f or the KG denominator is 0) give
 // a relative figure of 0 when the error is 0 too, else +inf. An empty sequence reads as exact.
 // A NaN in a reconstruction propagates to every figure it touches rather than being hidden.
 class MetricsAccumulator {
  public:
-  explicit MetricsAccumulator(uint32_t vertex_count);
+  explicit MetricsAccumulator(uint32_t vertex_count, PerFrameErrors per_frame = PerFrameErrors::kKeep);
 
   // original and reconstructed: 3 * vertex_count floats each (x y z per vertex), non-null
   // unless vertex_count is 0. The original should be finite (the readers reject NaN).
@@ -69,6 +75,7 @@ class MetricsAccumulator {
   double previous_side_ = 0;    // largest bbox side of the previous original frame
   std::array<double, 3> sequence_min_;
   std::array<double, 3> sequence_max_;
+  PerFrameErrors keep_;
   std::vector<FrameError> per_frame_;
 };
 
