@@ -14,6 +14,9 @@ namespace animc {
 namespace {
 
 constexpr uint64_t kMaxHeadBytes = 1 << 16;
+// CONN has no maximum of its own (docs/format.md section 5): only the file size bounds it, and
+// a Length past the end of the file is a cut file (rule 4), not a section too large.
+constexpr uint64_t kNoMaximum = UINT64_MAX;
 
 std::string at(uint64_t offset) { return " at byte " + std::to_string(offset); }
 
@@ -44,8 +47,11 @@ Result<std::vector<uint8_t>> ContainerReader::readSection(uint64_t offset, const
   }
   ByteReader r(head + 4, 8, offset + 4);
   ANIMC_ASSIGN_OR_RETURN(uint64_t length, r.u64("Section_Length"));
+  // Rules 3 and 4 of docs/format.md section 5, in that order. The 12 bytes just read lie in
+  // the file, so `room` >= 12; Length may be any u64, so nothing is added to it.
   if (length > max_bytes) return limitExceeded(std::string(tag) + " section too large" + at(offset));
-  if (length + kSectionOverhead > info_.file_bytes - offset)
+  const uint64_t room = info_.file_bytes - offset;
+  if (room < kSectionOverhead || length > room - kSectionOverhead)
     return truncated(std::string(tag) + " section" + at(offset) + " runs past the end of the file (truncated)");
   std::vector<uint8_t> payload(length + 4);
   ANIMC_RETURN_IF_ERROR(readAt(offset + 12, payload.data(), payload.size(), tag));
@@ -115,7 +121,7 @@ Status ContainerReader::openHeader() {
 
   const uint64_t conn_offset = kFileHeaderBytes + kSectionOverhead + head.size();
   ANIMC_ASSIGN_OR_RETURN(std::vector<uint8_t> conn,
-                         readSection(conn_offset, kTagConnectivity, info_.file_bytes));
+                         readSection(conn_offset, kTagConnectivity, kNoMaximum));
   ANIMC_RETURN_IF_ERROR(decodeConnectivity(ByteReader(conn.data(), conn.size(), conn_offset + 12),
                                            hd.vertex_count, hd.triangle_count, topology_));
   ANIMC_RETURN_IF_ERROR(openIndex(conn_offset + kSectionOverhead + conn.size()));

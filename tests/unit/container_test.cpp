@@ -219,6 +219,46 @@ TEST_F(ContainerErrors, TruncatedFileIsReportedAsTruncated) {
   }
 }
 
+Bytes goldenBytes(const std::string& name) {
+  return readBytes(std::string(ANIMC_SOURCE_DIR) + "/tests/golden/" + name);
+}
+
+// docs/format.md section 5, rule 4: a section whose Length runs past the end of the file is
+// Truncated, whatever the Length. A cut file whose CONN Length exceeded the cut size was once
+// reported as "CONN section too large" (Limit_Exceeded).
+TEST_F(ContainerErrors, EveryPrefixOfAGoldenFileIsTruncated) {
+  for (const char* name : {"affine_octree_default.v1.ams", "wavelet.v1.ams"}) {
+    const Bytes golden = goldenBytes(name);
+    ASSERT_FALSE(golden.empty()) << name;
+    for (size_t n = 0; n < golden.size(); ++n) {
+      Status s = openWith(Bytes(golden.begin(), golden.begin() + n));
+      ASSERT_EQ(s.code(), StatusCode::kTruncated)
+          << name << " cut to " << n << " bytes: " << statusCodeName(s.code()) << ": " << s.message();
+    }
+  }
+}
+
+// A cut inside CONN names CONN, both where its Length still fits the cut file and where it
+// exceeds the whole cut file.
+TEST_F(ContainerErrors, ACutInsideConnNamesConn) {
+  const Bytes golden = goldenBytes("affine_octree_default.v1.ams");
+  writeBytes(path_, golden);
+  uint64_t conn = 0, length = 0;
+  {
+    auto ams = AmsSource::open(path_);
+    ASSERT_TRUE(ams.ok()) << ams.status().message();
+    for (const SectionInfo& sec : ams.value()->info().sections)
+      if (sec.tag == kTagConnectivity) conn = sec.offset, length = sec.payload_bytes;
+  }
+  ASSERT_GT(length, conn + 12) << "the golden file's CONN no longer outgrows its short prefixes";
+  for (uint64_t n : {conn + 12, length - 1, conn + 12 + length / 2, conn + 15 + length}) {
+    Status s = openWith(Bytes(golden.begin(), golden.begin() + n));
+    EXPECT_EQ(s.code(), StatusCode::kTruncated) << n << ": " << s.message();
+    EXPECT_NE(s.message().find("CONN section"), std::string::npos) << n << ": " << s.message();
+    EXPECT_NE(s.message().find("truncated"), std::string::npos) << n << ": " << s.message();
+  }
+}
+
 TEST_F(ContainerErrors, BadMagicVersionAndCrcAreNamed) {
   Bytes bad = file_;
   bad[1] = 'X';
