@@ -81,16 +81,14 @@ Status parseProperty(const std::vector<std::string_view>& words, size_t line, Pl
   return Status();
 }
 
-// Smallest encoding of one element instance: lists may be empty, ASCII values need a
-// character and a separator each.
-uint64_t minInstanceBytes(const PlyElement& element, bool ascii) {
+}  // namespace
+
+uint64_t plyMinInstanceBytes(const PlyElement& element, bool ascii) {
   uint64_t bytes = 0;
   for (const PlyProperty& p : element.properties)
     bytes += ascii ? 2 : plyTypeSize(p.is_list ? p.count_type : p.type);
   return bytes;
 }
-
-}  // namespace
 
 size_t plyTypeSize(PlyType type) {
   switch (type) {
@@ -150,7 +148,7 @@ Status checkPlyDataSize(const PlyHeader& header, size_t data_size) {
   bool ascii = header.format == PlyFormat::kAscii;
   uint64_t budget = uint64_t(data_size) + (ascii ? 1 : 0);  // the last value needs no separator
   for (const PlyElement& element : header.elements) {
-    uint64_t per_instance = minInstanceBytes(element, ascii);
+    uint64_t per_instance = plyMinInstanceBytes(element, ascii);
     if (per_instance == 0) continue;
     if (element.count > budget / per_instance)
       return truncated("header announces " + std::to_string(element.count) + " " + element.name +

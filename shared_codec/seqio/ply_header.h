@@ -47,6 +47,10 @@ bool plyTypeIsInteger(PlyType type);
 // Messages name the header line but not the file (callers add it).
 Result<PlyHeader> parsePlyHeader(const uint8_t* data, size_t size);
 
+// Smallest encoding of one instance of `element`: lists may be empty, ASCII values need a
+// character and a separator each.
+uint64_t plyMinInstanceBytes(const PlyElement& element, bool ascii);
+
 // Rejects headers announcing more elements than `data_size` bytes can hold, before anything
 // is allocated for them.
 Status checkPlyDataSize(const PlyHeader& header, size_t data_size);

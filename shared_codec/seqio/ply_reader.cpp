@@ -120,11 +120,35 @@ Status readFace(PlyValueReader& in, const PlyProperty& p, uint64_t face,
   return Status();
 }
 
+// Fewest bytes a face can take: any instance of its element (ply_header.h) plus the three
+// indices readFace() needs at least.
+uint64_t minFaceBytes(const PlyElement& element, const PlyProperty& list, bool ascii) {
+  return plyMinInstanceBytes(element, ascii) + 3 * (ascii ? 2 : plyTypeSize(list.type));
+}
+
+// A header may declare any face count: one the bytes left cannot hold is a cut (or lying)
+// file, said before anything is reserved for the faces.
+Status checkFaceCount(const PlyValueReader& in, const PlyElement& element, const PlyProperty& list) {
+  const bool ascii = in.format() == PlyFormat::kAscii;
+  // The last value needs no separator.
+  const uint64_t left = uint64_t(in.remaining()) + (ascii ? 1 : 0);
+  const uint64_t at_most = left / minFaceBytes(element, list, ascii);
+  if (element.count > at_most)
+    return truncated("data ends early (truncated file): the header declares " +
+                     std::to_string(element.count) + " faces but the " +
+                     std::to_string(in.remaining()) + " bytes left can hold at most " +
+                     std::to_string(at_most));
+  return Status();
+}
+
 Status readFaces(PlyValueReader& in, const PlyElement& element, Mesh* mesh) {
   int list = faceListIndex(element);
   if (list < 0) return corrupt("face element has no vertex_indices list");
   if (!plyTypeIsInteger(element.properties[list].type))
     return corrupt("face vertex indices are not of an integer type");
+  ANIMC_RETURN_IF_ERROR(checkFaceCount(in, element, element.properties[list]));
+  // One triangle per face, a reservation checkFaceCount() bounded by the bytes left (at most
+  // 1.5 bytes of memory per byte of file); polygons' further triangles grow it as they are read.
   mesh->topology.triangles.reserve(element.count);
   std::vector<uint32_t> corners;
   for (uint64_t f = 0; f < element.count; ++f) {

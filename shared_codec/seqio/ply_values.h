@@ -18,6 +18,9 @@ class PlyValueReader {
   // Integer types come back exactly (every PLY integer fits a double).
   bool read(PlyType type, double* value);
   const Status& status() const { return status_; }
+  PlyFormat format() const { return format_; }
+  // Bytes not read yet.
+  size_t remaining() const { return size_ - pos_; }
 
  private:
   bool readBinary(PlyType type, double* value);

@@ -246,6 +246,55 @@ TEST_F(SeqioTest, TruncatedAndAbsurdBinaryPly) {
             std::string::npos);
 }
 
+// A binary PLY of one triangle whose header declares `declared` faces, followed by
+// `padding` zero bytes: as many faces as the bytes hold would each take 13 bytes (a uchar
+// count and three int indices).
+std::string binaryTrianglePly(uint64_t declared, size_t padding) {
+  std::string header =
+      "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\n"
+      "property float y\nproperty float z\nelement face " + std::to_string(declared) +
+      "\nproperty list uchar int vertex_indices\nend_header\n";
+  PlyBody body{Encoding::kLittle, ""};
+  for (float v : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f, 0.f}) body.put<float>(v);
+  body.put<uint8_t>(3);
+  for (int32_t i : {0, 1, 2}) body.put<int32_t>(i);
+  return header + body.bytes + std::string(padding, '\0');
+}
+
+// A header may declare far more faces than the file holds. The reader reserved 12 bytes per
+// declared face before reading any (1.2 GB for a 100 MB file declaring 10^8 faces) and then
+// failed on whatever it read first; it must say the file is too short for its faces instead.
+TEST_F(SeqioTest, PlyDeclaringMoreFacesThanItsBytesHoldIsTruncated) {
+  writeFile("faces.ply", binaryTrianglePly(1000, 987));  // 1000 face bytes: at most 76 faces
+  auto mesh = readMesh(path("faces.ply"));
+  EXPECT_EQ(mesh.status().code(), StatusCode::kTruncated) << errorOf(mesh);
+  EXPECT_NE(errorOf(mesh).find("declares 1000 faces but the 1000 bytes left can hold at most 76"),
+            std::string::npos) << errorOf(mesh);
+  EXPECT_NE(errorOf(mesh).find("faces.ply: data ends early (truncated file)"), std::string::npos)
+      << errorOf(mesh);
+
+  // The attack at a hundredth of its size: a byte per declared face (enough for the header
+  // check, which counts a list as its length alone), 10^6 faces in 1 MB.
+  writeFile("faces.ply", binaryTrianglePly(1000000, 1000000));
+  mesh = readMesh(path("faces.ply"));
+  EXPECT_EQ(mesh.status().code(), StatusCode::kTruncated) << errorOf(mesh);
+  EXPECT_NE(errorOf(mesh).find("declares 1000000 faces but the 1000013 bytes left can hold at most 76924"),
+            std::string::npos) << errorOf(mesh);
+
+  // ASCII: "3 0 1 2" is the shortest face there is, so "\n3 0 1 2\n" holds one, not three.
+  writeFile("faces.ply", replaced(kTrianglePly, "element face 1", "element face 3"));
+  mesh = readMesh(path("faces.ply"));
+  EXPECT_EQ(mesh.status().code(), StatusCode::kTruncated) << errorOf(mesh);
+  EXPECT_NE(errorOf(mesh).find("declares 3 faces but the 9 bytes left can hold at most 1"),
+            std::string::npos) << errorOf(mesh);
+
+  // Files whose faces fill their bytes exactly are still read.
+  writeFile("faces.ply", binaryTrianglePly(1, 0));
+  EXPECT_TRUE(readMesh(path("faces.ply")).ok()) << errorOf(readMesh(path("faces.ply")));
+  writeFile("faces.ply", kTrianglePly);
+  EXPECT_TRUE(readMesh(path("faces.ply")).ok()) << errorOf(readMesh(path("faces.ply")));
+}
+
 // Found by fuzzing: an element with no properties takes no bytes, so the data-size check
 // lets any count through, and skipping it one instance at a time would loop 2^64 times (when
 // the compiler keeps the empty loop: clang does, gcc -O2 drops it).
