@@ -45,28 +45,44 @@ std::string trim(std::string_view line) {
   return std::string(line.substr(begin, line.find_last_not_of(kSpace) + 1 - begin));
 }
 
+// "list.txt line 3: " before a listed frame's messages.
+Status withListing(const Status& status, const FrameFile& frame) {
+  return frame.listed_at.empty() ? status : status.withContext(frame.listed_at);
+}
+
+// The frame's mesh; `reference` (may be null) is the topology it must have, `reference_name`
+// names that in messages.
+Result<Mesh> readFrame(const FrameFile& frame, const Topology* reference,
+                       const std::string& reference_name) {
+  Result<Mesh> mesh = readMesh(frame.path);
+  if (!mesh.ok()) return withListing(mesh.status(), frame);
+  if (reference) {
+    Status same = checkSameTopology(mesh.value().topology, *reference, reference_name);
+    if (!same.ok()) return withListing(same.withContext(frame.path), frame);
+  }
+  return mesh;
+}
+
 class FrameFileSource : public FrameSource {
  public:
-  FrameFileSource(std::vector<std::string> paths, Mesh first)
-      : paths_(std::move(paths)),
+  FrameFileSource(std::vector<FrameFile> frames, Mesh first)
+      : frames_(std::move(frames)),
         topology_(std::move(first.topology)),
         first_positions_(std::move(first.positions)) {}
 
   const Topology& topology() const override { return topology_; }
-  int64_t frameCount() const override { return int64_t(paths_.size()); }
+  int64_t frameCount() const override { return int64_t(frames_.size()); }
   std::string where() const override {
-    return next_ < paths_.size() ? paths_[next_] : paths_.back() + " (end)";
+    return next_ < frames_.size() ? frames_[next_].path : frames_.back().path + " (end)";
   }
 
   Result<bool> next(std::vector<float>& xyz) override {
-    if (next_ == paths_.size()) return false;
+    if (next_ == frames_.size()) return false;
     if (next_ == 0) {
       xyz.swap(first_positions_);
       std::vector<float>().swap(first_positions_);
     } else {
-      ANIMC_ASSIGN_OR_RETURN(Mesh mesh, readMesh(paths_[next_]));
-      ANIMC_RETURN_IF_ERROR(
-          checkSameTopology(mesh.topology, topology_, "frame 0").withContext(paths_[next_]));
+      ANIMC_ASSIGN_OR_RETURN(Mesh mesh, readFrame(frames_[next_], &topology_, "frame 0"));
       xyz.swap(mesh.positions);
     }
     ++next_;
@@ -74,13 +90,19 @@ class FrameFileSource : public FrameSource {
   }
 
  private:
-  std::vector<std::string> paths_;
+  std::vector<FrameFile> frames_;
   Topology topology_;
   std::vector<float> first_positions_;  // frame 0, read when opening to learn the topology
   size_t next_ = 0;
 };
 
 }  // namespace
+
+std::vector<FrameFile> unlistedFrameFiles(const std::vector<std::string>& paths) {
+  std::vector<FrameFile> frames;
+  for (const std::string& path : paths) frames.push_back({path, ""});
+  return frames;
+}
 
 bool naturalLess(const std::string& a, const std::string& b) {
   size_t i = 0, j = 0;
@@ -115,11 +137,11 @@ Result<std::vector<std::string>> listFrameDirectory(const std::string& dir) {
   return paths;
 }
 
-Result<std::vector<std::string>> readFrameList(const std::string& list_path) {
+Result<std::vector<FrameFile>> readFrameList(const std::string& list_path) {
   ANIMC_ASSIGN_OR_RETURN(std::vector<uint8_t> bytes, readWholeFile(list_path));
   std::string_view text(reinterpret_cast<const char*>(bytes.data()), bytes.size());
   fs::path base = fs::path(list_path).parent_path();
-  std::vector<std::string> paths;
+  std::vector<FrameFile> frames;
   size_t line_number = 0;
   for (size_t pos = 0; pos < text.size();) {
     size_t eol = std::min(text.find('\n', pos), text.size());
@@ -130,22 +152,19 @@ Result<std::vector<std::string>> readFrameList(const std::string& list_path) {
     if (!isFrameFile(entry))
       return badInput(list_path + " line " + std::to_string(line_number) + ": '" + entry +
                       "' is not a .ply or .off file");
-    paths.push_back((base / entry).string());  // an absolute entry replaces base
+    // An absolute entry replaces base.
+    frames.push_back({(base / entry).string(), list_path + " line " + std::to_string(line_number)});
   }
-  if (paths.empty()) return badInput(list_path + ": the list names no frames");
-  return paths;
+  if (frames.empty()) return badInput(list_path + ": the list names no frames");
+  return frames;
 }
 
-Result<std::unique_ptr<FrameSource>> openFrameFiles(std::vector<std::string> paths,
+Result<std::unique_ptr<FrameSource>> openFrameFiles(std::vector<FrameFile> frames,
                                                     const Topology* reference,
                                                     const std::string& reference_name) {
-  if (paths.empty()) return badInput("no frames to read");
-  ANIMC_ASSIGN_OR_RETURN(Mesh first, readMesh(paths[0]));
-  if (reference)
-    ANIMC_RETURN_IF_ERROR(
-        checkSameTopology(first.topology, *reference, "the mesh " + reference_name)
-            .withContext(paths[0]));
-  return std::unique_ptr<FrameSource>(new FrameFileSource(std::move(paths), std::move(first)));
+  if (frames.empty()) return badInput("no frames to read");
+  ANIMC_ASSIGN_OR_RETURN(Mesh first, readFrame(frames[0], reference, "the mesh " + reference_name));
+  return std::unique_ptr<FrameSource>(new FrameFileSource(std::move(frames), std::move(first)));
 }
 
 }  // namespace animc

@@ -10,18 +10,29 @@
 
 namespace animc {
 
+// A frame file and, for an entry of a .txt list, where it is listed ("list.txt line 3"), so
+// that an error in the frame names the line to fix.
+struct FrameFile {
+  std::string path;
+  std::string listed_at;  // empty for the files of a folder or a lone frame
+};
+
+// The same files, listed nowhere.
+std::vector<FrameFile> unlistedFrameFiles(const std::vector<std::string>& paths);
+
 // "frame2" before "frame10": digit runs compare by value (then by length, then plain order).
 bool naturalLess(const std::string& a, const std::string& b);
 
 // The .ply / .off files of `dir` (not hidden ones), in natural order of their names.
 Result<std::vector<std::string>> listFrameDirectory(const std::string& dir);
 
-// The frame paths of a .txt list, relative ones resolved against the list's directory.
-Result<std::vector<std::string>> readFrameList(const std::string& list_path);
+// The frames of a .txt list, relative paths resolved against the list's directory.
+Result<std::vector<FrameFile>> readFrameList(const std::string& list_path);
 
 // Reads frame 0 now (the topology must be known up front). `reference` (may be null) is a
-// mesh the frames must match; `reference_name` names it in messages.
-Result<std::unique_ptr<FrameSource>> openFrameFiles(std::vector<std::string> paths,
+// mesh the frames must match; `reference_name` names it in messages. Messages about a frame
+// start with where it is listed, if it is, then its path.
+Result<std::unique_ptr<FrameSource>> openFrameFiles(std::vector<FrameFile> frames,
                                                     const Topology* reference,
                                                     const std::string& reference_name);
 

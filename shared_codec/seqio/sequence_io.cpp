@@ -31,12 +31,15 @@ Result<std::unique_ptr<FrameSource>> openPointCache(const std::string& path,
   return mdd ? openMdd(path, mesh.topology, mesh_path) : openPc2(path, mesh.topology, mesh_path);
 }
 
-Result<std::vector<std::string>> framePaths(const std::string& path) {
+Result<std::vector<FrameFile>> frameFiles(const std::string& path) {
   std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) return listFrameDirectory(path);
+  if (std::filesystem::is_directory(path, ec)) {
+    ANIMC_ASSIGN_OR_RETURN(std::vector<std::string> paths, listFrameDirectory(path));
+    return unlistedFrameFiles(paths);
+  }
   if (endsWithNoCase(path, ".txt")) return readFrameList(path);
   if (endsWithNoCase(path, ".ply") || endsWithNoCase(path, ".off"))
-    return std::vector<std::string>{path};
+    return unlistedFrameFiles({path});
   return invalidArgument(path + ": unrecognised input (expected .ply, .off, .pc2, .mdd, " +
                          ".pc2.xz, .mdd.xz, a directory of frames or a .txt list)");
 }
@@ -83,10 +86,10 @@ Result<std::unique_ptr<FrameSource>> openSequence(const std::string& path,
   if (path.empty()) return invalidArgument("no input sequence given");
   if (isPointCache(path, ".pc2")) return openPointCache(path, mesh_path, /*mdd=*/false);
   if (isPointCache(path, ".mdd")) return openPointCache(path, mesh_path, /*mdd=*/true);
-  ANIMC_ASSIGN_OR_RETURN(std::vector<std::string> paths, framePaths(path));
-  if (mesh_path.empty()) return openFrameFiles(std::move(paths), nullptr, "");
+  ANIMC_ASSIGN_OR_RETURN(std::vector<FrameFile> frames, frameFiles(path));
+  if (mesh_path.empty()) return openFrameFiles(std::move(frames), nullptr, "");
   ANIMC_ASSIGN_OR_RETURN(Mesh mesh, readMesh(mesh_path));
-  return openFrameFiles(std::move(paths), &mesh.topology, mesh_path);
+  return openFrameFiles(std::move(frames), &mesh.topology, mesh_path);
 }
 
 Result<std::vector<std::string>> sequenceInputFiles(const std::string& path,
@@ -95,7 +98,8 @@ Result<std::vector<std::string>> sequenceInputFiles(const std::string& path,
   if (isPointCache(path, ".pc2") || isPointCache(path, ".mdd")) {
     files.push_back(path);
   } else {
-    ANIMC_ASSIGN_OR_RETURN(files, framePaths(path));
+    ANIMC_ASSIGN_OR_RETURN(std::vector<FrameFile> frames, frameFiles(path));
+    for (const FrameFile& frame : frames) files.push_back(frame.path);
     if (endsWithNoCase(path, ".txt")) files.push_back(path);
   }
   if (!mesh_path.empty()) files.push_back(mesh_path);

@@ -423,6 +423,37 @@ TEST_F(SeqioTest, FramesMustShareConnectivity) {
   EXPECT_NE(sequenceError(path("x.obj"), "").find("unrecognised input"), std::string::npos);
 }
 
+// An error in a frame of a .txt list names the list and the line to fix, then the frame.
+TEST_F(SeqioTest, FrameListErrorsNameTheListAndLine) {
+  fs::create_directories(path("walk"));
+  writeFile("walk/good.ply", kTrianglePly);
+  writeFile("walk/bad.ply", replaced(kTrianglePly, "0 1 0\n", "0 inf 0\n"));
+  writeFile("walk/other.ply", replaced(kTrianglePly, "3 0 1 2", "3 0 2 1"));
+  const std::string list = path("list.txt");
+  struct Case {
+    std::string lines, expected;
+  } cases[] = {
+      {"# frames\nwalk/good.ply\n\nwalk/bad.ply\n",
+       list + " line 4: " + path("walk/bad.ply") + ": vertex 2 has a non-finite"},
+      {"walk/good.ply\nwalk/missing.ply\n", list + " line 2: " + path("walk/missing.ply") + ": "},
+      {"walk/good.ply\n  walk/other.ply\r\n",
+       list + " line 2: " + path("walk/other.ply") + ": face list differs from frame 0"},
+      {"\n\nwalk/bad.ply\nwalk/good.ply\n",  // frame 0, read when the list is opened
+       list + " line 3: " + path("walk/bad.ply") + ": vertex 2 has a non-finite"},
+  };
+  for (const Case& c : cases) {
+    writeFile("list.txt", c.lines);
+    const std::string error = sequenceError(list, "");
+    EXPECT_EQ(error.find(c.expected), 0u) << c.expected << "\n" << error;
+  }
+  // With --mesh, a frame 0 whose faces differ from the mesh's is named by its line too.
+  writeFile("list.txt", "walk/other.ply\n");
+  EXPECT_EQ(sequenceError(list, path("walk/good.ply"))
+                .find(list + " line 1: " + path("walk/other.ply") + ": face list differs from the mesh"),
+            0u)
+      << sequenceError(list, path("walk/good.ply"));
+}
+
 // --- point caches ------------------------------------------------------------------------
 
 TEST_F(SeqioTest, PointCacheErrors) {
