@@ -1,7 +1,10 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "container/container_reader.h"
 
+#include <sys/stat.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstring>
 
@@ -29,8 +32,12 @@ ContainerReader::~ContainerReader() {
 Status ContainerReader::readAt(uint64_t offset, void* out, size_t size, const char* what) {
   if (offset > info_.file_bytes || size > info_.file_bytes - offset)
     return truncated(std::string(what) + at(offset) + ": file ends early");
-  if (fseeko(file_, off_t(offset), SEEK_SET) != 0 || std::fread(out, 1, size, file_) != size)
-    return ioError(path_ + ": read failed" + at(offset));
+  // No path here: callers add it (open() and AmsSource), so it is named once.
+  errno = 0;
+  if (fseeko(file_, off_t(offset), SEEK_SET) != 0 || std::fread(out, 1, size, file_) != size) {
+    const std::string why = errno ? std::string(": ") + std::strerror(errno) : "";
+    return ioError("read failed" + at(offset) + why);
+  }
   return Status();
 }
 
@@ -71,7 +78,12 @@ Result<std::unique_ptr<ContainerReader>> ContainerReader::open(const std::string
   r->limits_ = limits;
   r->file_ = std::fopen(path.c_str(), "rb");
   if (!r->file_) return ioError(path + ": cannot open: " + std::strerror(errno));
-  if (fseeko(r->file_, 0, SEEK_END) != 0) return ioError(path + ": cannot seek");
+  // fopen() opens a folder too; reading it would fail with no useful reason.
+  struct stat st;
+  if (fstat(fileno(r->file_), &st) == 0 && S_ISDIR(st.st_mode))
+    return ioError(path + ": is a directory, not an .ams file");
+  if (fseeko(r->file_, 0, SEEK_END) != 0)
+    return ioError(path + ": cannot seek (an .ams file is read out of order): " + std::strerror(errno));
   r->info_.file_bytes = uint64_t(ftello(r->file_));
   Status s = r->openHeader();
   if (!s.ok()) return s.withContext(path);

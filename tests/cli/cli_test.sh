@@ -243,6 +243,10 @@ expect_error progressive_i_frames_only "$ERRDIR/x.ams" "$ANIMC" encode "$PC2" --
 expect_error bench_ams_encode_option "" "$ANIMC" bench "$AMS" --max-error 0.1
 expect_error bench_ams_missing "" "$ANIMC" bench "$TMP/no_such.ams"
 expect_error negative_bitplanes "$ERRDIR/x.pc2" "$ANIMC" decode "$W_AMS" -o "$ERRDIR/x.pc2" --bitplanes -2
+# A folder given as the .ams: named once, with the reason.
+expect_error info_directory "" "$ANIMC" info "$TMP"
+[[ $(cat "$TMP/info_directory.err") == "animc: $TMP: is a directory, not an .ams file" ]] ||
+  check_failed "animc info DIR said: $(cat "$TMP/info_directory.err")"
 
 # --- an output that is one of the inputs is refused, by identity; the inputs stay intact ---
 VICTIM=$TMP/victim
