@@ -25,11 +25,6 @@ long processId() {
 #endif
 }
 
-// Several AtomicFiles may target the same path in one process (threads, retries).
-std::string nextTempPath(const std::string& path) {
-  static std::atomic<uint64_t> counter{0};
-  return path + ".tmp-" + std::to_string(processId()) + "-" + std::to_string(counter++);
-}
 
 bool syncToDisk(std::FILE* file) {
 #ifdef _WIN32
@@ -41,14 +36,29 @@ bool syncToDisk(std::FILE* file) {
 
 }  // namespace
 
+// The counter is shared by every temporary of the process (threads, retries, several targets).
+std::string temporaryPathBeside(const std::string& path) {
+  static std::atomic<uint64_t> counter{0};
+  std::string named = path;
+  while (named.size() > 1 && named.back() == '/') named.pop_back();
+  const std::string name =
+      ".animc-" + std::to_string(processId()) + "-" + std::to_string(counter++) + ".tmp";
+  return (std::filesystem::path(named).parent_path() / name).string();
+}
+
 AtomicFile::~AtomicFile() { abandon(); }
 
 Status AtomicFile::open(const std::string& path) {
   if (file_) return invalidArgument(path + ": AtomicFile is already open for " + path_);
   path_ = path;
-  temp_path_ = nextTempPath(path);
   failed_ = false;
-  file_ = std::fopen(temp_path_.c_str(), "wb");
+  // "x": never truncate a file already there (a leftover of an earlier process that had the
+  // same id); take the next name instead.
+  for (int attempt = 0; attempt < 100 && !file_; ++attempt) {
+    temp_path_ = temporaryPathBeside(path);
+    file_ = std::fopen(temp_path_.c_str(), "wbx");
+    if (!file_ && errno != EEXIST) break;
+  }
   if (!file_) return ioError(path + ": cannot create " + temp_path_ + ": " + std::strerror(errno));
   return Status();
 }

@@ -1,7 +1,13 @@
 // SPDX-License-Identifier: Apache-2.0
 // Writes a file so that readers only ever see the old content or the complete new content:
-// data goes to "<path>.tmp-<pid>-<counter>" and commit() renames it over the target.
+// data goes to a temporary file in the target's folder and commit() renames it over the target.
 // A file that is never committed (error, early return) is removed by the destructor.
+//
+// Temporary names: every temporary file or folder animcompress creates is named
+// ".animc-<pid>-<n>.tmp" (<pid> the process id, <n> a counter), in the folder of the file it
+// stands for, so that a leftover of a killed run matches the fixed pattern ".animc-*.tmp".
+// The name does not grow with the target's, so every valid target name works (a suffix on the
+// target's name made names of 244 to 255 bytes "too long").
 #pragma once
 #include <cstdint>
 #include <cstdio>
@@ -10,6 +16,10 @@
 #include "core/status.h"
 
 namespace animc {
+
+// A new temporary name ".animc-<pid>-<n>.tmp" in the folder that holds `path` (a file, or a
+// folder with or without a trailing '/'): on the same file system, so it can be renamed there.
+std::string temporaryPathBeside(const std::string& path);
 
 class AtomicFile {
  public:

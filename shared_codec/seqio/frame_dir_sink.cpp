@@ -5,13 +5,13 @@
 #include <stdio.h>
 #include <unistd.h>
 
-#include <atomic>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <vector>
 
+#include "core/atomic_file.h"
 #include "seqio/off_format.h"
 #include "seqio/ply_writer.h"
 
@@ -21,16 +21,6 @@ namespace {
 
 const char* extension(SequenceFormat format) {
   return format == SequenceFormat::kOff ? ".off" : ".ply";
-}
-
-// "<dir>.tmp-<pid>-<n>": beside the destination (same file system, so it can be renamed into
-// place) and named like AtomicFile's temporaries, so that a leftover of a killed run is
-// recognisable.
-std::string temporaryDirName(const std::string& dir) {
-  static std::atomic<unsigned> counter{0};
-  std::string base = fs::path(dir).lexically_normal().string();
-  while (base.size() > 1 && base.back() == '/') base.pop_back();
-  return base + ".tmp-" + std::to_string(getpid()) + "-" + std::to_string(counter++);
 }
 
 bool isEmptyDirectory(const std::string& dir) {
@@ -52,7 +42,7 @@ Status swapIntoPlace(const std::string& temp, const std::string& dir) {
   }
   std::string old = temp;
   if (renameat2(AT_FDCWD, temp.c_str(), AT_FDCWD, dir.c_str(), RENAME_EXCHANGE) != 0) {
-    old = temporaryDirName(dir);
+    old = temporaryPathBeside(dir);
     if (std::rename(dir.c_str(), old.c_str()) != 0)
       return ioError(dir + ": cannot move the old frames aside: " + std::strerror(errno));
     if (std::rename(temp.c_str(), dir.c_str()) != 0) {
@@ -70,7 +60,7 @@ class FrameDirSink : public FrameSink {
  public:
   FrameDirSink(std::string dir, SequenceFormat format, Topology topology, int64_t frame_count)
       : dir_(std::move(dir)),
-        temp_(temporaryDirName(dir_)),
+        temp_(temporaryPathBeside(dir_)),
         format_(format),
         topology_(std::move(topology)),
         frame_count_(frame_count) {}

@@ -11,7 +11,8 @@
 namespace animc {
 
 // `format` is kPly or kOff. Frames are written into a temporary folder beside `dir`
-// ("<dir>.tmp-<pid>-<n>"), which finish() puts in place of `dir` as a whole: a reader of `dir`
+// (".animc-<pid>-<n>.tmp", core/atomic_file.h), which finish() puts in place of `dir` as a
+// whole: a reader of `dir`
 // sees its old content or every new frame, never a mix, and a sink destroyed before finish()
 // (a decode that failed late) leaves `dir` as it was. A non-empty `dir` is refused unless
 // `existing` is kReplace, which replaces the folder with everything in it.

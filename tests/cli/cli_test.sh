@@ -64,6 +64,10 @@ EOF
 # same_kg FILE_A FILE_B: equal kg_error to 1e-9 relative.
 same_kg() { json_check 'abs(d["kg_error"] - e["kg_error"]) <= 1e-9 * abs(e["kg_error"])' "$1" "$2"; }
 
+# leftovers DIR: the temporary files and folders in DIR (core/atomic_file.h names them
+# ".animc-<pid>-<n>.tmp"; releases up to 1.0.0 named them "<name>.tmp-<pid>-<n>").
+leftovers() { find "$1" -maxdepth 1 \( -name '.animc-*.tmp' -o -name '*.tmp-*' \) -printf '%f\n'; }
+
 AMS=$TMP/sydney.ams
 
 # --- encode, info, compare, bench ---------------------------------------------------------
@@ -294,10 +298,23 @@ rc=0
 ((rc != 0)) || check_failed "late_replace: exit 0"
 diff -r "$TMP/off_before" "$TMP/off_frames" >/dev/null ||
   check_failed "a decode that failed late changed the folder: $(diff -rq "$TMP/off_before" "$TMP/off_frames")"
-ls -d "$TMP"/off_frames.tmp-* >/dev/null 2>&1 && check_failed "a temporary folder was left: $(ls -d "$TMP"/off_frames.tmp-*)"
+[[ -z $(leftovers "$TMP") ]] || check_failed "a temporary folder was left: $(leftovers "$TMP")"
 run replace "$ANIMC" decode "$AMS" -o "$TMP/off_frames" --frames 0:3 --replace
 [[ $(ls "$TMP/off_frames") == $'frame_00000.ply\nframe_00001.ply\nframe_00002.ply' ]] ||
   check_failed "--replace left: $(ls "$TMP/off_frames" | head -5) ..."
+
+# --- output paths --------------------------------------------------------------------------
+OUTS=$TMP/outputs
+mkdir "$OUTS"
+# The longest valid names (255 bytes): the temporary's name must not grow with the output's.
+LONG=$(printf 'n%.0s' {1..251})
+run long_name "$ANIMC" encode "$PC2" --mesh "$MESH" -o "$OUTS/$LONG.ams"
+cmp -s "$OUTS/$LONG.ams" "$AMS" || check_failed "encode to a 255-byte name wrote other bytes"
+run long_pc2 "$ANIMC" decode "$AMS" -o "$OUTS/$LONG.pc2"
+cmp -s "$OUTS/$LONG.pc2" "$TMP/full.pc2" || check_failed "decode to a 255-byte .pc2 name wrote other bytes"
+run long_folder "$ANIMC" decode "$AMS" -o "$OUTS/${LONG}dirs" --frames 0:2
+[[ -f $OUTS/${LONG}dirs/frame_00001.ply ]] || check_failed "decode to a 255-byte folder name wrote no frames"
+[[ -z $(leftovers "$OUTS") ]] || check_failed "temporaries left in $OUTS: $(leftovers "$OUTS")"
 
 if ((FAILURES > 0)); then
   echo "$FAILURES check(s) failed" >&2
