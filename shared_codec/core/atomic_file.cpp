@@ -34,6 +34,16 @@ bool syncToDisk(std::FILE* file) {
 #endif
 }
 
+// Why the temporary beside `path` could not be created, under the name the user gave: the
+// temporary's name means nothing to them.
+Status creationError(const std::string& path, const std::string& temp_path, int error) {
+  std::string folder = std::filesystem::path(temp_path).parent_path().string();
+  if (folder.empty()) folder = ".";
+  if (error == ENOENT) return ioError(path + ": no such directory " + folder);
+  if (error == ENOTDIR) return ioError(path + ": " + folder + " is not a directory");
+  return ioError(path + ": cannot create a file in " + folder + ": " + std::strerror(error));
+}
+
 }  // namespace
 
 // The counter is shared by every temporary of the process (threads, retries, several targets).
@@ -59,7 +69,7 @@ Status AtomicFile::open(const std::string& path) {
     file_ = std::fopen(temp_path_.c_str(), "wbx");
     if (!file_ && errno != EEXIST) break;
   }
-  if (!file_) return ioError(path + ": cannot create " + temp_path_ + ": " + std::strerror(errno));
+  if (!file_) return creationError(path, temp_path_, errno);
   return Status();
 }
 

@@ -79,11 +79,13 @@ class FrameDirSink : public FrameSink {
     if (existing == ExistingOutput::kRefuse && fs::exists(dir_, ec) && !isEmptyDirectory(dir_))
       return invalidArgument(dir_ + ": the folder is not empty; frames are written only into a new or "
                              "empty folder (--replace replaces the folder and everything in it)");
+    // Errors name the folder the user asked for, not the temporary.
     const fs::path parent = fs::path(temp_).parent_path();
     if (!parent.empty() && !fs::is_directory(parent, ec))
-      return ioError(parent.string() + ": no such directory");
+      return ioError(dir_ + ": no such directory " + parent.string());
     if (!fs::create_directory(temp_, ec))
-      return ioError(temp_ + ": cannot create a directory: " + (ec ? ec.message() : "it exists"));
+      return ioError(dir_ + ": cannot create a folder in " + (parent.empty() ? "." : parent.string()) +
+                     ": " + (ec ? ec.message() : temp_ + " exists"));
     created_temp_ = true;
     return Status();
   }

@@ -247,6 +247,13 @@ expect_error progressive_i_frames_only "$ERRDIR/x.ams" "$ANIMC" encode "$PC2" --
 expect_error bench_ams_encode_option "" "$ANIMC" bench "$AMS" --max-error 0.1
 expect_error bench_ams_missing "" "$ANIMC" bench "$TMP/no_such.ams"
 expect_error negative_bitplanes "$ERRDIR/x.pc2" "$ANIMC" decode "$W_AMS" -o "$ERRDIR/x.pc2" --bitplanes -2
+# A missing output folder, named under the output the user gave (not a temporary name).
+expect_error missing_out_dir "" "$ANIMC" encode "$PC2" --mesh "$MESH" -o out/x.ams
+[[ $(cat "$TMP/missing_out_dir.err") == "animc: out/x.ams: no such directory out" ]] ||
+  check_failed "encode -o out/x.ams said: $(cat "$TMP/missing_out_dir.err")"
+expect_error missing_out_dir_frames "" "$ANIMC" decode "$AMS" -o out/frames
+[[ $(cat "$TMP/missing_out_dir_frames.err") == "animc: out/frames: no such directory out" ]] ||
+  check_failed "decode -o out/frames said: $(cat "$TMP/missing_out_dir_frames.err")"
 # A folder given as the .ams: named once, with the reason.
 expect_error info_directory "" "$ANIMC" info "$TMP"
 [[ $(cat "$TMP/info_directory.err") == "animc: $TMP: is a directory, not an .ams file" ]] ||

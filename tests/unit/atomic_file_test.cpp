@@ -82,5 +82,18 @@ TEST_F(AtomicFileTest, TheTemporaryHasTheDocumentedName) {
   EXPECT_TRUE(isTemporaryName(fs::path(temporaryPathBeside("x.ams")).string()));
 }
 
+// A missing folder is reported under the name the caller gave, not the temporary's.
+TEST_F(AtomicFileTest, AMissingFolderIsNamed) {
+  AtomicFile file;
+  Status s = file.open(path("missing/dir/out.ams"));
+  EXPECT_EQ(s.code(), StatusCode::kIoError);
+  EXPECT_EQ(s.message(), path("missing/dir/out.ams") + ": no such directory " + path("missing/dir"));
+  s = file.open("missing/out.ams");
+  EXPECT_EQ(s.message(), "missing/out.ams: no such directory missing");
+  std::ofstream(path("plain")) << "a file";
+  s = file.open(path("plain/out.ams"));
+  EXPECT_EQ(s.message(), path("plain/out.ams") + ": " + path("plain") + " is not a directory");
+}
+
 }  // namespace
 }  // namespace animc
