@@ -1,38 +1,18 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "core/atomic_file.h"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <atomic>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
 #include <system_error>
 
-#ifdef _WIN32
-#include <io.h>
-#include <process.h>
-#else
-#include <unistd.h>
-#endif
-
 namespace animc {
 namespace {
-
-long processId() {
-#ifdef _WIN32
-  return static_cast<long>(_getpid());
-#else
-  return static_cast<long>(getpid());
-#endif
-}
-
-
-bool syncToDisk(std::FILE* file) {
-#ifdef _WIN32
-  return _commit(_fileno(file)) == 0;
-#else
-  return fsync(fileno(file)) == 0;
-#endif
-}
 
 // Why the temporary beside `path` could not be created, under the name the user gave: the
 // temporary's name means nothing to them.
@@ -44,6 +24,26 @@ Status creationError(const std::string& path, const std::string& temp_path, int 
   return ioError(path + ": cannot create a file in " + folder + ": " + std::strerror(error));
 }
 
+// Writes all of `size` bytes to `fd`; 0 or the errno of the failure.
+int writeAll(int fd, const char* data, size_t size) {
+  for (size_t done = 0; done < size;) {
+    const ssize_t n = ::write(fd, data + done, size - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) return errno;
+    done += size_t(n);
+  }
+  return 0;
+}
+
+// Copies the whole spool, from its start, to `fd`; 0 or the errno of the failure.
+int copySpool(std::FILE* spool, int fd) {
+  if (fseeko(spool, 0, SEEK_SET) != 0) return errno;
+  char buffer[1 << 16];
+  for (size_t n; (n = std::fread(buffer, 1, sizeof buffer, spool)) > 0;)
+    if (int error = writeAll(fd, buffer, n)) return error;
+  return std::ferror(spool) ? EIO : 0;
+}
+
 }  // namespace
 
 // The counter is shared by every temporary of the process (threads, retries, several targets).
@@ -52,7 +52,7 @@ std::string temporaryPathBeside(const std::string& path) {
   std::string named = path;
   while (named.size() > 1 && named.back() == '/') named.pop_back();
   const std::string name =
-      ".animc-" + std::to_string(processId()) + "-" + std::to_string(counter++) + ".tmp";
+      ".animc-" + std::to_string(getpid()) + "-" + std::to_string(counter++) + ".tmp";
   return (std::filesystem::path(named).parent_path() / name).string();
 }
 
@@ -62,15 +62,46 @@ Status AtomicFile::open(const std::string& path) {
   if (file_) return invalidArgument(path + ": AtomicFile is already open for " + path_);
   path_ = path;
   failed_ = false;
+  position_ = 0;
+  // stat() follows links, so a link to a device (/dev/stdout) is written in place too.
+  struct stat st;
+  if (::stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode)) return openInPlace(S_ISDIR(st.st_mode));
+  return createTemporary();
+}
+
+Status AtomicFile::createTemporary() {
+  mode_ = Mode::kReplace;
   // "x": never truncate a file already there (a leftover of an earlier process that had the
   // same id); take the next name instead.
   for (int attempt = 0; attempt < 100 && !file_; ++attempt) {
-    temp_path_ = temporaryPathBeside(path);
+    temp_path_ = temporaryPathBeside(path_);
     file_ = std::fopen(temp_path_.c_str(), "wbx");
     if (!file_ && errno != EEXIST) break;
   }
-  if (!file_) return creationError(path, temp_path_, errno);
+  if (!file_) return creationError(path_, temp_path_, errno);
   return Status();
+}
+
+Status AtomicFile::openInPlace(bool is_directory) {
+  if (is_directory) return ioError(path_ + ": is a directory");
+  temp_path_.clear();
+  const int fd = ::open(path_.c_str(), O_WRONLY | O_CLOEXEC);
+  if (fd < 0) return ioError(path_ + ": cannot open for writing: " + std::strerror(errno));
+  if (lseek(fd, 0, SEEK_CUR) >= 0) {
+    mode_ = Mode::kInPlace;
+    file_ = fdopen(fd, "wb");
+  } else {
+    // Writers seek back to patch headers, which a FIFO or a terminal cannot do: the bytes
+    // gather in an unnamed file (nothing to leave behind) and go out in commit().
+    mode_ = Mode::kSpooled;
+    file_ = std::tmpfile();
+    in_place_fd_ = fd;
+  }
+  if (file_) return Status();
+  const int error = errno;
+  ::close(fd);
+  in_place_fd_ = -1;
+  return ioError(path_ + ": cannot write to it: " + std::strerror(error));
 }
 
 Status AtomicFile::fail(const char* what) {
@@ -82,28 +113,33 @@ Status AtomicFile::write(const void* data, size_t size) {
   if (!file_) return invalidArgument(path_ + ": write to a closed AtomicFile");
   if (size == 0) return Status();
   if (std::fwrite(data, 1, size, file_) != size) return fail("write");
+  position_ += size;
   return Status();
 }
 
 Status AtomicFile::seek(uint64_t offset) {
   if (!file_) return invalidArgument(path_ + ": seek in a closed AtomicFile");
-#ifdef _WIN32
-  int rc = _fseeki64(file_, static_cast<__int64>(offset), SEEK_SET);
-#else
-  int rc = fseeko(file_, static_cast<off_t>(offset), SEEK_SET);
-#endif
-  if (rc != 0) return fail("seek");
+  if (fseeko(file_, static_cast<off_t>(offset), SEEK_SET) != 0) return fail("seek");
+  position_ = offset;
   return Status();
 }
 
-uint64_t AtomicFile::tell() const {
-  if (!file_) return 0;
-#ifdef _WIN32
-  __int64 pos = _ftelli64(file_);
-#else
-  off_t pos = ftello(file_);
-#endif
-  return pos < 0 ? 0 : static_cast<uint64_t>(pos);
+uint64_t AtomicFile::tell() const { return file_ ? position_ : 0; }
+
+// Flushes and closes everything open; 0 or the errno of the first failure (every step runs
+// even after one failed).
+int AtomicFile::closeAll(Sync sync) {
+  int error = 0;
+  if (std::fflush(file_) != 0) error = errno;
+  if (error == 0 && mode_ == Mode::kSpooled) error = copySpool(file_, in_place_fd_);
+  // A device has no disk to sync; only a temporary about to be renamed is.
+  if (error == 0 && sync == Sync::kFsync && mode_ == Mode::kReplace && fsync(fileno(file_)) != 0)
+    error = errno;
+  if (std::fclose(file_) != 0 && error == 0) error = errno;
+  file_ = nullptr;
+  if (in_place_fd_ >= 0 && ::close(in_place_fd_) != 0 && error == 0) error = errno;
+  in_place_fd_ = -1;
+  return error;
 }
 
 Status AtomicFile::commit(Sync sync) {
@@ -112,16 +148,12 @@ Status AtomicFile::commit(Sync sync) {
     abandon();
     return ioError(path_ + ": not committed because an earlier write failed");
   }
-  // Remember the first failure's errno: fclose must run even after a failed flush.
-  int error = 0;
-  if (std::fflush(file_) != 0 || (sync == Sync::kFsync && !syncToDisk(file_))) error = errno;
-  if (std::fclose(file_) != 0 && error == 0) error = errno;
-  file_ = nullptr;
+  const int error = closeAll(sync);
   if (error != 0) {
-    std::remove(temp_path_.c_str());
+    if (mode_ == Mode::kReplace) std::remove(temp_path_.c_str());
     return ioError(path_ + ": flushing failed: " + std::strerror(error));
   }
-  // std::filesystem::rename replaces an existing target on every platform.
+  if (mode_ != Mode::kReplace) return Status();
   std::error_code ec;
   std::filesystem::rename(temp_path_, path_, ec);
   if (ec) {
@@ -135,7 +167,9 @@ void AtomicFile::abandon() {
   if (!file_) return;
   std::fclose(file_);
   file_ = nullptr;
-  std::remove(temp_path_.c_str());
+  if (in_place_fd_ >= 0) ::close(in_place_fd_);
+  in_place_fd_ = -1;
+  if (mode_ == Mode::kReplace) std::remove(temp_path_.c_str());
 }
 
 }  // namespace animc

@@ -8,6 +8,12 @@
 // stands for, so that a leftover of a killed run matches the fixed pattern ".animc-*.tmp".
 // The name does not grow with the target's, so every valid target name works (a suffix on the
 // target's name made names of 244 to 255 bytes "too long").
+//
+// A target that exists and is not a regular file (a character device such as /dev/null, a
+// FIFO) has no old content to keep whole, and renaming over it would replace it with a regular
+// file: it is opened and written in place, never renamed over. If it cannot seek (a FIFO, a
+// terminal), the bytes gather in an unnamed temporary file and commit() copies them to it,
+// because writers seek back to patch headers. A folder is refused.
 #pragma once
 #include <cstdint>
 #include <cstdio>
@@ -30,7 +36,8 @@ class AtomicFile {
   AtomicFile(const AtomicFile&) = delete;
   AtomicFile& operator=(const AtomicFile&) = delete;
 
-  // Creates the temporary file beside `path`; fails if one is already open.
+  // Creates the temporary file beside `path` (or opens `path` itself if it is a device or
+  // FIFO); fails if one is already open.
   Status open(const std::string& path);
   Status write(const void* data, size_t size);
   // Moves the write position (to patch a header once the counts are known).
@@ -38,18 +45,30 @@ class AtomicFile {
   uint64_t tell() const;
   // Flushes, closes and renames the temporary over the target; the object is then closed.
   Status commit(Sync sync = Sync::kNone);
-  // Closes and deletes the temporary without touching the target.
+  // Closes and deletes the temporary without touching the target (what was already written
+  // to a device in place stays written).
   void abandon();
 
   bool isOpen() const { return file_ != nullptr; }
   const std::string& path() const { return path_; }
 
  private:
+  // kReplace: a temporary renamed over the target; kInPlace: the target itself (a seekable
+  // device); kSpooled: an unnamed file copied to in_place_fd_ (a FIFO, a terminal).
+  enum class Mode { kReplace, kInPlace, kSpooled };
+
+  Status createTemporary();
+  Status openInPlace(bool is_directory);
+  int closeAll(Sync sync);
   Status fail(const char* what);
 
   std::FILE* file_ = nullptr;
+  Mode mode_ = Mode::kReplace;
+  int in_place_fd_ = -1;
   std::string path_;
   std::string temp_path_;
+  // Counted here rather than asked of the stream: a device such as /dev/null reports 0.
+  uint64_t position_ = 0;
   bool failed_ = false;  // a write or seek failed: commit() must refuse
 };
 

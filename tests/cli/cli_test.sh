@@ -321,6 +321,36 @@ run long_pc2 "$ANIMC" decode "$AMS" -o "$OUTS/$LONG.pc2"
 cmp -s "$OUTS/$LONG.pc2" "$TMP/full.pc2" || check_failed "decode to a 255-byte .pc2 name wrote other bytes"
 run long_folder "$ANIMC" decode "$AMS" -o "$OUTS/${LONG}dirs" --frames 0:2
 [[ -f $OUTS/${LONG}dirs/frame_00001.ply ]] || check_failed "decode to a 255-byte folder name wrote no frames"
+# A device or a FIFO is written in place, never renamed over (as root, -o /dev/null replaced
+# /dev/null with a regular file): as root the test uses a private null device, never the system's.
+if ((EUID == 0)); then
+  NULL_DEV=$OUTS/null
+  mknod "$NULL_DEV" c 1 3
+else
+  NULL_DEV=/dev/null
+fi
+run null_encode "$ANIMC" encode "$PC2" --mesh "$MESH" -o "$NULL_DEV" --json
+[[ -c $NULL_DEV ]] || check_failed "encode -o $NULL_DEV replaced the device"
+json_check 'd["file_bytes"] == e["file_bytes"]' "$TMP/null_encode.out" "$TMP/encode.out"
+run null_decode "$ANIMC" decode "$AMS" -o "$NULL_DEV" --format pc2
+[[ -c $NULL_DEV ]] || check_failed "decode -o $NULL_DEV replaced the device"
+[[ $NULL_DEV == /dev/null ]] || rm "$NULL_DEV"
+# The .ams writer patches group headers: through a FIFO the reader still gets the file's bytes.
+mkfifo "$OUTS/fifo"
+timeout 60 cat "$OUTS/fifo" >"$TMP/from_fifo.ams" &
+reader=$!
+rc=0
+"$ANIMC" encode "$PC2" --mesh "$MESH" -o "$OUTS/fifo" >/dev/null 2>"$TMP/fifo.err" || rc=$?
+if [[ -p $OUTS/fifo ]]; then
+  wait "$reader" || check_failed "reading the FIFO failed"
+else
+  kill "$reader"
+  wait "$reader" 2>/dev/null || true
+  check_failed "encode -o FIFO replaced the FIFO"
+fi
+((rc == 0)) || check_failed "encode -o FIFO: exit $rc: $(cat "$TMP/fifo.err")"
+cmp -s "$TMP/from_fifo.ams" "$AMS" || check_failed "the .ams read from the FIFO differs from the file"
+rm -f "$OUTS/fifo"
 [[ -z $(leftovers "$OUTS") ]] || check_failed "temporaries left in $OUTS: $(leftovers "$OUTS")"
 
 if ((FAILURES > 0)); then

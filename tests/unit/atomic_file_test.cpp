@@ -1,15 +1,21 @@
 // SPDX-License-Identifier: Apache-2.0
-// AtomicFile on the paths users give: long names, and the temporary names it leaves while it
-// writes (the fixed pattern documented in core/atomic_file.h).
+// AtomicFile on the paths users give: long names, devices and FIFOs, and the temporary names
+// it leaves while it writes (the fixed pattern documented in core/atomic_file.h).
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <sys/sysmacros.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <regex>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "core/atomic_file.h"
@@ -93,6 +99,79 @@ TEST_F(AtomicFileTest, AMissingFolderIsNamed) {
   std::ofstream(path("plain")) << "a file";
   s = file.open(path("plain/out.ams"));
   EXPECT_EQ(s.message(), path("plain/out.ams") + ": " + path("plain") + " is not a directory");
+}
+
+bool isCharacterDevice(const std::string& path) {
+  struct stat st;
+  return lstat(path.c_str(), &st) == 0 && S_ISCHR(st.st_mode);
+}
+
+// A private null device: as root a test must not risk the system's /dev/null (the old code
+// renamed a regular file over it). Others cannot create one, nor replace /dev/null.
+std::string nullDevice(const std::string& private_path) {
+  if (geteuid() != 0) return "/dev/null";
+  EXPECT_EQ(mknod(private_path.c_str(), S_IFCHR | 0666, makedev(1, 3)), 0) << std::strerror(errno);
+  return private_path;
+}
+
+// A device is written in place, never renamed over: it stays a device and no temporary is
+// made beside it. Positions are counted by AtomicFile (/dev/null reports 0 for any).
+TEST_F(AtomicFileTest, ACharacterDeviceIsWrittenInPlace) {
+  const std::string null = nullDevice(path("null"));
+  ASSERT_TRUE(isCharacterDevice(null)) << null;
+  for (bool commit : {true, false}) {
+    AtomicFile file;
+    Status s = file.open(null);
+    ASSERT_TRUE(s.ok()) << s.message();
+    ASSERT_TRUE(file.write("hello world", 11).ok());
+    EXPECT_EQ(file.tell(), 11u);
+    ASSERT_TRUE(file.seek(4).ok());
+    EXPECT_EQ(file.tell(), 4u);
+    if (commit) {
+      EXPECT_TRUE(file.commit().ok());
+    }
+  }
+  EXPECT_TRUE(isCharacterDevice(null)) << null << " was replaced";
+  EXPECT_EQ(names(dir_).size(), geteuid() == 0 ? 1u : 0u) << "a temporary was left";
+}
+
+// A FIFO cannot seek, but writers patch headers: the reader at the other end gets the final
+// bytes, the FIFO stays a FIFO, nothing is left beside it.
+TEST_F(AtomicFileTest, AFifoGetsTheFinalBytes) {
+  const std::string fifo = path("fifo");
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0) << std::strerror(errno);
+  // A second name for the FIFO, to release the reader should the writer replace "fifo".
+  ASSERT_EQ(link(fifo.c_str(), path("fifo_link").c_str()), 0) << std::strerror(errno);
+  std::string received;
+  std::thread reader([&] { received = contents(fifo); });  // open() blocks until both ends are
+  {
+    AtomicFile file;
+    Status s = file.open(fifo);
+    EXPECT_TRUE(s.ok()) << s.message();
+    if (s.ok()) {
+      EXPECT_TRUE(file.write("hello world", 11).ok());
+      EXPECT_TRUE(file.seek(0).ok());
+      EXPECT_TRUE(file.write("J", 1).ok());
+      EXPECT_EQ(file.tell(), 1u);
+      EXPECT_TRUE(file.commit().ok());
+    }
+  }
+  struct stat st;
+  const bool still_fifo = lstat(fifo.c_str(), &st) == 0 && S_ISFIFO(st.st_mode);
+  if (!still_fifo) ::close(::open(path("fifo_link").c_str(), O_WRONLY | O_NONBLOCK));
+  reader.join();
+  EXPECT_TRUE(still_fifo) << "the FIFO was replaced";
+  EXPECT_EQ(received, "Jello world");
+  EXPECT_EQ(names(dir_), (std::vector<std::string>{"fifo", "fifo_link"}));
+}
+
+TEST_F(AtomicFileTest, AFolderIsRefused) {
+  fs::create_directories(path("folder"));
+  AtomicFile file;
+  Status s = file.open(path("folder"));
+  EXPECT_EQ(s.code(), StatusCode::kIoError);
+  EXPECT_EQ(s.message(), path("folder") + ": is a directory");
+  EXPECT_EQ(names(dir_), std::vector<std::string>{"folder"});
 }
 
 }  // namespace
