@@ -44,7 +44,24 @@ int copySpool(std::FILE* spool, int fd) {
   return std::ferror(spool) ? EIO : 0;
 }
 
+// Linux's own limit on links followed in one path (MAXSYMLINKS).
+constexpr int kMaxLinkHops = 40;
+
 }  // namespace
+
+Result<std::string> replacedPath(const std::string& path) {
+  std::string target = path;
+  for (int hops = 0; hops <= kMaxLinkHops; ++hops) {
+    struct stat st;
+    if (lstat(target.c_str(), &st) != 0 || !S_ISLNK(st.st_mode)) return target;
+    std::error_code ec;
+    const std::filesystem::path link = std::filesystem::read_symlink(target, ec);
+    if (ec) return ioError(path + ": cannot read the symbolic link " + target + ": " + ec.message());
+    target = link.is_absolute() ? link.string()
+                                : (std::filesystem::path(target).parent_path() / link).string();
+  }
+  return ioError(path + ": too many levels of symbolic links");
+}
 
 // The counter is shared by every temporary of the process (threads, retries, several targets).
 std::string temporaryPathBeside(const std::string& path) {
@@ -66,6 +83,7 @@ Status AtomicFile::open(const std::string& path) {
   // stat() follows links, so a link to a device (/dev/stdout) is written in place too.
   struct stat st;
   if (::stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode)) return openInPlace(S_ISDIR(st.st_mode));
+  ANIMC_ASSIGN_OR_RETURN(target_, replacedPath(path));
   return createTemporary();
 }
 
@@ -74,7 +92,7 @@ Status AtomicFile::createTemporary() {
   // "x": never truncate a file already there (a leftover of an earlier process that had the
   // same id); take the next name instead.
   for (int attempt = 0; attempt < 100 && !file_; ++attempt) {
-    temp_path_ = temporaryPathBeside(path_);
+    temp_path_ = temporaryPathBeside(target_);
     file_ = std::fopen(temp_path_.c_str(), "wbx");
     if (!file_ && errno != EEXIST) break;
   }
@@ -155,10 +173,11 @@ Status AtomicFile::commit(Sync sync) {
   }
   if (mode_ != Mode::kReplace) return Status();
   std::error_code ec;
-  std::filesystem::rename(temp_path_, path_, ec);
+  std::filesystem::rename(temp_path_, target_, ec);
   if (ec) {
     std::remove(temp_path_.c_str());
-    return ioError(path_ + ": cannot rename " + temp_path_ + " over it: " + ec.message());
+    const std::string over = target_ == path_ ? "it" : target_;
+    return ioError(path_ + ": cannot rename " + temp_path_ + " over " + over + ": " + ec.message());
   }
   return Status();
 }

@@ -14,6 +14,10 @@
 // file: it is opened and written in place, never renamed over. If it cannot seek (a FIFO, a
 // terminal), the bytes gather in an unnamed temporary file and commit() copies them to it,
 // because writers seek back to patch headers. A folder is refused.
+//
+// A symbolic link stays a link: the file it points to (through every link) is the one
+// replaced, with the temporary beside that file, so that the rename stays on its file system.
+// A dangling link names the file to create.
 #pragma once
 #include <cstdint>
 #include <cstdio>
@@ -26,6 +30,10 @@ namespace animc {
 // A new temporary name ".animc-<pid>-<n>.tmp" in the folder that holds `path` (a file, or a
 // folder with or without a trailing '/'): on the same file system, so it can be renamed there.
 std::string temporaryPathBeside(const std::string& path);
+
+// The path a write to `path` replaces: `path`, or for a symbolic link what it points to,
+// through every link (relative links resolved against their own folder); an error for a loop.
+Result<std::string> replacedPath(const std::string& path);
 
 class AtomicFile {
  public:
@@ -66,6 +74,7 @@ class AtomicFile {
   Mode mode_ = Mode::kReplace;
   int in_place_fd_ = -1;
   std::string path_;
+  std::string target_;  // path_, or the file its symbolic links lead to
   std::string temp_path_;
   // Counted here rather than asked of the stream: a device such as /dev/null reports 0.
   uint64_t position_ = 0;

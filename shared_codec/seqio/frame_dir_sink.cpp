@@ -60,7 +60,6 @@ class FrameDirSink : public FrameSink {
  public:
   FrameDirSink(std::string dir, SequenceFormat format, Topology topology, int64_t frame_count)
       : dir_(std::move(dir)),
-        temp_(temporaryPathBeside(dir_)),
         format_(format),
         topology_(std::move(topology)),
         frame_count_(frame_count) {}
@@ -73,6 +72,9 @@ class FrameDirSink : public FrameSink {
   }
 
   Status open(ExistingOutput existing) {
+    // A link to a folder stays a link: the folder it leads to is the one replaced.
+    ANIMC_ASSIGN_OR_RETURN(target_, replacedPath(dir_));
+    temp_ = temporaryPathBeside(target_);
     std::error_code ec;
     if (fs::exists(dir_, ec) && !fs::is_directory(dir_, ec))
       return ioError(dir_ + ": exists and is not a directory");
@@ -105,13 +107,15 @@ class FrameDirSink : public FrameSink {
     if (int64_t(written_.size()) != frame_count_)
       return invalidArgument(dir_ + ": " + std::to_string(written_.size()) +
                              " frames written but " + std::to_string(frame_count_) + " announced");
-    ANIMC_RETURN_IF_ERROR(swapIntoPlace(temp_, dir_));
+    Status placed = swapIntoPlace(temp_, target_);
+    if (!placed.ok()) return dir_ == target_ ? placed : placed.withContext(dir_);
     finished_ = true;
     return Status();
   }
 
  private:
   std::string dir_;
+  std::string target_;  // dir_, or the folder its symbolic links lead to
   std::string temp_;
   SequenceFormat format_;
   Topology topology_;

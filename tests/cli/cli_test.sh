@@ -321,6 +321,17 @@ run long_pc2 "$ANIMC" decode "$AMS" -o "$OUTS/$LONG.pc2"
 cmp -s "$OUTS/$LONG.pc2" "$TMP/full.pc2" || check_failed "decode to a 255-byte .pc2 name wrote other bytes"
 run long_folder "$ANIMC" decode "$AMS" -o "$OUTS/${LONG}dirs" --frames 0:2
 [[ -f $OUTS/${LONG}dirs/frame_00001.ply ]] || check_failed "decode to a 255-byte folder name wrote no frames"
+# A symbolic link as output stays a link: the file (or folder) it leads to gets the output.
+echo "old" >"$OUTS/real.ams"
+ln -s real.ams "$OUTS/link.ams"
+run link_encode "$ANIMC" encode "$PC2" --mesh "$MESH" -o "$OUTS/link.ams"
+[[ -L $OUTS/link.ams ]] || check_failed "encode -o LINK replaced the link"
+cmp -s "$OUTS/real.ams" "$AMS" || check_failed "encode -o LINK did not write the link's target"
+mkdir "$OUTS/real_frames"
+ln -s real_frames "$OUTS/link_frames"
+run link_decode "$ANIMC" decode "$AMS" -o "$OUTS/link_frames" --frames 0:2
+[[ -L $OUTS/link_frames && -f $OUTS/real_frames/frame_00001.ply ]] ||
+  check_failed "decode -o LINK_TO_FOLDER replaced the link or missed its folder"
 # A device or a FIFO is written in place, never renamed over (as root, -o /dev/null replaced
 # /dev/null with a regular file): as root the test uses a private null device, never the system's.
 if ((EUID == 0)); then

@@ -174,5 +174,52 @@ TEST_F(AtomicFileTest, AFolderIsRefused) {
   EXPECT_EQ(names(dir_), std::vector<std::string>{"folder"});
 }
 
+bool isLink(const std::string& path) {
+  std::error_code ec;
+  return fs::is_symlink(fs::symlink_status(path, ec));
+}
+
+// A symbolic link stays a link: the file it leads to (through every link, relative links
+// against their own folder) gets the new content, with the temporary beside that file.
+TEST_F(AtomicFileTest, ASymbolicLinkStaysALinkAndItsTargetIsReplaced) {
+  fs::create_directories(path("real"));
+  std::ofstream(path("real/out.ams")) << "old";
+  fs::create_symlink("real/out.ams", path("link1.ams"));
+  fs::create_symlink(path("link1.ams"), path("link2.ams"));  // absolute, to a link
+  for (const char* link : {"link1.ams", "link2.ams"}) {
+    AtomicFile file;
+    Status s = file.open(path(link));
+    ASSERT_TRUE(s.ok()) << s.message();
+    ASSERT_TRUE(file.write(link, 9).ok());
+    const std::vector<std::string> beside_target = names(path("real"));
+    ASSERT_EQ(beside_target.size(), 2u) << "no temporary beside the target";
+    EXPECT_TRUE(isTemporaryName(beside_target[0])) << beside_target[0];
+    ASSERT_TRUE(file.commit().ok());
+    EXPECT_TRUE(isLink(path("link1.ams")) && isLink(path("link2.ams"))) << link;
+    EXPECT_EQ(contents(path("real/out.ams")), link);
+    EXPECT_EQ(names(path("real")), std::vector<std::string>{"out.ams"});
+  }
+  EXPECT_EQ(names(dir_), (std::vector<std::string>{"link1.ams", "link2.ams", "real"}));
+}
+
+TEST_F(AtomicFileTest, ADanglingLinkCreatesItsTargetAndALoopIsRefused) {
+  fs::create_directories(path("real"));
+  fs::create_symlink("real/new.ams", path("dangling.ams"));
+  AtomicFile file;
+  ASSERT_TRUE(file.open(path("dangling.ams")).ok());
+  ASSERT_TRUE(file.write("new", 3).ok());
+  ASSERT_TRUE(file.commit().ok());
+  EXPECT_TRUE(isLink(path("dangling.ams")));
+  EXPECT_EQ(contents(path("real/new.ams")), "new");
+
+  fs::create_symlink("loop_b", path("loop_a"));
+  fs::create_symlink("loop_a", path("loop_b"));
+  Status s = file.open(path("loop_a"));
+  EXPECT_EQ(s.code(), StatusCode::kIoError);
+  EXPECT_NE(s.message().find("too many levels of symbolic links"), std::string::npos) << s.message();
+  EXPECT_TRUE(isLink(path("loop_a")) && isLink(path("loop_b")));
+  EXPECT_EQ(names(dir_), (std::vector<std::string>{"dangling.ams", "loop_a", "loop_b", "real"}));
+}
+
 }  // namespace
 }  // namespace animc

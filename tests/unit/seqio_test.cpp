@@ -661,6 +661,25 @@ TEST_F(SeqioTest, FrameDirectorySinkKeepsTheOldFramesUntilItFinishes) {
   EXPECT_EQ(fileCount(), 1u) << "the temporary folder is left";
 }
 
+// A link to a folder of frames stays a link: the folder it leads to gets the new frames.
+TEST_F(SeqioTest, FrameDirectorySinkThroughASymbolicLink) {
+  const Frames frames = makeFrames(5, 3);
+  fs::create_directories(path("real"));
+  fs::create_symlink("real", path("link"));
+  for (int count : {3, 2}) {
+    auto sink = createSequenceSink(path("link"), SequenceFormat::kPly, smallTopology(), 25, count,
+                                   ExistingOutput::kReplace);
+    ASSERT_TRUE(sink.ok()) << errorOf(sink);
+    ASSERT_TRUE(writeAll(*sink.value(), Frames(frames.begin(), frames.begin() + count)).ok());
+    EXPECT_TRUE(fs::is_symlink(fs::symlink_status(path("link")))) << count;
+    ASSERT_TRUE(fs::is_directory(path("real")));
+    EXPECT_EQ(std::distance(fs::directory_iterator(path("real")), fs::directory_iterator()), count);
+  }
+  EXPECT_EQ(readFrames(*openSequence(path("link"), "").value()).value(),
+            Frames(frames.begin(), frames.begin() + 2));
+  EXPECT_EQ(fileCount(), 2u) << "a temporary folder is left";
+}
+
 TEST_F(SeqioTest, SinkArgumentsAndFormatNames) {
   EXPECT_EQ(formatFromName("PC2").value(), SequenceFormat::kPc2);
   EXPECT_EQ(formatFromName("off").value(), SequenceFormat::kOff);
