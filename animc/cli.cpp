@@ -5,11 +5,13 @@
 
 #include <algorithm>
 #include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
 
 #include "core/file_identity.h"
+#include "core/temp_registry.h"
 #include "seqio/sequence_io.h"
 
 namespace animc::cli {
@@ -144,6 +146,29 @@ int fail(const Status& status) {
   endProgressLine();
   std::fprintf(stderr, "animc: %s\n", status.message().c_str());
   return int(status.code());
+}
+
+namespace {
+
+extern "C" void removeTemporariesAndReraise(int signal_number) {
+  removeRegisteredTemporaries();
+  // SA_RESETHAND has put back the default action; the signal, blocked while this handler runs,
+  // is delivered again when it returns and ends the process.
+  raise(signal_number);
+}
+
+}  // namespace
+
+void removeTemporariesOnSignals() {
+  struct sigaction action = {};
+  action.sa_handler = removeTemporariesAndReraise;
+  sigemptyset(&action.sa_mask);
+  action.sa_flags = SA_RESETHAND;
+  for (int signal_number : {SIGINT, SIGTERM, SIGHUP}) {
+    struct sigaction previous = {};
+    if (sigaction(signal_number, nullptr, &previous) == 0 && previous.sa_handler == SIG_IGN) continue;
+    sigaction(signal_number, &action, nullptr);
+  }
 }
 
 }  // namespace animc::cli

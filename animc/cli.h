@@ -57,6 +57,11 @@ bool isAmsPath(const std::string& path);
 // Prints "animc: <message>" on stderr and returns the exit status for the code.
 int fail(const Status& status);
 
+// Makes SIGINT, SIGTERM and SIGHUP remove the temporaries of the outputs being written
+// (core/temp_registry.h), then end the process as the signal would have, so that the caller
+// still sees "killed by the signal". A signal ignored at start (nohup) stays ignored.
+void removeTemporariesOnSignals();
+
 int runEncode(const std::vector<std::string>& argv);
 int runDecode(const std::vector<std::string>& argv);
 int runInfo(const std::vector<std::string>& argv);

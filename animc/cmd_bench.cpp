@@ -12,6 +12,7 @@
 
 #include "cli.h"
 #include "core/memory_sequence.h"
+#include "core/temp_registry.h"
 #include "metrics/compare_sequences.h"
 #include "report/report.h"
 #include "seqio/sequence_io.h"
@@ -105,6 +106,8 @@ int runBench(const std::vector<std::string>& argv) {
   MemorySequence& seq = sequence.value();
   const std::string out = args.has("output") ? args.get("output")
                                              : "/tmp/animc-bench-" + std::to_string(getpid()) + ".ams";
+  // The scratch output is rewritten every run: an interrupted bench removes it too.
+  const int scratch_slot = args.has("output") ? -1 : registerTemporary(out, TemporaryKind::kFile);
   std::vector<double> encode_s, decode_s;
   EncodeReport report;
   ProgressFn progress = progressLine("bench", args.has("progress"));
@@ -127,6 +130,7 @@ int runBench(const std::vector<std::string>& argv) {
   if (!ams.ok()) return fail(ams.status());
   auto metrics = compareSequences(seq, *ams.value(), {}, PerFrameErrors::kDrop);
   if (!args.has("output")) unlink(out.c_str());
+  unregisterTemporary(scratch_slot);
   if (!metrics.ok()) return fail(metrics.status());
   const double vertex_frames = double(report.vertices) * double(report.frames);
   const double encode_mvps = vertex_frames / median(encode_s) / 1e6;

@@ -43,6 +43,7 @@ int main(int argc, char** argv) {
     std::printf("animc %s (.ams format %u)\n", animc::animcVersion(), unsigned(animc::kFormatVersion));
     return 0;
   }
+  removeTemporariesOnSignals();
   const std::vector<std::string> rest(argv + 2, argv + argc);
   if (command == "encode") return runEncode(rest);
   if (command == "decode") return runDecode(rest);

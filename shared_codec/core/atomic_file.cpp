@@ -11,6 +11,8 @@
 #include <filesystem>
 #include <system_error>
 
+#include "core/temp_registry.h"
+
 namespace animc {
 namespace {
 
@@ -97,7 +99,14 @@ Status AtomicFile::createTemporary() {
     if (!file_ && errno != EEXIST) break;
   }
   if (!file_) return creationError(path_, temp_path_, errno);
+  temp_slot_ = registerTemporary(temp_path_, TemporaryKind::kFile);
   return Status();
+}
+
+void AtomicFile::removeTemporary() {
+  std::remove(temp_path_.c_str());
+  unregisterTemporary(temp_slot_);
+  temp_slot_ = -1;
 }
 
 Status AtomicFile::openInPlace(bool is_directory) {
@@ -168,17 +177,20 @@ Status AtomicFile::commit(Sync sync) {
   }
   const int error = closeAll(sync);
   if (error != 0) {
-    if (mode_ == Mode::kReplace) std::remove(temp_path_.c_str());
+    if (mode_ == Mode::kReplace) removeTemporary();
     return ioError(path_ + ": flushing failed: " + std::strerror(error));
   }
   if (mode_ != Mode::kReplace) return Status();
   std::error_code ec;
   std::filesystem::rename(temp_path_, target_, ec);
   if (ec) {
-    std::remove(temp_path_.c_str());
+    removeTemporary();
     const std::string over = target_ == path_ ? "it" : target_;
     return ioError(path_ + ": cannot rename " + temp_path_ + " over " + over + ": " + ec.message());
   }
+  // Only now: a signal before the rename must still find the temporary.
+  unregisterTemporary(temp_slot_);
+  temp_slot_ = -1;
   return Status();
 }
 
@@ -188,7 +200,7 @@ void AtomicFile::abandon() {
   file_ = nullptr;
   if (in_place_fd_ >= 0) ::close(in_place_fd_);
   in_place_fd_ = -1;
-  if (mode_ == Mode::kReplace) std::remove(temp_path_.c_str());
+  if (mode_ == Mode::kReplace) removeTemporary();
 }
 
 }  // namespace animc

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 // Writes a file so that readers only ever see the old content or the complete new content:
 // data goes to a temporary file in the target's folder and commit() renames it over the target.
-// A file that is never committed (error, early return) is removed by the destructor.
+// A file that is never committed (error, early return) is removed by the destructor, and
+// while it exists the temporary is registered (core/temp_registry.h) for a signal handler.
 //
 // Temporary names: every temporary file or folder animcompress creates is named
 // ".animc-<pid>-<n>.tmp" (<pid> the process id, <n> a counter), in the folder of the file it
@@ -68,6 +69,7 @@ class AtomicFile {
   Status createTemporary();
   Status openInPlace(bool is_directory);
   int closeAll(Sync sync);
+  void removeTemporary();
   Status fail(const char* what);
 
   std::FILE* file_ = nullptr;
@@ -76,6 +78,7 @@ class AtomicFile {
   std::string path_;
   std::string target_;  // path_, or the file its symbolic links lead to
   std::string temp_path_;
+  int temp_slot_ = -1;  // in the registry of temporaries
   // Counted here rather than asked of the stream: a device such as /dev/null reports 0.
   uint64_t position_ = 0;
   bool failed_ = false;  // a write or seek failed: commit() must refuse

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/atomic_file.h"
+#include "core/temp_registry.h"
 #include "seqio/off_format.h"
 #include "seqio/ply_writer.h"
 
@@ -69,6 +70,7 @@ class FrameDirSink : public FrameSink {
     std::error_code ec;
     for (const std::string& path : written_) fs::remove(path, ec);
     fs::remove(temp_, ec);
+    unregisterTemporary(temp_slot_);
   }
 
   Status open(ExistingOutput existing) {
@@ -89,6 +91,7 @@ class FrameDirSink : public FrameSink {
       return ioError(dir_ + ": cannot create a folder in " + (parent.empty() ? "." : parent.string()) +
                      ": " + (ec ? ec.message() : temp_ + " exists"));
     created_temp_ = true;
+    temp_slot_ = registerTemporary(temp_, TemporaryKind::kFolder);
     return Status();
   }
 
@@ -109,6 +112,9 @@ class FrameDirSink : public FrameSink {
                              " frames written but " + std::to_string(frame_count_) + " announced");
     Status placed = swapIntoPlace(temp_, target_);
     if (!placed.ok()) return dir_ == target_ ? placed : placed.withContext(dir_);
+    // Only now: until the swap a signal must still find the folder. (After an exchange the
+    // temporary's name holds the old frames, which were to be removed anyway.)
+    unregisterTemporary(temp_slot_);
     finished_ = true;
     return Status();
   }
@@ -122,6 +128,7 @@ class FrameDirSink : public FrameSink {
   int64_t frame_count_;
   std::vector<std::string> written_;
   bool created_temp_ = false;
+  int temp_slot_ = -1;  // in the registry of temporaries
   bool finished_ = false;
 };
 

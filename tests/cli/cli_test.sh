@@ -364,6 +364,52 @@ cmp -s "$TMP/from_fifo.ams" "$AMS" || check_failed "the .ams read from the FIFO 
 rm -f "$OUTS/fifo"
 [[ -z $(leftovers "$OUTS") ]] || check_failed "temporaries left in $OUTS: $(leftovers "$OUTS")"
 
+# --- an interrupted run leaves no temporaries and dies of the signal -------------------------
+INT=$TMP/interrupted
+mkdir "$INT"
+ln -s "$SAMPLES/sydney/frames" "$INT/f"
+for ((i = 0; i < 2000; ++i)); do printf 'f/frame_%05d.ply\n' {0..23}; done >"$INT/long.txt"  # 48000 frames
+head -n 9600 "$INT/long.txt" >"$INT/medium.txt"
+head -n 2400 "$INT/long.txt" >"$INT/short.txt"
+# wait_for GLOB: polls until a path matches GLOB (at most 60 s, for sanitizer builds).
+wait_for() {
+  local tries
+  for ((tries = 0; tries < 3000; ++tries)); do
+    compgen -G "$1" >/dev/null && return 0
+    sleep 0.02
+  done
+  return 1
+}
+# killed_by NAME PID SIGNAL: sends SIGNAL to the background job PID, which must die of it.
+killed_by() {
+  local name=$1 pid=$2 signal=$3 rc=0
+  kill -s "$signal" "$pid"
+  { wait "$pid"; } 2>/dev/null || rc=$?  # (no "Hangup" job notice on stderr)
+  ((rc == 128 + $(kill -l "$signal"))) ||
+    check_failed "$name: exit $rc, not killed by SIG$signal: $(cat "$TMP/$name.err")"
+}
+# SIGTERM while the .ams is being written.
+"$ANIMC" encode "$INT/long.txt" -o "$INT/long.ams" >"$TMP/int_encode.out" 2>"$TMP/int_encode.err" &
+pid=$!
+wait_for "$INT/.animc-$pid-*.tmp" || check_failed "int_encode: no temporary appeared"
+killed_by int_encode "$pid" TERM
+[[ -z $(leftovers "$INT") && ! -e $INT/long.ams ]] || check_failed "int_encode: SIGTERM left $(ls -A "$INT")"
+# SIGHUP while frames are written into the temporary folder.
+run int_medium "$ANIMC" encode "$INT/medium.txt" -o "$INT/medium.ams"
+"$ANIMC" decode "$INT/medium.ams" -o "$INT/frames" >"$TMP/int_decode.out" 2>"$TMP/int_decode.err" &
+pid=$!
+wait_for "$INT/.animc-$pid-*.tmp/frame_00010.ply" || check_failed "int_decode: no temporary folder appeared"
+killed_by int_decode "$pid" HUP
+[[ -z $(leftovers "$INT") && ! -e $INT/frames ]] || check_failed "int_decode: SIGHUP left $(ls -A "$INT")"
+# SIGTERM in bench's second run: its scratch .ams goes too.
+"$ANIMC" bench "$INT/short.txt" --runs 5 >"$TMP/int_bench.out" 2>"$TMP/int_bench.err" &
+pid=$!
+wait_for "/tmp/animc-bench-$pid.ams" && wait_for "/tmp/.animc-$pid-*.tmp" ||
+  check_failed "int_bench: no scratch output and temporary appeared"
+killed_by int_bench "$pid" TERM
+! compgen -G "/tmp/.animc-$pid-*.tmp" >/dev/null && [[ ! -e /tmp/animc-bench-$pid.ams ]] ||
+  check_failed "int_bench: SIGTERM left $(ls /tmp/animc-bench-$pid.ams /tmp/.animc-$pid-*.tmp 2>&1)"
+
 if ((FAILURES > 0)); then
   echo "$FAILURES check(s) failed" >&2
   exit 1
