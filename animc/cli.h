@@ -65,6 +65,7 @@ void removeTemporariesOnSignals();
 int runEncode(const std::vector<std::string>& argv);
 int runDecode(const std::vector<std::string>& argv);
 int runInfo(const std::vector<std::string>& argv);
+int runTest(const std::vector<std::string>& argv);
 int runCompare(const std::vector<std::string>& argv);
 int runBench(const std::vector<std::string>& argv);
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// animc: encode, decode, inspect, compare and benchmark animated-mesh files from a shell.
+// animc: encode, decode, inspect, test, compare and benchmark animated-mesh files from a shell.
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -16,6 +16,7 @@ constexpr const char* kUsageAfterEncode =
     "         (wavelet files encoded with --progressive-p-frames or --i-frames-only)\n"
     "         PLY/OFF frames go to a new or empty folder OUT, or --replace an existing one\n"
     "  info IN.ams [--json]\n"
+    "  test IN.ams [--json]: checks every section's CRC and decodes every frame, writes nothing\n"
     "  compare ORIGINAL RECONSTRUCTED|IN.ams [--mesh M] [--json] [--per-frame]\n"
     "  bench IN [--mesh M] [encode options] [--runs R] [--json]\n"
     "  bench IN.ams [--runs R] [--json]: decoding only, of that file\n"
@@ -48,6 +49,7 @@ int main(int argc, char** argv) {
   if (command == "encode") return runEncode(rest);
   if (command == "decode") return runDecode(rest);
   if (command == "info") return runInfo(rest);
+  if (command == "test") return runTest(rest);
   if (command == "compare") return runCompare(rest);
   if (command == "bench") return runBench(rest);
   std::fprintf(stderr, "animc: unknown command '%s' (animc --help lists them)\n", command.c_str());

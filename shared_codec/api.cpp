@@ -193,4 +193,28 @@ Result<bool> AmsSource::next(std::vector<float>& xyz) {
 
 std::string AmsSource::where() const { return path_ + " frame " + std::to_string(next_frame_); }
 
+Result<AmsCheck> checkAmsFile(const std::string& path, const DecoderLimits& limits) {
+  ANIMC_ASSIGN_OR_RETURN(std::unique_ptr<AmsSource> ams, AmsSource::open(path, limits));
+  std::vector<float> xyz;
+  int64_t decoded = 0;
+  for (;;) {
+    // next() enters each group in turn (checking it) and, after the last frame, checks that
+    // nothing follows it in its group.
+    ANIMC_ASSIGN_OR_RETURN(bool more, ams->next(xyz));
+    if (!more) break;
+    ++decoded;
+  }
+  if (decoded != ams->frameCount())
+    return corrupt(path + ": " + std::to_string(decoded) + " frames decoded, the index announces " +
+                   std::to_string(ams->frameCount()));
+  AmsCheck check;
+  check.settings = ams->settings();
+  check.vertices = ams->topology().vertex_count;
+  check.triangles = ams->topology().triangles.size();
+  check.frames = decoded;
+  for (const SectionInfo& section : ams->info().sections) check.groups += section.tag == kTagGroup;
+  check.file_bytes = ams->info().file_bytes;
+  return check;
+}
+
 }  // namespace animc

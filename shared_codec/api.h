@@ -88,4 +88,21 @@ class AmsSource final : public FrameSource {
   std::vector<uint8_t> payload_;
 };
 
+// What checkAmsFile() saw of a file that passed.
+struct AmsCheck {
+  EncodeSettings settings;
+  uint32_t vertices = 0;
+  uint64_t triangles = 0;
+  int64_t frames = 0;
+  uint64_t groups = 0;
+  uint64_t file_bytes = 0;
+};
+
+// The whole-file check of `animc test`: opens the file (header, index, the CRC of every section
+// but the frame groups', the first group), then enters every group (its CRC, its frame numbers
+// against the index) and decodes every frame, keeping none; the last group must end right after
+// its last frame. Opening a file alone (AmsSource::open(), `animc info`) checks the first group
+// only.
+Result<AmsCheck> checkAmsFile(const std::string& path, const DecoderLimits& limits = {});
+
 }  // namespace animc

@@ -259,6 +259,33 @@ expect_error info_directory "" "$ANIMC" info "$TMP"
 [[ $(cat "$TMP/info_directory.err") == "animc: $TMP: is a directory, not an .ams file" ]] ||
   check_failed "animc info DIR said: $(cat "$TMP/info_directory.err")"
 
+# --- animc test: every golden file passes; a cut file, a flipped bit, a damaged last group fail
+GOLDEN=$(dirname "$SAMPLES")/tests/golden
+golden_count=0
+for golden in "$GOLDEN"/*.ams; do
+  run test_golden "$ANIMC" test "$golden"
+  grep -qxE "$(printf '%s' "$golden" | sed 's/[.[\*^$]/\\&/g'): OK, [0-9]+ frames of [0-9]+ vertices, [0-9]+ groups" \
+    "$TMP/test_golden.out" || check_failed "animc test $golden printed: $(cat "$TMP/test_golden.out")"
+  golden_count=$((golden_count + 1))
+done
+((golden_count >= 13)) || check_failed "only $golden_count golden files in $GOLDEN"
+run test_json "$ANIMC" test "$AMS" --json
+json_check "d['animc_version'] == '$VERSION' and d['ok'] is True and d['checked'] == 'every frame'" "$TMP/test_json.out"
+json_check 'd["frames"] == e["frames"] == 50 and d["vertices"] == e["vertices"] and d["file_bytes"] == e["file_bytes"]' \
+  "$TMP/test_json.out" "$TMP/info.out"
+head -c 1000 "$AMS" >"$TMP/cut.ams"
+expect_error test_cut "" "$ANIMC" test "$TMP/cut.ams"
+grep -q "truncated" "$TMP/test_cut.err" || check_failed "animc test on a cut file: $(cat "$TMP/test_cut.err")"
+rc=0
+"$ANIMC" test "$TMP/cut.ams" >/dev/null 2>&1 || rc=$?
+((rc == 5)) || check_failed "animc test on a cut file exits $rc, not 5 (Truncated)"
+expect_error test_corrupt "" "$ANIMC" test "$BAD_AMS"
+# The last group's damage is past what info reads: info accepts the file, test does not.
+run info_late "$ANIMC" info "$LATE_AMS"
+expect_error test_late "" "$ANIMC" test "$LATE_AMS" --json
+grep -q "CRC mismatch" "$TMP/test_late.err" || check_failed "animc test on a damaged last group: $(cat "$TMP/test_late.err")"
+expect_error test_usage "" "$ANIMC" test
+
 # --- an output that is one of the inputs is refused, by identity; the inputs stay intact ---
 VICTIM=$TMP/victim
 mkdir "$VICTIM"
