@@ -15,7 +15,7 @@ constexpr const char* kUsageAfterEncode =
     "         [--bitplanes K] [--max-bytes N]: progressive, fewer bitplanes/bytes per frame\n"
     "         (wavelet files encoded with --progressive-p-frames or --i-frames-only)\n"
     "         PLY/OFF frames go to a new or empty folder OUT, or --replace an existing one\n"
-    "  info IN.ams [--json]\n"
+    "  info IN.ams [--json]: header, index and first group only\n"
     "  test IN.ams [--json]: checks every section's CRC and decodes every frame, writes nothing\n"
     "  compare ORIGINAL RECONSTRUCTED|IN.ams [--mesh M] [--json] [--per-frame]\n"
     "  bench IN [--mesh M] [encode options] [--runs R] [--json]\n"

@@ -82,6 +82,9 @@ json_check 'd["ratio"] > 1 and 0 < d["bpvf"] < 96 and d["kg_error"] > 0 and d["p
 run info "$ANIMC" info "$AMS" --json
 json_check 'd["frames"] == 50 and d["vertices"] == 342' "$TMP/info.out"
 json_check "d['animc_version'] == e['animc_version'] == '$VERSION'" "$TMP/info.out" "$TMP/encode.out"
+grep -qx 'checked: header, index and the first group; `animc test` checks every frame' < <("$ANIMC" info "$AMS") ||
+  check_failed "animc info does not say what it checked"
+json_check 'd["checked"] == "header"' "$TMP/info.out"
 run version "$ANIMC" --version
 [[ $(cat "$TMP/version.out") == "animc $VERSION (.ams format 1)" ]] ||
   check_failed "animc --version printed '$(cat "$TMP/version.out")', not animc $VERSION"
