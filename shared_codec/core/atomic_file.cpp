@@ -84,7 +84,8 @@ Status AtomicFile::open(const std::string& path) {
   position_ = 0;
   // stat() follows links, so a link to a device (/dev/stdout) is written in place too.
   struct stat st;
-  if (::stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode)) return openInPlace(S_ISDIR(st.st_mode));
+  if (::stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode))
+    return openInPlace(S_ISDIR(st.st_mode));
   ANIMC_ASSIGN_OR_RETURN(target_, replacedPath(path));
   return createTemporary();
 }
@@ -153,8 +154,8 @@ Status AtomicFile::seek(uint64_t offset) {
 
 uint64_t AtomicFile::tell() const { return file_ ? position_ : 0; }
 
-// Flushes and closes everything open; 0 or the errno of the first failure (every step runs
-// even after one failed).
+// Flushes, copies out a spool and closes everything open; 0 or the errno of the first
+// failure (the closes run even after one).
 int AtomicFile::closeAll(Sync sync) {
   int error = 0;
   if (std::fflush(file_) != 0) error = errno;

@@ -43,6 +43,8 @@ Status swapIntoPlace(const std::string& temp, const std::string& dir) {
   }
   std::string old = temp;
   if (renameat2(AT_FDCWD, temp.c_str(), AT_FDCWD, dir.c_str(), RENAME_EXCHANGE) != 0) {
+    // Not registered for signal handlers (core/temp_registry.h): a run killed between these
+    // renames leaves the old frames under a temporary name rather than deleting them.
     old = temporaryPathBeside(dir);
     if (std::rename(dir.c_str(), old.c_str()) != 0)
       return ioError(dir + ": cannot move the old frames aside: " + std::strerror(errno));
