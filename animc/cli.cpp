@@ -105,6 +105,14 @@ Result<EncodeSettings> encodeSettingsFrom(const Args& args) {
   return s;
 }
 
+Result<DecoderLimits> decoderLimitsFrom(const Args& args) {
+  DecoderLimits limits;
+  ANIMC_ASSIGN_OR_RETURN(long long work, args.integer("max-vertex-frames", (long long)limits.max_vertex_frames));
+  if (work < 1) return invalidArgument("--max-vertex-frames must be at least 1");
+  limits.max_vertex_frames = uint64_t(work);
+  return limits;
+}
+
 Result<EncodeInput> openEncodeInput(const Args& args) {
   EncodeInput in;
   ANIMC_ASSIGN_OR_RETURN(in.settings, encodeSettingsFrom(args));

@@ -46,11 +46,14 @@ Result<WaveletDecodeControl> progressiveControl(const Args& args) {
 
 int runDecode(const std::vector<std::string>& argv) {
   Args args;
-  Status s = args.parse(argv, {"output", "format", "frames", "bitplanes", "max-bytes"}, {"progress", "replace"});
+  Status s = args.parse(argv, {"output", "format", "frames", "bitplanes", "max-bytes", "max-vertex-frames",
+                               "max-output-bytes"},
+                         {"progress", "replace"});
   if (!s.ok()) return fail(s);
   if (args.positional().size() != 1 || !args.has("output"))
     return fail(invalidArgument("usage: animc decode IN.ams -o OUT [--format ply|off|pc2|mdd] [--frames A:B] "
-                                "[--bitplanes K] [--max-bytes N] [--replace]"));
+                                "[--bitplanes K] [--max-bytes N] [--replace] [--max-vertex-frames V] "
+                                "[--max-output-bytes B]"));
   const std::string out = args.get("output");
   std::string format = args.get("format");
   if (format.empty()) format = endsWith(out, ".pc2") ? "pc2" : endsWith(out, ".mdd") ? "mdd" : endsWith(out, ".off") ? "off" : "ply";
@@ -59,7 +62,11 @@ int runDecode(const std::vector<std::string>& argv) {
   auto control = progressiveControl(args);
   if (!control.ok()) return fail(control.status());
   if (!(s = refuseOutputOverInput(out, {args.positional()[0]})).ok()) return fail(s);
-  auto source = AmsSource::open(args.positional()[0], DecoderLimits(), control.value());
+  auto limits = decoderLimitsFrom(args);
+  if (!limits.ok()) return fail(limits.status());
+  auto max_output = args.integer("max-output-bytes", kDefaultMaxOutputBytes);
+  if (!max_output.ok()) return fail(max_output.status());
+  auto source = AmsSource::open(args.positional()[0], limits.value(), control.value());
   if (!source.ok()) return fail(source.status());
   AmsSource& ams = *source.value();
   int64_t first = 0, last = 0;
@@ -69,6 +76,12 @@ int runDecode(const std::vector<std::string>& argv) {
     s = invalidArgument("--frames: expected A:B");
   }
   if (!s.ok()) return fail(s);
+  if (!(s = ams.checkDecodeWork(first, last)).ok()) return fail(s);
+  const uint64_t output_bytes = sequenceOutputBytes(fmt.value(), ams.topology(), last - first);
+  if (max_output.value() > 0 && output_bytes > uint64_t(max_output.value()))
+    return fail(limitExceeded(out + ": the " + format + " output would take about " + std::to_string(output_bytes) +
+                              " bytes, above the limit of " + std::to_string(max_output.value()) +
+                              "; decode fewer frames, to pc2, or raise it with --max-output-bytes"));
   if (!(s = ams.seek(first)).ok()) return fail(s);
   auto sink = createSequenceSink(out, fmt.value(), ams.topology(), ams.frameRate(), last - first,
                                  args.has("replace") ? ExistingOutput::kReplace : ExistingOutput::kRefuse);

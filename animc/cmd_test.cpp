@@ -11,11 +11,14 @@ namespace animc::cli {
 
 int runTest(const std::vector<std::string>& argv) {
   Args args;
-  Status s = args.parse(argv, {}, {"json"});
+  Status s = args.parse(argv, {"max-vertex-frames"}, {"json"});
   if (!s.ok()) return fail(s);
-  if (args.positional().size() != 1) return fail(invalidArgument("usage: animc test IN.ams [--json]"));
+  if (args.positional().size() != 1)
+    return fail(invalidArgument("usage: animc test IN.ams [--json] [--max-vertex-frames V]"));
+  auto limits = decoderLimitsFrom(args);
+  if (!limits.ok()) return fail(limits.status());
   const std::string& path = args.positional()[0];
-  auto check = checkAmsFile(path);
+  auto check = checkAmsFile(path, limits.value());
   if (!check.ok()) return fail(check.status());
   const AmsCheck& c = check.value();
   if (args.has("json")) {

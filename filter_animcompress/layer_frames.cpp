@@ -143,6 +143,7 @@ Result<QList<MeshModel*>> importAms(const std::string& path, const AmsImport& ra
     return invalidArgument("no document to add the frames to as layers");
   ANIMC_RETURN_IF_ERROR(
       checkLayerMemory(path, source->topology(), range.first_frame, last, range.max_layer_megabytes));
+  ANIMC_RETURN_IF_ERROR(source->checkDecodeWork(range.first_frame, last + 1));
   ANIMC_RETURN_IF_ERROR(source->seek(range.first_frame));
   QList<MeshModel*> added;
   auto undo = [&](const Status& s) {

@@ -134,6 +134,7 @@ Result<std::unique_ptr<AmsSource>> AmsSource::open(const std::string& path, cons
                                                    const WaveletDecodeControl& progressive) {
   std::unique_ptr<AmsSource> s(new AmsSource());
   s->path_ = path;
+  s->limits_ = limits;
   ANIMC_ASSIGN_OR_RETURN(s->reader_, ContainerReader::open(path, limits));
   auto settings = readSettings(s->reader_->info().header);
   if (!settings.ok()) return settings.status().withContext(path);
@@ -191,10 +192,27 @@ Result<bool> AmsSource::next(std::vector<float>& xyz) {
   return true;
 }
 
+uint64_t AmsSource::decodeWork(int64_t first, int64_t last) const {
+  if (first < 0 || last <= first || first >= frameCount()) return 0;
+  const uint64_t start = reader_->groupFirstFrame(reader_->groupOf(uint64_t(first)));
+  return (uint64_t(last) - start) * topology().vertex_count;
+}
+
+Status AmsSource::checkDecodeWork(int64_t first, int64_t last) const {
+  const uint64_t work = decodeWork(first, last);
+  if (work <= limits_.max_vertex_frames) return Status();
+  return limitExceeded(path_ + ": decoding frames " + std::to_string(first) + " to " + std::to_string(last - 1) +
+                       " costs " + std::to_string(work) + " vertex-frames (" + std::to_string(topology().vertex_count) +
+                       " vertices, from the start of their frame group), above the limit of " +
+                       std::to_string(limits_.max_vertex_frames) +
+                       "; decode fewer frames or raise the limit (animc --max-vertex-frames)");
+}
+
 std::string AmsSource::where() const { return path_ + " frame " + std::to_string(next_frame_); }
 
 Result<AmsCheck> checkAmsFile(const std::string& path, const DecoderLimits& limits) {
   ANIMC_ASSIGN_OR_RETURN(std::unique_ptr<AmsSource> ams, AmsSource::open(path, limits));
+  ANIMC_RETURN_IF_ERROR(ams->checkDecodeWork(0, ams->frameCount()));
   std::vector<float> xyz;
   int64_t decoded = 0;
   for (;;) {

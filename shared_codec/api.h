@@ -71,6 +71,12 @@ class AmsSource final : public FrameSource {
   std::string where() const override;
 
   Status seek(int64_t frame);
+  // Vertex-frames that decoding frames [first, last) costs: from the start of the group that
+  // holds `first` (a decoder cannot start inside a group) to `last`.
+  uint64_t decodeWork(int64_t first, int64_t last) const;
+  // kLimitExceeded, saying how to raise the limit, when decodeWork(first, last) exceeds the
+  // open() limits' max_vertex_frames. Call it before decoding a range.
+  Status checkDecodeWork(int64_t first, int64_t last) const;
   const ContainerInfo& info() const { return reader_->info(); }
   const EncodeSettings& settings() const { return settings_; }
 
@@ -79,6 +85,7 @@ class AmsSource final : public FrameSource {
   std::string path_;
   std::unique_ptr<ContainerReader> reader_;
   std::unique_ptr<FrameDecoder> decoder_;
+  DecoderLimits limits_;
   EncodeSettings settings_;
   int64_t next_frame_ = 0;
   size_t group_ = 0;

@@ -42,6 +42,11 @@ struct DecoderLimits {
   uint64_t max_triangles = uint64_t(1) << 24;
   uint64_t max_frames = uint64_t(1) << 32;
   uint64_t max_frame_bytes = uint64_t(1) << 31;
+  // The most vertex-frames (vertices x frames decoded, those skipped to reach a frame of a
+  // group included) one decode may cost: a few hundred bytes can describe a static mesh of
+  // millions of vertices over millions of frames, hours of decoding. About 50 GB of output
+  // floats; AmsSource::checkDecodeWork() refuses more before anything is decoded.
+  uint64_t max_vertex_frames = uint64_t(1) << 32;
 };
 
 }  // namespace animc

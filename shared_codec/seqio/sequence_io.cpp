@@ -92,6 +92,17 @@ Result<std::unique_ptr<FrameSource>> openSequence(const std::string& path,
   return openFrameFiles(std::move(frames), &mesh.topology, mesh_path);
 }
 
+uint64_t sequenceOutputBytes(SequenceFormat format, const Topology& topology, int64_t frames) {
+  const uint64_t n = topology.vertex_count, t = topology.triangles.size(), f = uint64_t(std::max<int64_t>(frames, 0));
+  switch (format) {
+    case SequenceFormat::kPc2: return 32 + 12 * n * f;
+    case SequenceFormat::kMdd: return 8 + (4 + 12 * n) * f;
+    case SequenceFormat::kPly: return (256 + 12 * n + 13 * t) * f;  // binary: floats, then count + 3 ints
+    case SequenceFormat::kOff: return (32 + 30 * n + 24 * t) * f;   // ASCII: typical widths of %g and indices
+  }
+  return 0;
+}
+
 Result<std::vector<std::string>> sequenceInputFiles(const std::string& path,
                                                     const std::string& mesh_path) {
   std::vector<std::string> files;

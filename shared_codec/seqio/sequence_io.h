@@ -28,6 +28,11 @@ Result<Mesh> readMesh(const std::string& path);
 Result<std::unique_ptr<FrameSource>> openSequence(const std::string& path,
                                                   const std::string& mesh_path);
 
+// About how many bytes createSequenceSink(format, topology, frames) writes (PLY and OFF frames
+// repeat the faces in every frame, so a small .ams of a dense mesh can expand enormously):
+// for refusing an output before writing it.
+uint64_t sequenceOutputBytes(SequenceFormat format, const Topology& topology, int64_t frames);
+
 // Every file openSequence(path, mesh_path) reads: the point cache or the frame files (and the
 // .txt list naming them), and the mesh. An output must be none of them.
 Result<std::vector<std::string>> sequenceInputFiles(const std::string& path,

@@ -289,6 +289,17 @@ expect_error test_late "" "$ANIMC" test "$LATE_AMS" --json
 grep -q "CRC mismatch" "$TMP/test_late.err" || check_failed "animc test on a damaged last group: $(cat "$TMP/test_late.err")"
 expect_error test_usage "" "$ANIMC" test
 
+# --- limits on what a small file may cost, refused before any work: vertex-frames decoded
+# (from the start of the group that holds the first frame asked for) and output bytes ---------
+expect_error work_limit "$ERRDIR/x.pc2" "$ANIMC" decode "$AMS" -o "$ERRDIR/x.pc2" --max-vertex-frames 10000
+grep -q "above the limit of 10000.*--max-vertex-frames" "$TMP/work_limit.err" || check_failed "work_limit: $(cat "$TMP/work_limit.err")"
+# 50 frames in one group: frames 45..49 cost all 50 frames; with a group every 10 frames, 10.
+expect_error work_limit_range "$ERRDIR/x.pc2" "$ANIMC" decode "$AMS" -o "$ERRDIR/x.pc2" --frames 45:50 --max-vertex-frames 10000
+run work_limit_groups "$ANIMC" decode "$TMP/groups.ams" -o "$TMP/last5.pc2" --frames 45:50 --max-vertex-frames 10000
+expect_error output_limit "$ERRDIR/frames" "$ANIMC" decode "$AMS" -o "$ERRDIR/frames" --max-output-bytes 100000
+grep -q "output would take about .*--max-output-bytes" "$TMP/output_limit.err" || check_failed "output_limit: $(cat "$TMP/output_limit.err")"
+expect_error test_work_limit "" "$ANIMC" test "$AMS" --max-vertex-frames 100
+
 # --- an output that is one of the inputs is refused, by identity; the inputs stay intact ---
 VICTIM=$TMP/victim
 mkdir "$VICTIM"
