@@ -19,24 +19,16 @@
 #include <vector>
 
 #include "core/atomic_file.h"
+#include "scratch_folder.h"
 
 namespace animc {
 namespace {
 
 namespace fs = std::filesystem;
 
-class AtomicFileTest : public testing::Test {
+class AtomicFileTest : public testing_support::ScratchFolderTest {
  protected:
-  void SetUp() override {
-    const testing::TestInfo* info = testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::path(testing::TempDir()) /
-           ("atomic_" + std::string(info->name()) + "_" + std::to_string(getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  AtomicFileTest() : ScratchFolderTest("atomic") {}
   // Names in the test's folder, sorted.
   std::vector<std::string> names(const fs::path& dir) const {
     std::vector<std::string> out;
@@ -49,8 +41,6 @@ class AtomicFileTest : public testing::Test {
     std::ifstream in(path, std::ios::binary);
     return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
   }
-
-  fs::path dir_;
 };
 
 bool isTemporaryName(const std::string& name) {

@@ -17,6 +17,7 @@
 
 #include "core/atomic_file.h"
 #include "core/memory_sequence.h"
+#include "scratch_folder.h"
 #include "seqio/frame_files.h"
 #include "seqio/sequence_io.h"
 #include "test_sequences.h"
@@ -29,26 +30,15 @@ using Frames = std::vector<std::vector<float>>;
 
 // --- helpers -----------------------------------------------------------------------------
 
-class SeqioTest : public testing::Test {
+class SeqioTest : public testing_support::ScratchFolderTest {
  protected:
-  void SetUp() override {
-    const testing::TestInfo* info = testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::path(testing::TempDir()) /
-           ("seqio_" + std::string(info->name()) + "_" + std::to_string(getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  SeqioTest() : ScratchFolderTest("seqio") {}
   void writeFile(const std::string& name, const std::string& bytes) const {
     std::ofstream(path(name), std::ios::binary) << bytes;
   }
   size_t fileCount() const {
     return size_t(std::distance(fs::directory_iterator(dir_), fs::directory_iterator()));
   }
-
-  fs::path dir_;
 };
 
 // Two quads' worth of faces on 5 vertices: a quad (fan-triangulated to 2) and a triangle.

@@ -11,6 +11,7 @@
 
 #include "core/atomic_file.h"
 #include "core/temp_registry.h"
+#include "scratch_folder.h"
 #include "seqio/sequence_io.h"
 
 namespace animc {
@@ -18,24 +19,13 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class TempRegistryTest : public testing::Test {
+class TempRegistryTest : public testing_support::ScratchFolderTest {
  protected:
-  void SetUp() override {
-    const testing::TestInfo* info = testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::path(testing::TempDir()) /
-           ("registry_" + std::string(info->name()) + "_" + std::to_string(getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  TempRegistryTest() : ScratchFolderTest("registry") {}
   void touch(const std::string& name) const { std::ofstream(path(name)) << name; }
   size_t entries(const std::string& folder) const {
     return size_t(std::distance(fs::directory_iterator(folder), fs::directory_iterator()));
   }
-
-  fs::path dir_;
 };
 
 TEST_F(TempRegistryTest, RemovesRegisteredFilesAndFoldersOnly) {
