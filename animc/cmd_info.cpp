@@ -15,9 +15,10 @@ int runInfo(const std::vector<std::string>& argv) {
   if (!source.ok()) return fail(source.status());
   const ContainerInfo& info = source.value()->info();
   const ContainerHeader& h = info.header;
-  uint64_t group_bytes = 0, groups = 0;
+  const uint64_t groups = info.groupCount();
+  uint64_t group_bytes = 0;
   for (const SectionInfo& sec : info.sections)
-    if (sec.tag == kTagGroup) group_bytes += sec.payload_bytes, ++groups;
+    if (sec.tag == kTagGroup) group_bytes += sec.payload_bytes;
   if (args.has("json")) {
     JsonObject o = newReport();
     // What opening the file checked: not the groups after the first (animc test does).

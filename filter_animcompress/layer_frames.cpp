@@ -3,7 +3,6 @@
 
 #include <vcg/complex/allocate.h>
 
-#include <cstdio>
 #include <new>
 
 #include "seqio/mesh_checks.h"
@@ -108,14 +107,14 @@ Status checkLayerMemory(const std::string& path, const Topology& topology, int64
                         int64_t max_megabytes) {
   const double megabytes = double(last - first + 1) * double(layerBytes(topology)) / (1 << 20);
   if (megabytes <= double(max_megabytes)) return Status();
-  char text[512];
-  std::snprintf(text, sizeof text,
-                "frames %lld to %lld of %s would take about %.0f MB as layers (%u vertices and %zu "
-                "triangles each), above the memory limit of %lld MB: load fewer frames (First frame, "
-                "Last frame) or raise the limit (Memory limit (MB) when opening, or ANIMC_MEMORY_LIMIT_MB)",
-                (long long)first, (long long)last, path.c_str(), megabytes, topology.vertex_count,
-                topology.triangles.size(), (long long)max_megabytes);
-  return limitExceeded(text);
+  // Built as a string: a fixed buffer would cut the message at a long path.
+  return limitExceeded("frames " + std::to_string(first) + " to " + std::to_string(last) + " of " + path +
+                       " would take about " + std::to_string(int64_t(megabytes + 0.5)) + " MB as layers (" +
+                       std::to_string(topology.vertex_count) + " vertices and " +
+                       std::to_string(topology.triangles.size()) + " triangles each), above the memory limit of " +
+                       std::to_string(max_megabytes) +
+                       " MB: load fewer frames (First frame, Last frame) or raise the limit (Memory limit (MB) "
+                       "when opening, or ANIMC_MEMORY_LIMIT_MB)");
 }
 
 }  // namespace

@@ -230,7 +230,7 @@ Result<AmsCheck> checkAmsFile(const std::string& path, const DecoderLimits& limi
   check.vertices = ams->topology().vertex_count;
   check.triangles = ams->topology().triangles.size();
   check.frames = decoded;
-  for (const SectionInfo& section : ams->info().sections) check.groups += section.tag == kTagGroup;
+  check.groups = ams->info().groupCount();
   check.file_bytes = ams->info().file_bytes;
   return check;
 }

@@ -30,6 +30,12 @@ struct ContainerInfo {
   uint64_t file_bytes = 0;
   uint64_t static_bytes = 0;  // header, HEAD, CONN and the first frame: what motion does not pay
   std::vector<SectionInfo> sections;  // HEAD, CONN, each GRUP, INDX, END in file order
+
+  uint64_t groupCount() const {
+    uint64_t groups = 0;
+    for (const SectionInfo& section : sections) groups += section.tag == kTagGroup;
+    return groups;
+  }
 };
 
 class ContainerReader {
