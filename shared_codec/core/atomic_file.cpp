@@ -94,13 +94,18 @@ Status AtomicFile::createTemporary() {
   mode_ = Mode::kReplace;
   // "x": never truncate a file already there (a leftover of an earlier process that had the
   // same id); take the next name instead.
+  // Registered before it is created, so that a signal arriving in between still finds it.
   for (int attempt = 0; attempt < 100 && !file_; ++attempt) {
     temp_path_ = temporaryPathBeside(target_);
+    temp_slot_ = registerTemporary(temp_path_, TemporaryKind::kFile);
     file_ = std::fopen(temp_path_.c_str(), "wbx");
-    if (!file_ && errno != EEXIST) break;
+    if (file_) break;
+    const int error = errno;
+    unregisterTemporary(temp_slot_);
+    temp_slot_ = -1;
+    if (error != EEXIST) return creationError(path_, temp_path_, error);
   }
-  if (!file_) return creationError(path_, temp_path_, errno);
-  temp_slot_ = registerTemporary(temp_path_, TemporaryKind::kFile);
+  if (!file_) return creationError(path_, temp_path_, EEXIST);
   return Status();
 }
 

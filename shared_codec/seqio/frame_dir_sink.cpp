@@ -89,11 +89,15 @@ class FrameDirSink : public FrameSink {
     const fs::path parent = fs::path(temp_).parent_path();
     if (!parent.empty() && !fs::is_directory(parent, ec))
       return ioError(dir_ + ": no such directory " + parent.string());
-    if (!fs::create_directory(temp_, ec))
+    // Registered before it is created, so that a signal arriving in between still finds it.
+    temp_slot_ = registerTemporary(temp_, TemporaryKind::kFolder);
+    if (!fs::create_directory(temp_, ec)) {
+      unregisterTemporary(temp_slot_);
+      temp_slot_ = -1;
       return ioError(dir_ + ": cannot create a folder in " + (parent.empty() ? "." : parent.string()) +
                      ": " + (ec ? ec.message() : temp_ + " exists"));
+    }
     created_temp_ = true;
-    temp_slot_ = registerTemporary(temp_, TemporaryKind::kFolder);
     return Status();
   }
 
