@@ -109,7 +109,7 @@ int runBench(const std::vector<std::string>& argv) {
   // The scratch output is rewritten every run: an interrupted bench removes it too.
   const int scratch_slot = args.has("output") ? -1 : registerTemporary(out, TemporaryKind::kFile);
   std::vector<double> encode_s, decode_s;
-  EncodeReport report;
+  EncodeSummary report;
   ProgressFn progress = progressLine("bench", args.has("progress"));
   for (long long r = 0; r < runs.value(); ++r) {
     if (progress) progress(int(100 * r / runs.value()), "encoding and decoding");
@@ -139,7 +139,7 @@ int runBench(const std::vector<std::string>& argv) {
     JsonObject o = newReport();
     o.add("input", args.positional()[0]);
     addSettings(o, settings);
-    addSizes(o, report.file_bytes, report.static_bytes, report.vertices, report.frames);
+    addSizes(o, report.bytes, report.static_bytes, report.vertices, report.frames);
     addMetrics(o, metrics.value(), false);
     o.add("intra_frames", report.intra_frames);
     o.add("cells", report.cells);

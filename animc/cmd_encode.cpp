@@ -27,13 +27,13 @@ int runEncode(const std::vector<std::string>& argv) {
                                progressLine("encode", args.has("progress")), measuringObserver(metrics));
   if (!report.ok()) return fail(report.status());
   endProgressLine();
-  const EncodeReport& r = report.value();
+  const EncodeSummary& r = report.value();
   const SequenceMetrics m = metrics.finish();
   if (args.has("json")) {
     JsonObject o = newReport();
     o.add("output", args.get("output"));
     addSettings(o, settings);
-    addSizes(o, r.file_bytes, r.static_bytes, r.vertices, r.frames);
+    addSizes(o, r.bytes, r.static_bytes, r.vertices, r.frames);
     addMetrics(o, m, false);
     o.add("intra_frames", r.intra_frames);
     o.add("cells", r.cells);

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "cli.h"
-#include "version.h"
+#include "animc/animc.h"
 
 namespace {
 

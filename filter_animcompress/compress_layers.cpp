@@ -11,7 +11,7 @@
 #include "layer_frames.h"
 #include "report/encode_metrics.h"
 #include "report/report.h"
-#include "version.h"
+#include "animc/animc.h"
 
 namespace animc::meshlab {
 namespace {
@@ -81,7 +81,7 @@ std::string compressLayers(MeshDocument& md, const RichParameterList& par, vcg::
       out.original_errors.push_back(frame_errors);
     }
   };
-  Result<EncodeReport> report = encodeSequence(*source.value(), settings.value(), path, progressFrom(cb),
+  Result<EncodeSummary> report = encodeSequence(*source.value(), settings.value(), path, progressFrom(cb),
                                                measuringObserver(out.metrics, show, collect));
   if (!report.ok()) {
     for (MeshModel* m : out.decoded_layers) md.delMesh(m);
@@ -90,7 +90,7 @@ std::string compressLayers(MeshDocument& md, const RichParameterList& par, vcg::
 
   const SequenceMetrics m = out.metrics.finish();
   if (colour) colourByError(out, layers, float(m.max_error));
-  const EncodeReport& r = report.value();
+  const EncodeSummary& r = report.value();
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   log("Compressed " + std::to_string(r.frames) + " frames of " + std::to_string(r.vertices) +
       " vertices (" + std::to_string(r.triangles) + " triangles) into " + path + " (animcompress " +

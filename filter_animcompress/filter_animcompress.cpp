@@ -5,7 +5,7 @@
 #include "frame_range_parameters.h"
 #include "layer_frames.h"
 #include "reconstruction_error.h"
-#include "version.h"
+#include "animc/animc.h"
 
 using namespace animc::meshlab;
 

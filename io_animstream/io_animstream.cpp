@@ -84,7 +84,7 @@ bool IoAnimStreamPlugin::saveFrames(const QString& fileName, MeshModel& m, const
   if (!source.ok()) return fail("save", fileName, source.status().message());
   auto report = animc::encodeSequence(*source.value(), settings.value(), fileName.toStdString(), progressFrom(cb));
   if (!report.ok()) return fail("save", fileName, report.status().message());
-  const animc::EncodeReport& r = report.value();
+  const animc::EncodeSummary& r = report.value();
   Log("Saved %lld layers of %u vertices as frames of %s", (long long)r.frames, r.vertices, qUtf8Printable(fileName));
   const LogFn log = [this](const std::string& line) { Log("%s", line.c_str()); };
   logLines(log, animc::formatEncodeResult(settings.value(), r));

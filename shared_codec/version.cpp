@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "version.h"
+#include "animc/animc.h"
 
 namespace animc {
 

@@ -22,12 +22,6 @@
 
 namespace animc {
 
-// One named setting of a codec as reports show it (`animc info --json`, ...).
-struct SettingValue {
-  std::string key;
-  std::variant<double, int64_t, bool, std::string> value;
-};
-
 struct CodecEntry {
   CodecId id;
   const char* name;  // on the command line and in reports: "affine-octree"

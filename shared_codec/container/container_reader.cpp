@@ -1,8 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "container/container_reader.h"
 
-#include <sys/stat.h>
-
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
@@ -25,20 +23,13 @@ std::string at(uint64_t offset) { return " at byte " + std::to_string(offset); }
 
 }  // namespace
 
-ContainerReader::~ContainerReader() {
-  if (file_) std::fclose(file_);
-}
+ContainerReader::~ContainerReader() = default;
 
 Status ContainerReader::readAt(uint64_t offset, void* out, size_t size, const char* what) {
   if (offset > info_.file_bytes || size > info_.file_bytes - offset)
     return truncated(std::string(what) + at(offset) + ": file ends early");
-  // No path here: callers add it (open() and AmsSource), so it is named once.
-  errno = 0;
-  if (fseeko(file_, off_t(offset), SEEK_SET) != 0 || std::fread(out, 1, size, file_) != size) {
-    const std::string why = errno ? std::string(": ") + std::strerror(errno) : "";
-    return ioError("read failed" + at(offset) + why);
-  }
-  return Status();
+  // No name here: callers add it (open() and the decoder), so it is named once.
+  return source_->readAt(offset, out, size);
 }
 
 Result<std::vector<uint8_t>> ContainerReader::readSection(uint64_t offset, const char* tag,
@@ -73,20 +64,19 @@ Result<std::vector<uint8_t>> ContainerReader::readSection(uint64_t offset, const
 
 Result<std::unique_ptr<ContainerReader>> ContainerReader::open(const std::string& path,
                                                                const DecoderLimits& limits) {
+  ANIMC_ASSIGN_OR_RETURN(std::unique_ptr<ByteSource> source, openFileSource(path));
+  return open(std::move(source), path, limits);
+}
+
+Result<std::unique_ptr<ContainerReader>> ContainerReader::open(std::unique_ptr<ByteSource> source,
+                                                               const std::string& name,
+                                                               const DecoderLimits& limits) {
   std::unique_ptr<ContainerReader> r(new ContainerReader());
-  r->path_ = path;
   r->limits_ = limits;
-  r->file_ = std::fopen(path.c_str(), "rb");
-  if (!r->file_) return ioError(path + ": cannot open: " + std::strerror(errno));
-  // fopen() opens a folder too; reading it would fail with no useful reason.
-  struct stat st;
-  if (fstat(fileno(r->file_), &st) == 0 && S_ISDIR(st.st_mode))
-    return ioError(path + ": is a directory, not an .ams file");
-  if (fseeko(r->file_, 0, SEEK_END) != 0)
-    return ioError(path + ": cannot seek (an .ams file is read out of order): " + std::strerror(errno));
-  r->info_.file_bytes = uint64_t(ftello(r->file_));
+  r->source_ = std::move(source);
+  r->info_.file_bytes = r->source_->size();
   Status s = r->openHeader();
-  if (!s.ok()) return s.withContext(path);
+  if (!s.ok()) return s.withContext(name);
   return r;
 }
 

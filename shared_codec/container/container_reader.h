@@ -5,7 +5,6 @@
 // stays O(largest frame) whatever the file size.
 #pragma once
 #include <cstdint>
-#include <cstdio>
 #include <memory>
 #include <string>
 #include <vector>
@@ -14,6 +13,7 @@
 #include "container/format.h"
 #include "core/sequence.h"
 #include "core/status.h"
+#include "io/byte_source.h"
 
 namespace animc {
 
@@ -43,6 +43,9 @@ class ContainerReader {
   ~ContainerReader();
   static Result<std::unique_ptr<ContainerReader>> open(const std::string& path,
                                                        const DecoderLimits& limits = {});
+  // `name` stands for the source in messages.
+  static Result<std::unique_ptr<ContainerReader>> open(std::unique_ptr<ByteSource> source,
+                                                       const std::string& name, const DecoderLimits& limits);
 
   const ContainerInfo& info() const { return info_; }
   const Topology& topology() const { return topology_; }
@@ -66,8 +69,7 @@ class ContainerReader {
   struct Group {
     uint64_t offset, first_frame, end;  // end: offset of whatever follows the section
   };
-  std::FILE* file_ = nullptr;
-  std::string path_;
+  std::unique_ptr<ByteSource> source_;
   DecoderLimits limits_;
   ContainerInfo info_;
   Topology topology_;

@@ -10,7 +10,7 @@ namespace animc {
 
 Status ContainerWriter::put(const void* data, size_t size, bool in_crc) {
   if (in_crc) group_crc_ = crc32Update(group_crc_, static_cast<const uint8_t*>(data), size);
-  return file_.write(data, size);
+  return sink_->write(data, size);
 }
 
 Status ContainerWriter::writeSection(const char* tag, const std::vector<uint8_t>& payload) {
@@ -19,17 +19,18 @@ Status ContainerWriter::writeSection(const char* tag, const std::vector<uint8_t>
   w.u64(payload.size());
   w.append(payload);
   w.u32(crc32Update(0, payload.data(), payload.size()));
-  return file_.write(w.bytes().data(), w.size());
+  return sink_->write(w.bytes().data(), w.size());
 }
 
-Status ContainerWriter::open(const std::string& path, const ContainerHeader& header,
+Status ContainerWriter::open(std::unique_ptr<ByteSink> sink, const ContainerHeader& header,
                              const Topology& topology) {
-  ANIMC_RETURN_IF_ERROR(file_.open(path));
+  if (sink_) return invalidArgument("the container writer is already open");
+  sink_ = std::move(sink);
   ByteWriter start;
   start.append(kMagic, 4);
   start.u16(kFormatVersion);
   start.u16(0);
-  ANIMC_RETURN_IF_ERROR(file_.write(start.bytes().data(), start.size()));
+  ANIMC_RETURN_IF_ERROR(sink_->write(start.bytes().data(), start.size()));
   ByteWriter head;
   head.u8(uint8_t(header.codec));
   head.varint(header.codec_params.size());
@@ -45,17 +46,18 @@ Status ContainerWriter::open(const std::string& path, const ContainerHeader& hea
 }
 
 Status ContainerWriter::addFrame(const std::vector<uint8_t>& payload, bool intra) {
+  if (!sink_) return invalidArgument("the container writer is not open");
   if (!group_open_ && !intra) return invalidArgument("the first frame must be intra");
   if (!intra && group_frames_ == UINT32_MAX)
     return invalidArgument("more than 2^32 - 1 frames in one group: use an I-frame interval");
   if (intra) {
     ANIMC_RETURN_IF_ERROR(closeGroup());
-    groups_.push_back({file_.tell(), frames_});
+    groups_.push_back({sink_->tell(), frames_});
     // Length and frame count are patched by closeGroup().
     ByteWriter w;
     w.append(reinterpret_cast<const uint8_t*>(kTagGroup), 4);
     w.u64(0);
-    ANIMC_RETURN_IF_ERROR(file_.write(w.bytes().data(), w.size()));
+    ANIMC_RETURN_IF_ERROR(sink_->write(w.bytes().data(), w.size()));
     group_crc_ = 0;
     group_frames_ = 0;
     ByteWriter first;
@@ -76,7 +78,7 @@ Status ContainerWriter::addFrame(const std::vector<uint8_t>& payload, bool intra
 Status ContainerWriter::closeGroup() {
   if (!group_open_) return Status();
   const uint64_t start = groups_.back().offset;
-  const uint64_t end = file_.tell();
+  const uint64_t end = sink_->tell();
   // The group's CRC covers its frames; First_Frame and Frame_Count, known only now, are
   // checked against INDX instead (docs/format.md, GRUP).
   ByteWriter fields;
@@ -84,21 +86,22 @@ Status ContainerWriter::closeGroup() {
   fields.u32(group_frames_);
   ByteWriter patch;
   patch.u64(end - start - 12);
-  ANIMC_RETURN_IF_ERROR(file_.seek(start + 4));
-  ANIMC_RETURN_IF_ERROR(file_.write(patch.bytes().data(), patch.size()));
-  ANIMC_RETURN_IF_ERROR(file_.write(fields.bytes().data(), fields.size()));
-  ANIMC_RETURN_IF_ERROR(file_.seek(end));
+  ANIMC_RETURN_IF_ERROR(sink_->seek(start + 4));
+  ANIMC_RETURN_IF_ERROR(sink_->write(patch.bytes().data(), patch.size()));
+  ANIMC_RETURN_IF_ERROR(sink_->write(fields.bytes().data(), fields.size()));
+  ANIMC_RETURN_IF_ERROR(sink_->seek(end));
   ByteWriter crc;
   crc.u32(group_crc_);
-  ANIMC_RETURN_IF_ERROR(file_.write(crc.bytes().data(), crc.size()));
+  ANIMC_RETURN_IF_ERROR(sink_->write(crc.bytes().data(), crc.size()));
   group_open_ = false;
   return Status();
 }
 
 Status ContainerWriter::finish() {
+  if (!sink_) return invalidArgument("the container writer is not open");
   if (frames_ == 0) return invalidArgument("no frames to write");
   ANIMC_RETURN_IF_ERROR(closeGroup());
-  const uint64_t index_offset = file_.tell();
+  const uint64_t index_offset = sink_->tell();
   ByteWriter index;
   index.u64(frames_);
   index.u32(uint32_t(groups_.size()));
@@ -110,8 +113,10 @@ Status ContainerWriter::finish() {
   ByteWriter end;
   end.u64(index_offset);
   ANIMC_RETURN_IF_ERROR(writeSection(kTagEnd, end.bytes()));
-  final_bytes_ = file_.tell();
-  return file_.commit();
+  final_bytes_ = sink_->tell();
+  ANIMC_RETURN_IF_ERROR(sink_->commit());
+  sink_.reset();
+  return Status();
 }
 
 }  // namespace animc

@@ -1,14 +1,14 @@
 // SPDX-License-Identifier: Apache-2.0
 // Writes an .ams file as frames arrive (memory O(one frame group's bookkeeping), not O(file)):
 // header and CONN first, one GRUP section per frame group streamed to disk, then INDX and END.
-// Nothing is visible at the target path until finish() succeeds.
+// The sink commits only when finish() succeeds (a file sink: nothing appears at its path before).
 #pragma once
 #include <cstdint>
 #include <string>
 #include <vector>
 
 #include "codecs/codec_ids.h"
-#include "core/atomic_file.h"
+#include <memory>
 #include "core/sequence.h"
 #include "core/status.h"
 
@@ -25,20 +25,20 @@ struct ContainerHeader {
 
 class ContainerWriter {
  public:
-  Status open(const std::string& path, const ContainerHeader& header, const Topology& topology);
+  Status open(std::unique_ptr<ByteSink> sink, const ContainerHeader& header, const Topology& topology);
   // Appends one coded frame; intra frames start a new GRUP section.
   Status addFrame(const std::vector<uint8_t>& payload, bool intra);
   Status finish();
 
   // Bytes so far; after finish(), the size of the file.
-  uint64_t bytesWritten() const { return file_.isOpen() ? file_.tell() : final_bytes_; }
+  uint64_t bytesWritten() const { return sink_ ? sink_->tell() : final_bytes_; }
 
  private:
   Status writeSection(const char* tag, const std::vector<uint8_t>& payload);
   Status closeGroup();
   Status put(const void* data, size_t size, bool in_crc);
 
-  AtomicFile file_;
+  std::unique_ptr<ByteSink> sink_;
   uint64_t frames_ = 0;
   struct GroupEntry { uint64_t offset, first_frame; };
   std::vector<GroupEntry> groups_;

@@ -14,6 +14,8 @@
 #pragma once
 #include <cstdint>
 
+#include "animc/animc.h"
+
 namespace animc {
 
 constexpr uint8_t kMagic[4] = {0x89, 'A', 'M', 'S'};
@@ -35,18 +37,8 @@ constexpr char kTagEnd[5] = "END ";
 // cannot describe more than this many vertices: a bound that needs no trust in the header.
 constexpr uint64_t kMaxVerticesPerIntraByte = 2048;
 
-// Decoder ceilings (a file asking for more is refused before anything is allocated). The
-// decoder keeps ~200 bytes per vertex, so the default vertex ceiling caps it near 1 GB.
-struct DecoderLimits {
-  uint64_t max_vertices = uint64_t(1) << 22;
-  uint64_t max_triangles = uint64_t(1) << 24;
-  uint64_t max_frames = uint64_t(1) << 32;
-  uint64_t max_frame_bytes = uint64_t(1) << 31;
-  // The most vertex-frames (vertices x frames decoded, those skipped to reach a frame of a
-  // group included) one decode may cost: a few hundred bytes can describe a static mesh of
-  // millions of vertices over millions of frames, hours of decoding. About 50 GB of output
-  // floats; AmsSource::checkDecodeWork() refuses more before anything is decoded.
-  uint64_t max_vertex_frames = uint64_t(1) << 32;
-};
+// The decoder ceilings are DecoderLimits (animc/animc.h): a file asking for more is refused
+// before anything is allocated. The decoder keeps ~200 bytes per vertex, so the default vertex
+// ceiling caps it near 1 GB.
 
 }  // namespace animc

@@ -53,7 +53,5 @@ class FrameSink {
   virtual Status finish() = 0;
 };
 
-// Progress: percent 0..100 and what is being done; return false to cancel.
-using ProgressFn = std::function<bool(int percent, const char* what)>;
 
 }  // namespace animc

@@ -10,13 +10,9 @@
 
 namespace animc {
 
-// A frame with its reconstruction as the floats a decoder of the file writes.
-using FloatFrameObserver =
-    std::function<void(int64_t frame, const float* original, const float* reconstructed)>;
-
 // An observer for encodeSequence that adds every frame to `metrics` (which must outlive it),
 // passing each vertex's error to `each_vertex`, then hands the frame to `then` (each when given).
-FrameObserver measuringObserver(MetricsAccumulator& metrics, FloatFrameObserver then = {},
+FrameObserver measuringObserver(MetricsAccumulator& metrics, FrameObserver then = {},
                                 VertexErrorFn each_vertex = {});
 
 }  // namespace animc

@@ -3,7 +3,7 @@
 
 #include <cstdio>
 
-#include "version.h"
+#include "animc/animc.h"
 
 namespace animc {
 namespace {
@@ -48,17 +48,17 @@ std::string formatMetricsText(const SequenceMetrics& m) {
   return out;
 }
 
-double encodeMvps(const EncodeReport& report) {
+double encodeMvps(const EncodeSummary& report) {
   if (!(report.encode_seconds > 0)) return 0;
   return double(report.vertices) * double(report.frames) / report.encode_seconds / 1e6;
 }
 
-std::string formatEncodeResult(const EncodeSettings& settings, const EncodeReport& report) {
+std::string formatEncodeResult(const EncodeSettings& settings, const EncodeSummary& report) {
   return describeSettings(settings) +
-         formatSizeText(report.file_bytes, report.static_bytes, report.vertices, report.frames);
+         formatSizeText(report.bytes, report.static_bytes, report.vertices, report.frames);
 }
 
-std::string formatEncodeSummary(const EncodeSettings& settings, const EncodeReport& report,
+std::string formatEncodeSummary(const EncodeSettings& settings, const EncodeSummary& report,
                                 const SequenceMetrics& metrics, const std::string& time_note) {
   char time[96];
   std::snprintf(time, sizeof time, "encode time: %.3f s (%.2f M vertices/s)", report.encode_seconds,

@@ -26,14 +26,14 @@ std::string formatMetricsText(const SequenceMetrics& m);
 
 // Millions of vertex positions encoded per second. 0 when the encode took no measurable time:
 // a speed computed from a zero (or clamped) time would be meaningless.
-double encodeMvps(const EncodeReport& report);
+double encodeMvps(const EncodeSummary& report);
 
 // What was written: describeSettings, then formatSizeText.
-std::string formatEncodeResult(const EncodeSettings& settings, const EncodeReport& report);
+std::string formatEncodeResult(const EncodeSettings& settings, const EncodeSummary& report);
 
 // formatEncodeResult, formatMetricsText, then "encode time: S s (M M vertices/s)" with
 // time_note appended: the text an encode ends with in animc and in MeshLab's log.
-std::string formatEncodeSummary(const EncodeSettings& settings, const EncodeReport& report,
+std::string formatEncodeSummary(const EncodeSettings& settings, const EncodeSummary& report,
                                 const SequenceMetrics& metrics, const std::string& time_note = "");
 
 // Every line above ends in '\n'.

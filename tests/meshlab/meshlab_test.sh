@@ -207,7 +207,7 @@ PYEOF
   bad_case one_layer "needs at least 2 layers (frames); found 1" "${FRAMES[0]}"
   bad_case vertex_count "layer 2 ('tetra.ply'): vertex count 4 differs from" "${FRAMES[0]}" "${FRAMES[1]}" "$TMP/tetra.ply"
   bad_case face_list "layer 1 ('other_faces.ply'): face list differs from layer 0" "${FRAMES[0]}" "$TMP/other_faces.ply"
-  bad_case infinite "layer 1 ('infinite.ply') (frame 1): vertex 0 has a NaN, infinite or huge coordinate" \
+  bad_case infinite "layer 1 ('infinite.ply'): frame 1: vertex 0 has a NaN, infinite or huge coordinate" \
     "${FRAMES[0]}" "$TMP/infinite.ply"
   bad_case nan "layer 1 ('nan.ply')" "${FRAMES[0]}" "$TMP/nan.ply"
   bad_case no_faces "empty mesh (0 triangles)" "$TMP/points.ply" "$TMP/points.ply"
@@ -226,7 +226,7 @@ failed_compress_leaves_originals() {
   RC=0
   "$host" "$plugin" "$TMP/failed.ams" "${FRAMES[@]}" >"$name.log" 2>&1 || RC=$?
   ((RC == 0)) || die "$name: the host exited with $RC (1: the filter succeeded)"$'\n'"$(tail -15 "$name.log")"
-  expect_log "$name" "layer $last ('frame_000$last.ply') (frame $last): vertex 0 has a NaN"
+  expect_log "$name" "layer $last ('frame_000$last.ply'): frame $last: vertex 0 has a NaN"
   expect_log "$name" "layers: $N"
   [[ ! -e failed.ams ]] || check_failed "$name: an .ams was written"
   local touched

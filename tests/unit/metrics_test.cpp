@@ -374,10 +374,10 @@ TEST(MetricsFormat, TextHasOneLinePerFigure) {
 }
 
 TEST(MetricsFormat, EncodeSummaryLinesAndSpeed) {
-  EncodeReport r;
+  EncodeSummary r;
   r.vertices = 1000;
   r.frames = 50;
-  r.file_bytes = 30000;
+  r.bytes = 30000;
   r.static_bytes = 10000;
   r.encode_seconds = 0.025;  // 50000 vertex positions: 2 M vertices/s
   EXPECT_DOUBLE_EQ(encodeMvps(r), 2.0);

@@ -36,7 +36,7 @@ TEST_P(RealDataRoundTrip, EveryDecodedVertexIsWithinMaxError) {
   ASSERT_EQ(decoded.size(), seq.frames().size());
   EXPECT_LE(worstRelativeError(seq.frames(), decoded), GetParam().max_error);
   // Far smaller than the raw floats, or something is badly wrong.
-  EXPECT_LT(report.value().file_bytes * 5, 12ull * report.value().vertices * report.value().frames);
+  EXPECT_LT(report.value().bytes * 5, 12ull * report.value().vertices * report.value().frames);
   std::remove(path.c_str());
 }
 

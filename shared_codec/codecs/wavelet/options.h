@@ -61,10 +61,6 @@ constexpr int kMaxParametricBits = 28;
 constexpr double kMaxTargetKg = 100;
 
 // What a decoder may be asked to drop (progressive decoding); not part of the stream.
-struct WaveletDecodeControl {
-  int max_bitplanes = 0;          // decode at most this many bitplanes per frame; 0 = all
-  uint64_t max_payload_bytes = 0;  // read at most this many bytes of each frame; 0 = all
-  bool partial() const { return max_bitplanes > 0 || max_payload_bytes > 0; }
-};
+using WaveletDecodeControl = ProgressiveOptions;
 
 }  // namespace animc

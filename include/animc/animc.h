@@ -1,0 +1,338 @@
+// SPDX-License-Identifier: Apache-2.0
+// animcompress: compression of animated triangle meshes (one triangle list, moving vertices)
+// into .ams streams. This is the library's public interface and the only header a program
+// includes; link animcompress::animc (CMake) or `pkg-config --libs animc`.
+//
+//   Encoder: frames in, an .ams stream out to a file or to memory (or any ByteSink).
+//   Decoder: an .ams stream from a file or from memory, frame k out, in any order.
+//   MetricsAccumulator: the error figures (KG, PSNR, max error) of a reconstruction.
+//
+// Errors: nothing here throws (except std::bad_alloc when memory runs out); every fallible
+// call returns a Status or a Result<T>, whose message names what is at fault.
+// Threads: an object is used by one thread at a time; different objects, on any threads, are
+// independent and safe in parallel (the library has no global mutable state).
+// Frames are 3 * vertex_count floats, x y z of vertex 0, then of vertex 1, ...; triangles are
+// 3 * triangle_count vertex indices.
+#pragma once
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <utility>
+#include <variant>
+#include <vector>
+
+#include "animc/version.h"
+
+#if defined(_WIN32)
+#define ANIMC_API
+#else
+#define ANIMC_API __attribute__((visibility("default")))
+#endif
+
+namespace animc {
+
+// The version of the library actually linked: it differs from ANIMC_VERSION_STRING, the
+// version of this header, when a program runs with another shared library than it was built
+// with. The .ams format has its own version; every release reads every format-1 stream.
+ANIMC_API const char* animcVersion();
+
+// ---- Status -------------------------------------------------------------------------------
+
+// Stable values: animc exits with them, docs/format.md lists them.
+enum class StatusCode : int {
+  kOk = 0,
+  kInvalidArgument = 2,  // the caller asked for something impossible (bad option value)
+  kIoError = 3,          // the operating system refused a read, write or rename
+  kBadInput = 4,         // an input sequence is unusable (NaN, differing counts, bad faces)
+  kTruncated = 5,        // a stream ends before a field it announces
+  kCorrupt = 6,          // a stream field or checksum is wrong
+  kUnsupported = 7,      // a format version, codec id or codec profile this build does not read
+  kLimitExceeded = 8,    // a count or size above the decoder's limits (DecoderLimits)
+  kCancelled = 9,        // the progress callback asked to stop
+};
+
+ANIMC_API const char* statusCodeName(StatusCode code);
+
+class [[nodiscard]] Status {
+ public:
+  Status() = default;
+  Status(StatusCode code, std::string message) : code_(code), message_(std::move(message)) {}
+  bool ok() const { return code_ == StatusCode::kOk; }
+  StatusCode code() const { return code_; }
+  const std::string& message() const { return message_; }
+  // Prefixes context ("frames/12.ply: ") so messages read outermost first.
+  Status withContext(const std::string& context) const {
+    return ok() ? *this : Status(code_, context + ": " + message_);
+  }
+
+ private:
+  StatusCode code_ = StatusCode::kOk;
+  std::string message_;
+};
+
+// A value or the Status explaining why there is none.
+template <class T>
+class [[nodiscard]] Result {
+ public:
+  Result(T value) : v_(std::move(value)) {}        // NOLINT: implicit by design, like StatusOr
+  Result(Status status) : v_(std::move(status)) {}  // NOLINT
+  bool ok() const { return v_.index() == 0; }
+  const Status& status() const {
+    static const Status kOkStatus;
+    return ok() ? kOkStatus : std::get<1>(v_);
+  }
+  T& value() & { return std::get<0>(v_); }
+  const T& value() const& { return std::get<0>(v_); }
+  T&& value() && { return std::get<0>(std::move(v_)); }
+
+ private:
+  std::variant<T, Status> v_;
+};
+
+// Progress: percent 0..100 and what is being done; return false to cancel.
+using ProgressFn = std::function<bool(int percent, const char* what)>;
+
+// ---- Encoding -----------------------------------------------------------------------------
+
+// What to write. Codec options are named as `animc encode`'s flags without the dashes
+// ("max-error", "target-kg", "bits", "profile", ...; `animc --help` lists each codec's);
+// a switch is set with the value "1". An option the chosen codec does not have is an error.
+struct EncoderOptions {
+  std::string codec = "affine-octree";  // or "wavelet"
+  std::map<std::string, std::string> values;
+  uint32_t iframe_interval = 0;  // an intra frame (a random-access point) every K frames; 0 = the first only
+  double frame_rate = 25.0;      // stored in the stream for players
+
+  EncoderOptions& set(const std::string& name, const std::string& value) {
+    values[name] = value;
+    return *this;
+  }
+  ANIMC_API EncoderOptions& set(const std::string& name, double value);
+  // The options checked against the codec (names, ranges), as an encoder would check them.
+  ANIMC_API Status validate() const;
+};
+
+// The codecs this library writes and reads, by name ("affine-octree", "wavelet").
+ANIMC_API std::vector<std::string> codecNames();
+
+// Where an encoder writes. The stream is written front to back, with seeks back to fill in
+// lengths; commit() is called once after the last byte, and a sink destroyed without it must
+// leave nothing behind (or its old content).
+class ANIMC_API ByteSink {
+ public:
+  virtual ~ByteSink();
+  virtual Status write(const void* data, size_t size) = 0;
+  virtual Status seek(uint64_t offset) = 0;
+  virtual uint64_t tell() const = 0;
+  virtual Status commit() = 0;
+};
+
+// A file written atomically: a temporary beside `path` renamed over it by commit(), so
+// readers see the old file or the complete new one. A device or FIFO is written in place.
+ANIMC_API Result<std::unique_ptr<ByteSink>> fileSink(const std::string& path);
+// Bytes gathered in *out (cleared first; *out must outlive the sink, and is cleared again
+// if the sink is destroyed without commit()).
+ANIMC_API std::unique_ptr<ByteSink> memorySink(std::vector<uint8_t>* out);
+
+struct EncodeSummary {
+  uint32_t vertices = 0;
+  uint64_t triangles = 0;
+  int64_t frames = 0;
+  uint64_t intra_frames = 0;
+  uint64_t bytes = 0;         // of the whole stream
+  uint64_t static_bytes = 0;  // header, connectivity and the first frame
+  uint64_t cells = 0;         // affine-octree: octree leaves over all inter frames
+  double encode_seconds = 0;  // in the codec, excluding the caller's time between frames
+};
+
+class ANIMC_API Encoder {
+ public:
+  // An encoder of frames of `vertex_count` vertices over these triangles, writing to `sink`.
+  static Result<Encoder> create(const EncoderOptions& options, uint32_t vertex_count, const uint32_t* triangles,
+                                size_t triangle_count, std::unique_ptr<ByteSink> sink);
+  Encoder(Encoder&&) noexcept;
+  Encoder& operator=(Encoder&&) noexcept;
+  ~Encoder();  // without finish(), the sink is dropped uncommitted
+
+  // Codes the next frame (3 * vertex_count floats, finite).
+  Status addFrame(const float* xyz);
+  // The last frame added, as every decoder will reconstruct it (3 * vertex_count floats,
+  // valid until the next call of addFrame()): what the caller measures errors on.
+  const float* reconstruction();
+  // Writes the index and commits the sink; the encoder takes no frames afterwards.
+  Result<EncodeSummary> finish();
+  // "affine-octree: profile predictive, max error 0.01 of the root cube, bits 16"
+  std::string describeSettings() const;
+
+  struct Impl;
+
+ private:
+  explicit Encoder(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+  friend struct EncoderAccess;
+};
+
+// ---- Decoding -----------------------------------------------------------------------------
+
+// Ceilings a decoder checks before allocating or working: a stream of a few hundred bytes
+// can announce millions of vertices over millions of frames. Raise them for trusted input.
+struct DecoderLimits {
+  uint64_t max_vertices = uint64_t(1) << 22;
+  uint64_t max_triangles = uint64_t(1) << 24;
+  uint64_t max_frames = uint64_t(1) << 32;
+  uint64_t max_frame_bytes = uint64_t(1) << 31;
+  // Vertices x frames one decode of a range may cost, counting the frames decoded to reach
+  // the first one asked for (from the start of its frame group): about 50 GB of floats.
+  uint64_t max_vertex_frames = uint64_t(1) << 32;
+};
+
+// Progressive decoding of streams whose frames can be cut (wavelet-coded with bitplanes):
+// fewer bitplanes or fewer bytes of each frame give a coarser reconstruction, faster.
+// Asking it of another stream is an error.
+struct ProgressiveOptions {
+  int max_bitplanes = 0;           // decode at most this many bitplanes per frame; 0 = all
+  uint64_t max_payload_bytes = 0;  // read at most this many bytes of each frame; 0 = all
+  bool partial() const { return max_bitplanes > 0 || max_payload_bytes > 0; }
+};
+
+struct DecoderOptions {
+  DecoderLimits limits;
+  ProgressiveOptions progressive;
+};
+
+// One codec setting of a stream, as `animc info --json` shows it.
+struct SettingValue {
+  std::string key;
+  std::variant<double, int64_t, bool, std::string> value;
+};
+
+struct StreamInfo {
+  uint16_t format_version = 0;
+  std::string codec;  // "affine-octree", "wavelet"
+  uint8_t codec_id = 0;
+  std::vector<SettingValue> settings;
+  std::string settings_text;  // the settings as one line
+  uint32_t vertices = 0;
+  uint64_t triangles = 0;
+  int64_t frames = 0;
+  double frame_rate = 0;
+  uint32_t iframe_interval = 0;
+  uint64_t groups = 0;        // frame groups: random access starts decoding at a group's first frame
+  uint64_t bytes = 0;         // of the stream
+  uint64_t static_bytes = 0;  // header, connectivity and the first frame
+};
+
+class ANIMC_API Decoder {
+ public:
+  // Opening reads and checks the header, the connectivity, the index and the first frame
+  // group; later groups are checked when they are decoded (verify() checks them all).
+  static Result<Decoder> openFile(const std::string& path, const DecoderOptions& options = {});
+  // `data` is read in place, not copied: it must stay valid and unchanged while the decoder
+  // lives. `name` stands for the stream in messages.
+  static Result<Decoder> openMemory(const void* data, size_t size, const DecoderOptions& options = {},
+                                    const std::string& name = "memory");
+  Decoder(Decoder&&) noexcept;
+  Decoder& operator=(Decoder&&) noexcept;
+  ~Decoder();
+
+  const StreamInfo& info() const;
+  // 3 * info().triangles vertex indices.
+  const uint32_t* triangles() const;
+
+  // Decodes frame k into xyz (3 * info().vertices floats). The frame after the last one
+  // decoded costs one frame; any other costs the frames from the start of its group.
+  Status frame(int64_t k, float* xyz);
+  // kLimitExceeded, saying how to raise the limit, when decoding frames [first, last) would
+  // cost more than DecoderLimits::max_vertex_frames. frame() checks each frame; call this
+  // before a range to refuse it before any work.
+  Status checkDecodeWork(int64_t first, int64_t last) const;
+  // Checks every group (its CRC, its frame numbers against the index, that nothing follows its
+  // last frame) and decodes every frame, keeping none: `animc test`.
+  Status verify(const ProgressFn& progress = {});
+
+  struct Impl;
+
+ private:
+  explicit Decoder(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+  friend struct DecoderAccess;
+};
+
+// ---- Metrics ------------------------------------------------------------------------------
+// The project's one implementation of its quality figures (animc, the MeshLab plugins, the
+// benchmarks and the Python module all use it); definitions in docs/metrics.md.
+
+struct FrameError {
+  double rms = 0;  // sqrt(mean over the frame's vertices of |v' - v|^2), absolute
+  double max = 0;  // max over the frame's vertices of |v' - v|, absolute
+};
+
+struct SequenceMetrics {
+  int64_t frames = 0;
+  uint32_t vertices = 0;
+  // Karni-Gotsman, percent: 100 * ||A - A'||_F / ||A - E(A)||_F, E(A) = per-frame centroid of
+  // the original replicated over its vertices.
+  double kg_error = 0;
+  // 10 * log10(dmax^2 / AVGMSE), dmax = bbox_diagonal, AVGMSE = mean over all vertices of all
+  // frames of |v' - v|^2. +inf when exact.
+  double psnr = 0;
+  double max_error = 0;           // max Euclidean vertex error, absolute
+  double max_error_rel_diag = 0;  // max_error / dmax
+  // Max over frames f of (max vertex error in f) / S_f, S_f = max(largest bbox side of
+  // original frame f, of original frame f-1): the Affine-Octree paper's ME scale, since the
+  // codec's cube for frame f may come from frame f-1.
+  double max_error_rel_cube = 0;
+  double rms_error = 0;           // sqrt(AVGMSE)
+  double rms_error_rel_diag = 0;  // rms_error / dmax
+  double bbox_diagonal = 0;       // dmax: diagonal of the bbox of the whole original sequence
+  std::vector<FrameError> per_frame;
+};
+
+using VertexErrorFn = std::function<void(uint32_t vertex, double error)>;
+
+// Whether SequenceMetrics::per_frame is kept (16 bytes a frame) or dropped, so that memory
+// does not grow with the frame count when only the totals are wanted.
+enum class PerFrameErrors { kKeep, kDrop };
+
+// Streams frames one at a time; memory is O(frames) for per_frame only (kKeep), never
+// O(N * frames). Degenerate scales (an all-coincident original, so dmax, S_f or the KG
+// denominator is 0) give a relative figure of 0 when the error is 0 too, else +inf. An empty
+// sequence reads as exact. A NaN in a reconstruction propagates to every figure it touches.
+class ANIMC_API MetricsAccumulator {
+ public:
+  explicit MetricsAccumulator(uint32_t vertex_count, PerFrameErrors per_frame = PerFrameErrors::kKeep);
+  // original and reconstructed: 3 * vertex_count floats each. each_vertex, when given, is
+  // called with every vertex's error |v' - v|.
+  void addFrame(const float* original, const float* reconstructed, const VertexErrorFn& each_vertex = {});
+  // The figures so far; frames can still be added afterwards.
+  SequenceMetrics finish() const;
+  int64_t frames() const { return frames_; }
+
+ private:
+  uint32_t vertex_count_;
+  int64_t frames_ = 0;
+  double sum_sq_error_ = 0;    // sum over all vertices of all frames of |v' - v|^2
+  double sum_sq_centred_ = 0;  // sum of |v - centroid of its frame|^2 (the KG denominator)
+  double max_error_ = 0;
+  double max_error_rel_cube_ = 0;
+  double previous_side_ = 0;  // largest bbox side of the previous original frame
+  std::array<double, 3> sequence_min_;
+  std::array<double, 3> sequence_max_;
+  PerFrameErrors keep_;
+  std::vector<FrameError> per_frame_;
+};
+
+struct SizeFigures {
+  double ratio = 0;        // 12 * N * F / bytes: raw size as 32-bit floats over stream size
+  double bpvf = 0;         // 8 * bytes / (N * F)
+  double motion_bpvf = 0;  // 8 * (bytes - static_bytes) / (N * F)
+};
+
+// Plain IEEE division: a zero denominator gives inf (or NaN for 0/0).
+ANIMC_API SizeFigures sizeFigures(uint64_t bytes, uint64_t static_bytes, uint32_t vertices, int64_t frames);
+
+}  // namespace animc

@@ -1,0 +1,188 @@
+// SPDX-License-Identifier: Apache-2.0
+// The public Decoder (animc/animc.h): a container reader over a file or memory, the codec's
+// frame decoder, and the cursor that turns frame(k) into "seek to k's group, decode forward".
+#include "api.h"
+
+#include <cstring>
+
+namespace animc {
+namespace {
+
+// The settings a stream was written with, from its HEAD section.
+Result<EncodeSettings> readSettings(const ContainerHeader& h) {
+  const CodecEntry* codec = findCodec(uint8_t(h.codec));
+  if (codec == nullptr) return unsupported("codec id " + std::to_string(int(h.codec)) + " is not supported");
+  ByteReader params(h.codec_params.data(), h.codec_params.size());
+  EncodeSettings settings;
+  ANIMC_ASSIGN_OR_RETURN(settings.options, codec->read(params));
+  settings.iframe_interval = h.iframe_interval;
+  return settings;
+}
+
+StreamInfo streamInfo(const ContainerInfo& c, const EncodeSettings& s) {
+  StreamInfo info;
+  info.format_version = c.format_version;
+  info.codec = s.entry().name;
+  info.codec_id = uint8_t(s.codec());
+  info.settings = s.entry().settings(s.options);
+  info.settings_text = s.entry().describe(s.options);
+  info.vertices = c.header.vertex_count;
+  info.triangles = c.header.triangle_count;
+  info.frames = int64_t(c.frame_count);
+  info.frame_rate = c.header.frame_rate;
+  info.iframe_interval = c.header.iframe_interval;
+  info.groups = c.groupCount();
+  info.bytes = c.file_bytes;
+  info.static_bytes = c.static_bytes;
+  return info;
+}
+
+}  // namespace
+
+struct Decoder::Impl {
+  std::string name;  // of the stream, in messages
+  DecoderLimits limits;
+  std::unique_ptr<ContainerReader> reader;
+  std::unique_ptr<FrameDecoder> codec;
+  EncodeSettings settings;
+  StreamInfo info;
+  std::vector<uint8_t> payload;
+  std::vector<float> xyz;
+  int64_t next_frame = 0;  // what the reader's cursor decodes next
+  size_t group = 0;
+  bool positioned = false;  // the cursor is at next_frame (a group was entered)
+
+  std::string where() const { return name + " frame " + std::to_string(next_frame); }
+  Status enterGroupOf(int64_t frame);
+  Status decodeNext();
+};
+
+Status Decoder::Impl::enterGroupOf(int64_t frame) {
+  group = reader->groupOf(uint64_t(frame));
+  Status s = reader->beginGroup(group);
+  if (!s.ok()) return s.withContext(name);
+  next_frame = int64_t(reader->groupFirstFrame(group));
+  positioned = true;
+  return Status();
+}
+
+// Decodes frame next_frame into xyz, entering the next group when the current one ends.
+Status Decoder::Impl::decodeNext() {
+  auto got = reader->nextFrame(payload);
+  if (!got.ok()) return got.status().withContext(where());
+  if (!got.value()) {  // end of this group: the next one starts with an intra frame
+    Status s = reader->beginGroup(++group);
+    if (!s.ok()) return s.withContext(name);
+    got = reader->nextFrame(payload);
+    if (!got.ok()) return got.status().withContext(where());
+    if (!got.value()) return corrupt(where() + ": empty frame group");
+  }
+  bool intra = false;
+  Status s = codec->decodeFrame(ByteReader(payload.data(), payload.size()), xyz, &intra);
+  if (!s.ok()) return s.withContext(where());
+  if (next_frame == int64_t(reader->groupFirstFrame(group)) && !intra)
+    return corrupt(where() + ": a frame group does not start with an intra frame");
+  ++next_frame;
+  return Status();
+}
+
+struct DecoderAccess {
+  static Result<Decoder> open(std::unique_ptr<ByteSource> source, const std::string& name,
+                              const DecoderOptions& options) {
+    auto impl = std::make_unique<Decoder::Impl>();
+    impl->name = name;
+    impl->limits = options.limits;
+    ANIMC_ASSIGN_OR_RETURN(impl->reader, ContainerReader::open(std::move(source), name, options.limits));
+    auto settings = readSettings(impl->reader->info().header);
+    if (!settings.ok()) return settings.status().withContext(name);
+    impl->settings = settings.value();
+    ANIMC_ASSIGN_OR_RETURN(impl->codec, impl->settings.entry().makeDecoder(impl->settings.options,
+                                                                            impl->reader->topology(),
+                                                                            options.progressive, name, bestSimdPath()));
+    impl->info = streamInfo(impl->reader->info(), impl->settings);
+    // The first group is checked on opening (its CRC), as the container reader promises.
+    ANIMC_RETURN_IF_ERROR(impl->enterGroupOf(0));
+    return Decoder(std::move(impl));
+  }
+  static const Decoder::Impl& impl(const Decoder& d) { return *d.impl_; }
+};
+
+Result<Decoder> Decoder::openFile(const std::string& path, const DecoderOptions& options) {
+  ANIMC_ASSIGN_OR_RETURN(std::unique_ptr<ByteSource> source, openFileSource(path));
+  return DecoderAccess::open(std::move(source), path, options);
+}
+
+Result<Decoder> Decoder::openMemory(const void* data, size_t size, const DecoderOptions& options,
+                                    const std::string& name) {
+  if (data == nullptr && size > 0) return invalidArgument(name + ": no data");
+  return DecoderAccess::open(memorySource(data, size), name, options);
+}
+
+Decoder::Decoder(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+Decoder::Decoder(Decoder&&) noexcept = default;
+Decoder& Decoder::operator=(Decoder&&) noexcept = default;
+Decoder::~Decoder() = default;
+
+const StreamInfo& Decoder::info() const { return impl_->info; }
+
+const uint32_t* Decoder::triangles() const {
+  static_assert(sizeof(Triangle) == 3 * sizeof(uint32_t), "triangles are stored as 3 packed indices");
+  const std::vector<Triangle>& triangles = impl_->reader->topology().triangles;
+  return triangles.empty() ? nullptr : triangles.front().data();
+}
+
+Status Decoder::frame(int64_t k, float* xyz) {
+  Impl& d = *impl_;
+  if (k < 0 || k >= d.info.frames)
+    return invalidArgument(d.name + ": frame " + std::to_string(k) + " outside [0, " + std::to_string(d.info.frames) + ")");
+  if (xyz == nullptr) return invalidArgument("no frame buffer");
+  if (!d.positioned || k < d.next_frame || d.reader->groupOf(uint64_t(k)) != d.group) {
+    ANIMC_RETURN_IF_ERROR(checkDecodeWork(k, k + 1));
+    ANIMC_RETURN_IF_ERROR(d.enterGroupOf(k));
+  }
+  d.positioned = false;  // a failure below leaves the cursor undefined: re-enter next time
+  while (d.next_frame <= k) ANIMC_RETURN_IF_ERROR(d.decodeNext());
+  d.positioned = true;
+  std::memcpy(xyz, d.xyz.data(), d.xyz.size() * sizeof(float));
+  return Status();
+}
+
+Status Decoder::checkDecodeWork(int64_t first, int64_t last) const {
+  const Impl& d = *impl_;
+  if (first < 0 || last <= first || first >= d.info.frames) return Status();
+  const uint64_t start = d.reader->groupFirstFrame(d.reader->groupOf(uint64_t(first)));
+  const uint64_t work = (uint64_t(last) - start) * d.info.vertices;
+  if (work <= d.limits.max_vertex_frames) return Status();
+  return limitExceeded(d.name + ": decoding frames " + std::to_string(first) + " to " + std::to_string(last - 1) +
+                       " costs " + std::to_string(work) + " vertex-frames (" + std::to_string(d.info.vertices) +
+                       " vertices, from the start of their frame group), above the limit of " +
+                       std::to_string(d.limits.max_vertex_frames) +
+                       "; decode fewer frames or raise the limit (DecoderLimits::max_vertex_frames, "
+                       "animc --max-vertex-frames)");
+}
+
+Status Decoder::verify(const ProgressFn& progress) {
+  Impl& d = *impl_;
+  ANIMC_RETURN_IF_ERROR(checkDecodeWork(0, d.info.frames));
+  ANIMC_RETURN_IF_ERROR(d.enterGroupOf(0));
+  d.positioned = false;
+  // decodeNext() enters each group in turn, checking its CRC and its numbers.
+  while (d.next_frame < d.info.frames) {
+    ANIMC_RETURN_IF_ERROR(d.decodeNext());
+    if (progress && !progress(int(100 * d.next_frame / d.info.frames), "checking")) return cancelled();
+  }
+  // The last group must end right after its last frame (its frame count was checked against
+  // the index), so this finds only bytes left over after it.
+  auto after = d.reader->nextFrame(d.payload);
+  if (!after.ok()) return after.status().withContext(d.name);
+  if (after.value()) return corrupt(d.name + ": bytes follow the last frame of the last group");
+  d.positioned = true;
+  return Status();
+}
+
+const ContainerInfo& containerInfo(const Decoder& decoder) { return DecoderAccess::impl(decoder).reader->info(); }
+const EncodeSettings& streamSettings(const Decoder& decoder) { return DecoderAccess::impl(decoder).settings; }
+const Topology& streamTopology(const Decoder& decoder) { return DecoderAccess::impl(decoder).reader->topology(); }
+const std::string& streamName(const Decoder& decoder) { return DecoderAccess::impl(decoder).name; }
+
+}  // namespace animc

@@ -1,0 +1,205 @@
+// SPDX-License-Identifier: Apache-2.0
+// The public Encoder (animc/animc.h): options by name, checks of what it is given, and the
+// loop of one frame through the codec into the container.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+#include "api.h"
+#include "container/container_writer.h"
+#include "io/byte_writer.h"
+
+namespace animc {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// A codec's options as its registry entry reads them from a command line.
+class MapOptionValues final : public OptionValues {
+ public:
+  explicit MapOptionValues(const std::map<std::string, std::string>& values) : values_(values) {}
+  bool has(const std::string& name) const override { return values_.count(name) != 0; }
+  std::string get(const std::string& name, const std::string& fallback) const override {
+    auto it = values_.find(name);
+    return it == values_.end() ? fallback : it->second;
+  }
+
+ private:
+  const std::map<std::string, std::string>& values_;
+};
+
+bool hasFlag(const CodecEntry& codec, const std::string& name) {
+  for (const auto* flags : {&codec.value_flags, &codec.switch_flags})
+    if (std::find(flags->begin(), flags->end(), name) != flags->end()) return true;
+  return false;
+}
+
+Status checkTopology(const Topology& t, const CodecEntry& codec) {
+  if (t.vertex_count == 0) return badInput("the mesh has no vertices");
+  if (t.triangles.empty()) return badInput("the mesh has no triangles");
+  for (size_t i = 0; i < t.triangles.size(); ++i)
+    for (uint32_t v : t.triangles[i])
+      if (v >= t.vertex_count)
+        return badInput("triangle " + std::to_string(i) + " uses vertex " + std::to_string(v) + " of " +
+                        std::to_string(t.vertex_count));
+  // A file the default decoder would refuse is not worth writing.
+  const DecoderLimits limits;
+  if (t.vertex_count > limits.max_vertices || t.triangles.size() > limits.max_triangles)
+    return invalidArgument("the mesh has " + std::to_string(t.vertex_count) + " vertices and " +
+                           std::to_string(t.triangles.size()) + " triangles; decoders accept at most " +
+                           std::to_string(limits.max_vertices) + " and " + std::to_string(limits.max_triangles));
+  return codec.checkMesh(t);
+}
+
+Status checkFrame(const float* xyz, uint32_t vertex_count, int64_t frame) {
+  for (size_t i = 0; i < size_t(vertex_count) * 3; ++i)
+    if (!std::isfinite(xyz[i]) || std::fabs(xyz[i]) > float(kMaxCoordinate))
+      return badInput("frame " + std::to_string(frame) + ": vertex " + std::to_string(i / 3) +
+                      " has a NaN, infinite or huge coordinate");
+  return Status();
+}
+
+std::vector<uint8_t> codecParameters(const EncodeSettings& s) {
+  ByteWriter w;
+  s.entry().write(s.options, w);
+  return w.bytes();
+}
+
+}  // namespace
+
+struct Encoder::Impl {
+  EncodeSettings settings;
+  Topology topology;
+  ContainerWriter writer;
+  std::unique_ptr<FrameEncoder> codec;
+  EncodeSummary summary;
+  std::vector<uint8_t> payload;
+  std::vector<float> reconstruction;
+  bool reconstruction_current = false;
+  bool finished = false;
+};
+
+struct EncoderAccess {
+  static Result<Encoder> create(const EncodeSettings& settings, Topology topology, double frame_rate,
+                                std::unique_ptr<ByteSink> sink) {
+    ANIMC_RETURN_IF_ERROR(settings.validate());
+    ANIMC_RETURN_IF_ERROR(checkTopology(topology, settings.entry()));
+    if (!sink) return invalidArgument("no sink to write to");
+    auto impl = std::make_unique<Encoder::Impl>();
+    impl->settings = settings;
+    impl->topology = std::move(topology);
+    ContainerHeader header;
+    header.codec = settings.codec();
+    header.codec_params = codecParameters(settings);
+    header.vertex_count = impl->topology.vertex_count;
+    header.triangle_count = impl->topology.triangles.size();
+    header.frame_rate = frame_rate;
+    header.iframe_interval = settings.iframe_interval;
+    ANIMC_RETURN_IF_ERROR(impl->writer.open(std::move(sink), header, impl->topology));
+    impl->codec = settings.entry().makeEncoder(settings.options, impl->topology, bestSimdPath());
+    impl->summary.vertices = impl->topology.vertex_count;
+    impl->summary.triangles = impl->topology.triangles.size();
+    return Encoder(std::move(impl));
+  }
+};
+
+Result<EncodeSettings> encodeSettingsFrom(const EncoderOptions& options) {
+  ANIMC_ASSIGN_OR_RETURN(const CodecEntry* codec, findCodecByName(options.codec));
+  for (const auto& [name, value] : options.values)
+    if (!hasFlag(*codec, name)) return invalidArgument("option " + name + " does not apply to codec " + codec->name);
+  EncodeSettings s;
+  ANIMC_ASSIGN_OR_RETURN(s.options, codec->fromFlags(MapOptionValues(options.values)));
+  s.iframe_interval = options.iframe_interval;
+  ANIMC_RETURN_IF_ERROR(s.validate());
+  return s;
+}
+
+Result<Encoder> createEncoder(const EncodeSettings& settings, Topology topology, double frame_rate,
+                              std::unique_ptr<ByteSink> sink) {
+  return EncoderAccess::create(settings, std::move(topology), frame_rate, std::move(sink));
+}
+
+EncoderOptions& EncoderOptions::set(const std::string& name, double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.17g", value);  // parses back to the same double
+  values[name] = text;
+  return *this;
+}
+
+Status EncoderOptions::validate() const { return encodeSettingsFrom(*this).status(); }
+
+std::vector<std::string> codecNames() {
+  std::vector<std::string> names;
+  for (const CodecEntry* codec : allCodecs()) names.push_back(codec->name);
+  return names;
+}
+
+Result<Encoder> Encoder::create(const EncoderOptions& options, uint32_t vertex_count, const uint32_t* triangles,
+                                size_t triangle_count, std::unique_ptr<ByteSink> sink) {
+  ANIMC_ASSIGN_OR_RETURN(EncodeSettings settings, encodeSettingsFrom(options));
+  if (!(options.frame_rate > 0 && options.frame_rate < 1e9))
+    return invalidArgument("the frame rate must be positive, not " + std::to_string(options.frame_rate));
+  if (triangles == nullptr && triangle_count > 0) return invalidArgument("no triangle array");
+  Topology topology;
+  topology.vertex_count = vertex_count;
+  topology.triangles.resize(triangle_count);
+  for (size_t i = 0; i < triangle_count; ++i)
+    topology.triangles[i] = {triangles[3 * i], triangles[3 * i + 1], triangles[3 * i + 2]};
+  return EncoderAccess::create(settings, std::move(topology), options.frame_rate, std::move(sink));
+}
+
+Encoder::Encoder(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+Encoder::Encoder(Encoder&&) noexcept = default;
+Encoder& Encoder::operator=(Encoder&&) noexcept = default;
+Encoder::~Encoder() = default;
+
+Status Encoder::addFrame(const float* xyz) {
+  Impl& e = *impl_;
+  if (e.finished) return invalidArgument("the encoder has finished: it takes no more frames");
+  if (xyz == nullptr) return invalidArgument("no frame");
+  const int64_t frame = e.summary.frames;
+  ANIMC_RETURN_IF_ERROR(checkFrame(xyz, e.topology.vertex_count, frame));
+  const uint32_t interval = e.settings.iframe_interval;
+  const bool intra = frame == 0 || (interval > 0 && frame % interval == 0);
+  FrameCodingStats stats;
+  e.payload.clear();
+  const auto start = Clock::now();
+  e.codec->encodeFrame(xyz, intra, e.payload, stats);
+  e.summary.encode_seconds += std::chrono::duration<double>(Clock::now() - start).count();
+  e.reconstruction_current = false;
+  ANIMC_RETURN_IF_ERROR(e.writer.addFrame(e.payload, stats.intra));
+  if (frame == 0) e.summary.static_bytes = e.writer.bytesWritten();
+  e.summary.intra_frames += stats.intra;
+  e.summary.cells += stats.cells;
+  ++e.summary.frames;
+  return Status();
+}
+
+const float* Encoder::reconstruction() {
+  Impl& e = *impl_;
+  if (!e.reconstruction_current) {
+    // The codecs reconstruct in double; decoders output these rounded to float.
+    const std::vector<double>& r = e.codec->reconstruction();
+    e.reconstruction.assign(r.begin(), r.end());
+    e.reconstruction_current = true;
+  }
+  return e.reconstruction.data();
+}
+
+Result<EncodeSummary> Encoder::finish() {
+  Impl& e = *impl_;
+  if (e.finished) return invalidArgument("the encoder has finished already");
+  if (e.summary.frames == 0) return badInput("the sequence has no frames");
+  e.finished = true;
+  ANIMC_RETURN_IF_ERROR(e.writer.finish());
+  e.summary.bytes = e.writer.bytesWritten();
+  return e.summary;
+}
+
+std::string Encoder::describeSettings() const {
+  const EncodeSettings& s = impl_->settings;
+  return std::string(s.entry().name) + ": " + s.entry().describe(s.options);
+}
+
+}  // namespace animc
