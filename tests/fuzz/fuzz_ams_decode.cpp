@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
-// libFuzzer harness: an .ams file decoded through the public API (AmsSource), both codecs,
-// with random access and the wavelet codec's progressive decoding. Any Status is fine; a
+// libFuzzer harness: an .ams stream decoded from memory through the public Decoder, both
+// codecs, with random access and the wavelet codec's progressive decoding. Any Status is fine; a
 // crash, sanitizer report, leak, hang or huge allocation is a bug.
 //
 // Input = 4 control bytes, then the file:
@@ -13,10 +13,9 @@
 #include <cstdio>
 #include <vector>
 
-#include "api.h"
+#include "animc/animc.h"
 #include "container/crc32.h"
 #include "container/format.h"
-#include "fuzz_support.h"
 
 namespace {
 
@@ -50,24 +49,26 @@ DecoderLimits fuzzLimits() {
   limits.max_vertices = 1 << 16;
   limits.max_triangles = 1 << 17;
   limits.max_frame_bytes = 1 << 22;
+  limits.max_vertex_frames = 4 * kVertexBudget;  // bounds the frames a random access skips
   return limits;
 }
 
-void decode(const std::string& path, const uint8_t* control) {
-  animc::WaveletDecodeControl progressive;
+void decode(const std::vector<uint8_t>& stream, const uint8_t* control) {
+  animc::DecoderOptions options;
+  options.limits = fuzzLimits();
   if (control[0] & 2) {
-    progressive.max_bitplanes = control[2] % 65;
-    progressive.max_payload_bytes = uint64_t(control[3]) * 4;
+    options.progressive.max_bitplanes = control[2] % 65;
+    options.progressive.max_payload_bytes = uint64_t(control[3]) * 4;
   }
-  auto opened = animc::AmsSource::open(path, fuzzLimits(), progressive);
+  auto opened = animc::Decoder::openMemory(stream.data(), stream.size(), options);
   if (!opened.ok()) return;
-  animc::AmsSource& ams = *opened.value();
-  if ((control[0] & 4) && !ams.seek(int64_t(control[1]) % ams.frameCount()).ok()) return;
-  std::vector<float> xyz;
-  for (uint64_t work = 0; work < kVertexBudget; work += ams.topology().vertex_count) {
-    auto more = ams.next(xyz);
-    if (!more.ok() || !more.value()) return;
-  }
+  animc::Decoder& decoder = opened.value();
+  const int64_t frames = decoder.info().frames;
+  const int64_t first = (control[0] & 4) ? int64_t(control[1]) % frames : 0;
+  std::vector<float> xyz(3 * size_t(decoder.info().vertices));
+  uint64_t work = 0;
+  for (int64_t k = first; k < frames && work < kVertexBudget; ++k, work += decoder.info().vertices)
+    if (!decoder.frame(k, xyz.data()).ok()) return;
 }
 
 }  // namespace
@@ -76,8 +77,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (size < kControlBytes) return 0;
   std::vector<uint8_t> file(data + kControlBytes, data + size);
   if (data[0] & 1) repairCrcs(file);
-  static const std::string path = animc::fuzz::scratchPath(".ams");
-  if (!animc::fuzz::writeScratch(path, file.data(), file.size())) return 0;
-  decode(path, data);
+  decode(file, data);
   return 0;
 }
