@@ -62,15 +62,6 @@ py::dict streamInfo(py::handle path_or_bytes) {
   return infoDict(openDecoder(path_or_bytes, DecoderOptions{}, buffer).info());
 }
 
-// An integer index as Python takes one (int, NumPy integer; not a float), or TypeError.
-int64_t indexValue(py::handle item) {
-  py::object index = py::reinterpret_steal<py::object>(PyNumber_Index(item.ptr()));
-  if (!index) throw py::error_already_set();
-  const long long value = PyLong_AsLongLong(index.ptr());
-  if (value == -1 && PyErr_Occurred()) throw py::error_already_set();
-  return value;
-}
-
 // The frames decode() is asked for: None = all, a slice, or any iterable of indices (range,
 // list, NumPy array), each checked by Python's rules.
 std::vector<int64_t> frameIndices(py::handle frames, int64_t count) {
@@ -78,12 +69,12 @@ std::vector<int64_t> frameIndices(py::handle frames, int64_t count) {
   if (frames.is_none()) {
     for (int64_t k = 0; k < count; ++k) indices.push_back(k);
   } else if (py::isinstance<py::slice>(frames)) {
-    size_t start = 0, stop = 0, step = 0, length = 0;
-    if (!py::reinterpret_borrow<py::slice>(frames).compute(size_t(count), &start, &stop, &step, &length))
+    py::ssize_t start = 0, stop = 0, step = 0, length = 0;
+    if (!py::reinterpret_borrow<py::slice>(frames).compute(py::ssize_t(count), &start, &stop, &step, &length))
       throw py::error_already_set();
-    for (size_t i = 0; i < length; ++i) indices.push_back(int64_t(start + i * step));
+    for (py::ssize_t i = 0; i < length; ++i) indices.push_back(int64_t(start + i * step));
   } else {
-    for (py::handle item : py::iter(frames)) indices.push_back(frameIndex(indexValue(item), count));
+    for (py::handle item : py::iter(frames)) indices.push_back(frameIndex(integerValue(item), count));
   }
   return indices;
 }

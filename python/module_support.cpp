@@ -61,10 +61,18 @@ std::string pathText(py::handle object) {
   return py::module_::import("os").attr("fsdecode")(object).cast<std::string>();
 }
 
+int64_t integerValue(py::handle item) {
+  py::object index = py::reinterpret_steal<py::object>(PyNumber_Index(item.ptr()));
+  if (!index) throw py::error_already_set();
+  const long long value = PyLong_AsLongLong(index.ptr());
+  if (value == -1 && PyErr_Occurred()) throw py::error_already_set();
+  return value;
+}
+
 DecoderOptions decoderOptions(py::object max_vertex_frames, int64_t max_bitplanes, int64_t max_payload_bytes) {
   DecoderOptions options;
   if (!max_vertex_frames.is_none())
-    options.limits.max_vertex_frames = nonNegative(max_vertex_frames.cast<int64_t>(), "max_vertex_frames");
+    options.limits.max_vertex_frames = nonNegative(integerValue(max_vertex_frames), "max_vertex_frames");
   if (max_bitplanes > std::numeric_limits<int>::max()) throw py::value_error("max_bitplanes is too large");
   options.progressive.max_bitplanes = int(nonNegative(max_bitplanes, "max_bitplanes"));
   options.progressive.max_payload_bytes = nonNegative(max_payload_bytes, "max_payload_bytes");

@@ -48,6 +48,9 @@ class HeldBuffer {
 bool isPath(py::handle object);
 std::string pathText(py::handle object);
 
+// An integer as Python takes an index (int, NumPy integer; not a float), else TypeError.
+int64_t integerValue(py::handle item);
+
 // DecoderOptions from the keyword arguments of open() and decode(); None keeps the default.
 DecoderOptions decoderOptions(py::object max_vertex_frames, int64_t max_bitplanes, int64_t max_payload_bytes);
 

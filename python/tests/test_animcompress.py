@@ -240,6 +240,10 @@ def test_frames_out_of_range_raise_index_error(grouped):
 
 def test_decoder_limits(grouped):
     raises_status('limit exceeded', animcompress.decode, grouped, max_vertex_frames=10)
+    with pytest.raises(TypeError):
+        animcompress.decode(grouped, max_vertex_frames=1e9)
+    with pytest.raises(ValueError):
+        animcompress.decode(grouped, max_vertex_frames=-1)
     with pytest.raises(animcompress.Error) as caught:
         animcompress.open(grouped, max_vertex_frames=10)[17]
     assert caught.value.code == 'limit exceeded'
