@@ -10,7 +10,7 @@
 // Errors: nothing here throws (except std::bad_alloc when memory runs out); every fallible
 // call returns a Status or a Result<T>, whose message names what is at fault.
 // Threads: an object is used by one thread at a time; different objects, on any threads, are
-// independent and safe in parallel (the library has no global mutable state).
+// independent and safe to use in parallel.
 // Frames are 3 * vertex_count floats, x y z of vertex 0, then of vertex 1, ...; triangles are
 // 3 * triangle_count vertex indices.
 #pragma once

@@ -51,3 +51,29 @@ export PKG_CONFIG_PATH=$prefix/lib/pkgconfig
 c++ "$source/examples/encode_decode.cpp" -o "$work/pkgconfig_example" $(pkg-config --cflags --libs animc) \
     -Wl,-rpath,"$prefix/lib"
 frame_17_matches pkg-config "$work/pkgconfig_example"
+
+# The Python module from the install's site folder: the same sheet, frame 17 alone.
+site=$prefix/lib/python3/dist-packages
+if ! compgen -G "$site/animcompress*.so" >/dev/null; then
+  echo "skip: python: no animcompress module installed (built with -DANIMC_BUILD_PYTHON=OFF)"
+  exit 0
+fi
+PYTHONPATH=$site /usr/bin/python3 - "$work/python" <<'PY'
+import os, sys
+import numpy as np
+import animcompress as ac
+out = sys.argv[1]
+os.makedirs(out)
+side, frames = 40, 50
+y, x = np.mgrid[0:side, 0:side].astype(np.float32)
+sheet = [np.stack([x, y, 3 * np.sin(0.2 * x + 0.15 * f)], axis=-1).reshape(-1, 3) for f in range(frames)]
+v = (np.arange(side - 1)[:, None] * side + np.arange(side - 1)[None, :]).ravel()
+faces = np.concatenate([np.stack([v, v + 1, v + side], 1), np.stack([v + 1, v + side + 1, v + side], 1)])
+data = ac.encode(np.array(sheet), faces, max_error=0.002, iframe_interval=10)
+open(out + '/stream.ams', 'wb').write(data)
+ac.open(data)[17].astype('<f4').tofile(out + '/frame17.bin')
+PY
+"$prefix/bin/animc" decode "$work/python/stream.ams" --frames 17 -o "$work/python/frame17.pc2" >/dev/null
+tail -c +33 "$work/python/frame17.pc2" | cmp -s - "$work/python/frame17.bin" ||
+  { echo "FAIL: python: frame 17 differs from animc decode's"; exit 1; }
+echo "ok: python"
