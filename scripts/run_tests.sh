@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: Apache-2.0
 # The README's second command (and CI's): install, build, run every test; then every test
-# again under AddressSanitizer and UBSan, where the corrupt-file tests earn their keep.
+# again under AddressSanitizer and UBSan, where the corrupt-file tests earn their keep; then a
+# short fuzzing campaign.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
@@ -22,3 +23,10 @@ cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DANIMC_SANITIZE=ON -
 cmake --build build-asan -j"$(nproc)"
 (cd build-asan && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 \
   ctest --output-on-failure -j"$(nproc)" --timeout 900)
+
+# A short fuzzing campaign: every libFuzzer harness (clang, ASan, UBSan) for a minute from the
+# in-tree corpus (tests/fuzz/corpus). Long campaigns: tests/fuzz/README.md.
+cmake -S . -B build-fuzz -DCMAKE_CXX_COMPILER=clang++ -DANIMC_BUILD_FUZZERS=ON -DANIMC_BUILD_TESTS=OFF \
+  -DANIMC_BUILD_PLUGINS=OFF -DANIMC_BUILD_PYTHON=OFF >/dev/null
+cmake --build build-fuzz -j"$(nproc)"
+bash tests/fuzz/campaign.sh build-fuzz 60 build-fuzz/campaign --parallel

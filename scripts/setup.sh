@@ -10,6 +10,7 @@ PACKAGES=(
   libgtest-dev                     # unit tests
   xz-utils python3 python3-numpy   # sample data, benchmark baseline, metrics cross-check
   pybind11-dev python3-pybind11 python3-dev python3-pytest  # the Python module and its tests
+  clang libclang-rt-dev            # the libFuzzer harnesses (tests/fuzz) of CI's short campaign
   gnuplot-nox                      # bench/rd_plot.py (rate-distortion plot of the benchmarks)
   meshlab qtbase5-dev libqt5opengl5-dev libglew-dev  # MeshLab 2020.09 and what its headers need
   mesa-common-dev libglu1-mesa-dev

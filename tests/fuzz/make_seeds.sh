@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: Apache-2.0
-# Writes the seed corpora of the fuzz harnesses (a few KB each, so they are regenerated rather
-# than committed): OUT/ams for fuzz_ams_decode, OUT/seqio for fuzz_sequence_readers.
+# Writes the seed corpora of the fuzz harnesses, OUT/ams_decode and OUT/sequence_readers (named
+# after their harnesses), from which the in-tree corpus tests/fuzz/corpus grew.
 #   usage: tests/fuzz/make_seeds.sh path/to/animc OUT
 # Sources: a 20-vertex grid made here and the first 3 frames of samples/sydney, encoded by the
 # project's own animc with several settings of both codecs and decoded back to every format.
@@ -11,7 +11,7 @@ OUT=$(realpath -m "$2")
 ROOT=$(cd "$(dirname "$0")/../.." && pwd)
 WORK=$(mktemp -d)
 trap 'rm -rf "$WORK"' EXIT
-mkdir -p "$OUT/ams" "$OUT/seqio"
+mkdir -p "$OUT/ams_decode" "$OUT/sequence_readers"
 
 # The grid (binary PLY + PC2) and sydney cut to 3 frames (PC2).
 /usr/bin/python3 - "$WORK" "$ROOT/samples/sydney/sydney_50.pc2.xz" <<'PY'
@@ -48,11 +48,11 @@ PY
 # bitplanes; payload bytes / 4.
 prefix() { printf "\\x$(printf %02x "$1")\\x$(printf %02x "$2")\\x$(printf %02x "$3")\\x$(printf %02x "$4")"; }
 ams_seed() {  # name, cuttable (1/0), file
-  { prefix 1 0 0 0; cat "$3"; } > "$OUT/ams/$1"
-  { prefix 5 2 0 0; cat "$3"; } > "$OUT/ams/$1.seek2"
+  { prefix 1 0 0 0; cat "$3"; } > "$OUT/ams_decode/$1"
+  { prefix 5 2 0 0; cat "$3"; } > "$OUT/ams_decode/$1.seek2"
   if [ "$2" = 1 ]; then
-    { prefix 7 1 3 0; cat "$3"; } > "$OUT/ams/$1.planes3"
-    { prefix 3 0 0 8; cat "$3"; } > "$OUT/ams/$1.bytes32"
+    { prefix 7 1 3 0; cat "$3"; } > "$OUT/ams_decode/$1.planes3"
+    { prefix 3 0 0 8; cat "$3"; } > "$OUT/ams_decode/$1.bytes32"
   fi
 }
 encode() {  # name, cuttable, input, mesh, options...
@@ -78,7 +78,7 @@ encode sydney_wavelet_pp 1 "${S[@]}" --codec wavelet --step 1e-2 --progressive-p
 # Sequence readers: control byte 0 picks .ply .off .pc2 .mdd .pc2.xz .mdd.xz, byte 1 is the
 # point caches' vertex count - 1 (the grid has 20 vertices).
 seq_seed() {  # name, kind, file
-  { printf "\\x$(printf %02x "$2")\\x13"; cat "$3"; } > "$OUT/seqio/$1"
+  { printf "\\x$(printf %02x "$2")\\x13"; cat "$3"; } > "$OUT/sequence_readers/$1"
 }
 "$ANIMC" decode "$WORK/grid_octree.ams" -o "$WORK/grid_out.pc2" >/dev/null
 "$ANIMC" decode "$WORK/grid_octree.ams" -o "$WORK/grid_out.mdd" >/dev/null
@@ -98,8 +98,8 @@ seq_seed grid.mdd.xz 5 "$WORK/grid.mdd.xz"
   printf 'ply\nformat ascii 1.0\ncomment fuzz seed\nelement vertex 5\nproperty float x\nproperty float y\n'
   printf 'property float z\nproperty uchar red\nelement face 2\nproperty list uchar int vertex_indices\n'
   printf 'property float quality\nend_header\n0 0 0 1\n1 0 0 2\n1 1 0 3\n0 1 0 4\n2 2 1 5\n4 0 1 2 3 0.5\n3 2 3 4 1\n'
-} > "$OUT/seqio/quad_ascii.ply"
-/usr/bin/python3 - "$OUT/seqio/quad_be.ply" <<'PY'
+} > "$OUT/sequence_readers/quad_ascii.ply"
+/usr/bin/python3 - "$OUT/sequence_readers/quad_be.ply" <<'PY'
 import struct, sys
 head = (b'ply\nformat binary_big_endian 1.0\nelement vertex 4\nproperty double x\nproperty double y\n'
         b'property double z\nelement face 1\nproperty list uint8 uint16 vertex_indices\nend_header\n')
@@ -108,5 +108,5 @@ open(sys.argv[1], 'wb').write(b'\x00\x00' + head + body)
 PY
 { printf '\x01\x00'
   printf 'OFF\n# comment\n4 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n'
-} > "$OUT/seqio/square.off"
-echo "seeds: $(ls "$OUT/ams" | wc -l) in $OUT/ams ($(du -sh "$OUT/ams" | cut -f1)), $(ls "$OUT/seqio" | wc -l) in $OUT/seqio"
+} > "$OUT/sequence_readers/square.off"
+echo "seeds: $(ls "$OUT/ams_decode" | wc -l) in $OUT/ams_decode ($(du -sh "$OUT/ams_decode" | cut -f1)), $(ls "$OUT/sequence_readers" | wc -l) in $OUT/sequence_readers"
