@@ -73,6 +73,20 @@ double largestSide(const std::vector<float>& xyz) {
   return std::fmax(hi[0] - lo[0], std::fmax(hi[1] - lo[1], hi[2] - lo[2]));
 }
 
+// Which frames of the stream are intra frames: the first frame of each frame group, the only
+// frames a decoder allowed the work of a single frame can reach. The I-frame interval alone does
+// not say: the affine-octree encoder also codes an intra frame on its own when it cannot predict
+// one (a vertex too far from the previous frame's cube, docs/affine_octree.md "Frames and groups").
+std::vector<bool> intraFrames(const std::vector<uint8_t>& stream, uint32_t vertices, int frames) {
+  animc::DecoderOptions one_frame;
+  one_frame.limits.max_vertex_frames = vertices;
+  auto decoder = animc::Decoder::openMemory(stream.data(), stream.size(), one_frame);
+  if (!decoder.ok()) bug("the encoder's stream does not open with a one-frame limit", 0);
+  std::vector<bool> intra(frames);
+  for (int f = 0; f < frames; ++f) intra[f] = decoder.value().checkDecodeWork(f, f + 1).ok();
+  return intra;
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
@@ -106,16 +120,18 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (!decoder.ok()) bug("the encoder's stream does not open", 0);
   if (decoder.value().info().frames != frames) bug("frame count", frames);
   const double max_error = o.codec == "affine-octree" ? std::strtod(o.values.at("max-error").c_str(), nullptr) : 0;
+  const std::vector<bool> intra = intraFrames(stream, mesh.vertices, frames);
   std::vector<float> xyz(3 * size_t(mesh.vertices));
   // Backwards, so that every frame but the last is reached by random access.
   for (int f = frames - 1; f >= 0; --f) {
     if (!decoder.value().frame(f, xyz.data()).ok()) bug("a frame does not decode", f);
     if (xyz != expected[f]) bug("the decoder and the encoder disagree", f);
+    if ((f == 0 || (o.iframe_interval > 0 && f % o.iframe_interval == 0)) && !intra[f])
+      bug("a frame of the I-frame interval is not an intra frame", f);
     if (max_error == 0) continue;
     // docs/affine_octree.md, error bound: E times the side of the root cube, the bounding cube of
     // the reconstructed previous frame (of the frame itself for an intra frame; 1 if a point).
-    const bool intra = f == 0 || (o.iframe_interval > 0 && f % o.iframe_interval == 0);
-    double side = largestSide(intra ? originals[f] : expected[f - 1]);
+    double side = largestSide(intra[f] ? originals[f] : expected[f - 1]);
     if (side == 0) side = 1;
     for (size_t v = 0; v < xyz.size(); v += 3) {
       const double dx = xyz[v] - originals[f][v], dy = xyz[v + 1] - originals[f][v + 1],

@@ -352,5 +352,56 @@ TEST(PredictiveOctree, CorrectionsAreRoundedForRatePlusDistortion) {
   EXPECT_GT(differs, 0);
 }
 
+// A mesh that collapses to nearly a point and then spreads far out again (found by the
+// round-trip fuzzer, tests/fuzz/fuzz_round_trip.cpp). After the collapse the reconstructed
+// frame's cube has a side of about 4e-5, so in the default profile the vertex at (0, 35, 35),
+// 8.5e5 sides away, needs a residual of 1.5e9 steps: beyond 2^30, so the encoder codes that
+// frame as an intra frame, whose bound is E times its own cube's side, not the collapsed
+// one's. The paper profile codes it as an inter frame (the far vertices escape to raw doubles).
+// Every vertex must be within E·S as docs/affine_octree.md defines S, plus the rounding of the
+// decoded floats (half a float step of each coordinate, more than E·S in a tiny cube).
+TEST(AffineOctree, FarSpreadAfterCollapseStaysWithinTheBound) {
+  Topology topology;
+  topology.vertex_count = 4;
+  topology.triangles = {{0, 1, 2}, {1, 3, 2}};
+  const float a = -0.00390625f;
+  const std::vector<std::vector<float>> frames = {
+      {0, 0, 0, 0, 0, 0, 0, -1, a, a, a, a},
+      {a, a, a, a, a, a, a, a, a, a, a, a},
+      {a, a, a, 0.99609375f, 0, 0.02734375f, 0, 0, 0, 0, 35, 35},
+  };
+  const double max_error = 0.0005;
+  for (Profile profile : {Profile::kPredictive, Profile::kPaper}) {
+    SCOPED_TRACE(profile == Profile::kPaper ? "paper" : "predictive");
+    MemorySequence seq(topology, frames);
+    EncodeSettings settings;
+    settings.octree().profile = profile;
+    settings.octree().max_error = max_error;
+    const std::string path = tempPath("collapse.ams");
+    std::vector<std::vector<float>> encoder_view;
+    auto report = encodeSequence(seq, settings, path, {},
+                                 [&](int64_t, const float*, const float* r) { encoder_view.emplace_back(r, r + 12); });
+    ASSERT_TRUE(report.ok()) << report.status().message();
+    const auto decoded = decodeAll(path);
+    ASSERT_EQ(decoded.size(), frames.size());
+    EXPECT_EQ(decoded, encoder_view);
+    const std::vector<bool> intra = testing_support::intraFrames(path);
+    const std::vector<bool> expected_intra = {true, false, profile == Profile::kPredictive};
+    EXPECT_EQ(intra, expected_intra);
+    EXPECT_EQ(report.value().intra_frames, profile == Profile::kPredictive ? 2u : 1u);
+    for (size_t f = 0; f < frames.size() && f < intra.size(); ++f) {
+      const std::vector<float>& cube_of = intra[f] ? frames[f] : decoded[f - 1];
+      const double side = boundingCube(std::vector<double>(cube_of.begin(), cube_of.end())).side;
+      for (size_t i = 0; i < frames[f].size(); i += 3) {
+        const float* d = &decoded[f][i];
+        const double error = std::hypot(d[0] - frames[f][i], d[1] - frames[f][i + 1], d[2] - frames[f][i + 2]);
+        const double rounding = 0x1p-24 * (std::fabs(d[0]) + std::fabs(d[1]) + std::fabs(d[2]));
+        EXPECT_LE(error, max_error * side * (1 + 1e-9) + rounding) << "frame " << f << " vertex " << i / 3;
+      }
+    }
+    std::remove(path.c_str());
+  }
+}
+
 }  // namespace
 }  // namespace animc

@@ -49,6 +49,25 @@ inline void expectSeeksMatch(AmsSource& ams, const std::vector<std::vector<float
   }
 }
 
+// Which frames of the file are intra frames: the first frame of each frame group, the only
+// frames a decoder allowed the work of a single frame can reach. The I-frame interval alone does
+// not say: the affine-octree encoder also codes an intra frame on its own when it cannot predict
+// one (docs/affine_octree.md, "Frames and groups").
+inline std::vector<bool> intraFrames(const std::string& path) {
+  auto whole = Decoder::openFile(path);
+  EXPECT_TRUE(whole.ok()) << whole.status().message();
+  if (!whole.ok()) return {};
+  DecoderOptions one_frame;
+  one_frame.limits.max_vertex_frames = whole.value().info().vertices;
+  auto limited = Decoder::openFile(path, one_frame);
+  EXPECT_TRUE(limited.ok()) << limited.status().message();
+  if (!limited.ok()) return {};
+  std::vector<bool> intra;
+  for (int64_t f = 0; f < whole.value().info().frames; ++f)
+    intra.push_back(limited.value().checkDecodeWork(f, f + 1).ok());
+  return intra;
+}
+
 // Largest vertex error of frame f divided by the side of the root cube the codec used
 // (the bounding cube of the reconstructed frame f-1, or of frame f itself for frame 0).
 inline double worstRelativeError(const std::vector<std::vector<float>>& original,
