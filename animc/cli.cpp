@@ -55,21 +55,6 @@ std::set<std::string> flagsOfEveryCodec(bool switches) {
   return names;
 }
 
-bool hasFlag(const CodecEntry& codec, const std::string& name) {
-  for (const auto* flags : {&codec.value_flags, &codec.switch_flags})
-    if (std::find(flags->begin(), flags->end(), name) != flags->end()) return true;
-  return false;
-}
-
-// An option of a codec not chosen is a mistake, not something to ignore.
-Status rejectForeignOptions(const Args& args, const CodecEntry& chosen) {
-  for (bool switches : {false, true})
-    for (const std::string& name : flagsOfEveryCodec(switches))
-      if (args.has(name) && !hasFlag(chosen, name))
-        return invalidArgument("--" + name + " does not apply to --codec " + chosen.name);
-  return Status();
-}
-
 }  // namespace
 
 const std::set<std::string>& encodeOptions() {
@@ -93,16 +78,18 @@ std::string codecUsage() {
   return text;
 }
 
+// The command line as the library's EncoderOptions, which it checks (an option of a codec not
+// chosen is refused there).
 Result<EncodeSettings> encodeSettingsFrom(const Args& args) {
-  ANIMC_ASSIGN_OR_RETURN(const CodecEntry* codec, findCodecByName(args.get("codec", allCodecs()[0]->name)));
-  ANIMC_RETURN_IF_ERROR(rejectForeignOptions(args, *codec));
-  EncodeSettings s;
-  ANIMC_ASSIGN_OR_RETURN(s.options, codec->fromFlags(args));
+  EncoderOptions options;
+  options.codec = args.get("codec", options.codec);
+  for (bool switches : {false, true})
+    for (const std::string& name : flagsOfEveryCodec(switches))
+      if (args.has(name)) options.set(name, args.get(name));
   ANIMC_ASSIGN_OR_RETURN(long long interval, args.integer("iframe-interval", 0));
   if (interval < 0 || interval > 0x7fffffff) return invalidArgument("--iframe-interval must be >= 0");
-  s.iframe_interval = uint32_t(interval);
-  ANIMC_RETURN_IF_ERROR(s.validate());
-  return s;
+  options.iframe_interval = uint32_t(interval);
+  return animc::encodeSettingsFrom(options);
 }
 
 Result<DecoderLimits> decoderLimitsFrom(const Args& args) {

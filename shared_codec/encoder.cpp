@@ -107,7 +107,7 @@ struct EncoderAccess {
 Result<EncodeSettings> encodeSettingsFrom(const EncoderOptions& options) {
   ANIMC_ASSIGN_OR_RETURN(const CodecEntry* codec, findCodecByName(options.codec));
   for (const auto& [name, value] : options.values)
-    if (!hasFlag(*codec, name)) return invalidArgument("option " + name + " does not apply to codec " + codec->name);
+    if (!hasFlag(*codec, name)) return invalidArgument("--" + name + " does not apply to codec " + codec->name);
   EncodeSettings s;
   ANIMC_ASSIGN_OR_RETURN(s.options, codec->fromFlags(MapOptionValues(options.values)));
   s.iframe_interval = options.iframe_interval;
