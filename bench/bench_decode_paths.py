@@ -2,11 +2,19 @@
 # SPDX-License-Identifier: Apache-2.0
 """Decoding through the public Decoder from a file and from memory: `animc bench FILE.ams`
 times both in alternating runs of one command, so the two medians share the machine's state.
-bench.py puts the returned Markdown lines into docs/benchmarks.md."""
+bench.py puts the returned Markdown lines into docs/benchmarks.md; run alone, this script
+replaces that section of docs/benchmarks.md (or another report) in place.
+
+usage: bench/bench_decode_paths.py [--animc PATH] [--data DIR] [--runs R] [--out FILE]"""
+import argparse
 import os
+import sys
 import tempfile
 
-from bench_common import animc_json, log, num, table
+from bench_common import animc_json, find_sequences, log, num, table
+
+REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+HEADING = '## Decoding from a file and from memory'
 
 SETTINGS = ['--profile', 'predictive', '--max-error', '0.01']
 
@@ -28,10 +36,45 @@ def decode_paths_section(animc, sequences, runs):
                 continue
             rows.append([seq['name'], num(r['decode_mvps']), num(r['decode_memory_mvps']),
                          num(r['decode_memory_mvps'] / r['decode_mvps'])])
-    lines = ['## Decoding from a file and from memory', '',
+    lines = [HEADING, '',
              f'`animc encode IN --mesh M -o X.ams {" ".join(SETTINGS)}`, then `animc bench X.ams --runs '
              f'{decode_runs} --json`: `Decoder::openFile` and `Decoder::openMemory` (the bytes read into '
              'memory first, untimed) each decode every frame in order, in alternating runs; medians in '
              'million vertices (× frames) per second, opening included.', '']
     lines += table(['sequence', 'from the file', 'from memory', 'memory / file'], rows) + ['']
     return lines, failures
+
+
+def replace_section(report, lines, command):
+    """The report's text with its HEADING section replaced by lines (inserted before the next
+    top-level section after the wavelet ones when it has none)."""
+    text = open(report).read()
+    section = '\n'.join(lines[:2] + [f'Measured by `{command}`.', ''] + lines[2:]) + '\n'
+    start = text.find(HEADING)
+    if start < 0:
+        start = end = text.find('## Peak memory')
+    else:
+        following = text.find('\n## ', start + len(HEADING))
+        end = following + 1 if following >= 0 else len(text)
+    return text[:start] + section + text[end:]
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__.split('\n')[0])
+    p.add_argument('--animc', default=os.path.join(REPO, 'build', 'animc', 'animc'))
+    p.add_argument('--data', default=os.path.normpath(os.path.join(REPO, '..', 'shared', 'data')))
+    p.add_argument('--runs', type=int, default=15)
+    p.add_argument('--out', default=os.path.join(REPO, 'docs', 'benchmarks.md'))
+    args = p.parse_args()
+    sequences = [{'name': n, 'pc2': pc2, 'ply': ply} for n, pc2, ply in find_sequences(args.data)]
+    lines, failures = decode_paths_section(os.path.abspath(args.animc), sequences, args.runs)
+    command = 'bench/bench_decode_paths.py ' + ' '.join(sys.argv[1:])
+    text = replace_section(args.out, lines, command.strip())
+    with open(args.out, 'w') as f:
+        f.write(text)
+    log(f'wrote the section to {args.out} ({failures} failure(s))')
+    sys.exit(1 if failures else 0)
+
+
+if __name__ == '__main__':
+    main()
