@@ -7,8 +7,10 @@
 //   Decoder: an .ams stream from a file or from memory, frame k out, in any order.
 //   MetricsAccumulator: the error figures (KG, PSNR, max error) of a reconstruction.
 //
-// Errors: nothing here throws (except std::bad_alloc when memory runs out); every fallible
-// call returns a Status or a Result<T>, whose message names what is at fault.
+// Errors: nothing here throws (except std::bad_alloc when memory runs out, and value() of a
+// Result that holds an error); every fallible call returns a Status or a Result<T>, whose
+// message names what is at fault. A moved-from Encoder or Decoder may only be destroyed or
+// assigned to.
 // Threads: an object is used by one thread at a time; different objects, on any threads, are
 // independent and safe to use in parallel.
 // Frames are 3 * vertex_count floats, x y z of vertex 0, then of vertex 1, ...; triangles are
