@@ -7,7 +7,9 @@ replaces that section of docs/benchmarks.md (or another report) in place.
 
 usage: bench/bench_decode_paths.py [--animc PATH] [--data DIR] [--runs R] [--out FILE]"""
 import argparse
+import datetime
 import os
+import subprocess
 import sys
 import tempfile
 
@@ -49,7 +51,12 @@ def replace_section(report, lines, command):
     """The report's text with its HEADING section replaced by lines (inserted before the next
     top-level section after the wavelet ones when it has none)."""
     text = open(report).read()
-    section = '\n'.join(lines[:2] + [f'Measured by `{command}`.', ''] + lines[2:]) + '\n'
+    commit = subprocess.run(['git', '-C', REPO, 'rev-parse', '--short', 'HEAD'], capture_output=True,
+                            text=True).stdout.strip()
+    when = datetime.datetime.now(datetime.timezone.utc).strftime('%Y-%m-%d %H:%M UTC')
+    measured = (f'Measured by `{command}` ({when}, commit `{commit}`, {os.cpu_count()} CPUs), apart from '
+                'the rest of this report.')
+    section = '\n'.join(lines[:2] + [measured, ''] + lines[2:]) + '\n'
     start = text.find(HEADING)
     if start < 0:
         start = end = text.find('## Peak memory')
