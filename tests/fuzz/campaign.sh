@@ -7,6 +7,8 @@
 # of memory. CI runs a short one; tests/fuzz/README.md records the long ones.
 #   usage: tests/fuzz/campaign.sh FUZZ_BUILD_DIR SECONDS [WORK] [--parallel]
 # --parallel runs the harnesses side by side (one core each) instead of one after another.
+# ANIMC_FUZZ_TIMEOUT (seconds, default 10) is the wall-clock time one input may take: raise it
+# on a loaded machine, where a starved run otherwise reports a hang that is not there.
 set -euo pipefail
 build=$(realpath "$1")
 seconds=$2
@@ -22,7 +24,7 @@ run() {
   local h=$1 program=$build/tests/fuzz/fuzz_$1
   [[ -x $program ]] || { echo "campaign: no $program (build with -DANIMC_BUILD_FUZZERS=ON)" >&2; return 2; }
   mkdir -p "$work/$h"
-  "$program" -max_total_time="$seconds" -rss_limit_mb=2048 -timeout=10 -max_len="${max_len[$h]}" \
+  "$program" -max_total_time="$seconds" -rss_limit_mb=2048 -timeout="${ANIMC_FUZZ_TIMEOUT:-10}" -max_len="${max_len[$h]}" \
     -print_final_stats=1 -artifact_prefix="$work/artifacts/$h-" "$work/$h" "$corpus/$h" >"$work/$h.log" 2>&1
 }
 
