@@ -25,7 +25,8 @@ run() {
   [[ -x $program ]] || { echo "campaign: no $program (build with -DANIMC_BUILD_FUZZERS=ON)" >&2; return 2; }
   mkdir -p "$work/$h"
   "$program" -max_total_time="$seconds" -rss_limit_mb=2048 -timeout="${ANIMC_FUZZ_TIMEOUT:-10}" \
-    -max_len="${max_len[$h]}" -print_final_stats=1 -artifact_prefix="$work/artifacts/$h-" "$work/$h" "$corpus/$h" >"$work/$h.log" 2>&1
+    -max_len="${max_len[$h]}" -print_final_stats=1 -artifact_prefix="$work/artifacts/$h-" \
+    "$work/$h" "$corpus/$h" >"$work/$h.log" 2>&1
 }
 
 # report HARNESS STATUS: one line; the crash's first lines when it failed.
