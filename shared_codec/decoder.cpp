@@ -134,7 +134,8 @@ const uint32_t* Decoder::triangles() const {
 Status Decoder::frame(int64_t k, float* xyz) {
   Impl& d = *impl_;
   if (k < 0 || k >= d.info.frames)
-    return invalidArgument(d.name + ": frame " + std::to_string(k) + " outside [0, " + std::to_string(d.info.frames) + ")");
+    return invalidArgument(d.name + ": frame " + std::to_string(k) + " outside [0, " +
+                           std::to_string(d.info.frames) + ")");
   if (xyz == nullptr) return invalidArgument("no frame buffer");
   if (!d.positioned || k < d.next_frame || d.reader->groupOf(uint64_t(k)) != d.group) {
     ANIMC_RETURN_IF_ERROR(checkDecodeWork(k, k + 1));

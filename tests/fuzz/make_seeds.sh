@@ -109,4 +109,5 @@ PY
 { printf '\x01\x00'
   printf 'OFF\n# comment\n4 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n'
 } > "$OUT/sequence_readers/square.off"
-echo "seeds: $(ls "$OUT/ams_decode" | wc -l) in $OUT/ams_decode ($(du -sh "$OUT/ams_decode" | cut -f1)), $(ls "$OUT/sequence_readers" | wc -l) in $OUT/sequence_readers"
+echo "seeds: $(ls "$OUT/ams_decode" | wc -l) in $OUT/ams_decode ($(du -sh "$OUT/ams_decode" | cut -f1)),"\
+  "$(ls "$OUT/sequence_readers" | wc -l) in $OUT/sequence_readers"

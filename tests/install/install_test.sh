@@ -46,7 +46,8 @@ if ldd "$work/build-static/encode_decode" | grep -q libanimc; then
 fi
 
 export PKG_CONFIG_PATH=$prefix/lib/pkgconfig
-[[ $(pkg-config --modversion animc) == "$(sed -n 's/^#define ANIMC_VERSION_STRING "\(.*\)"/\1/p' "$prefix/include/animc/version.h")" ]]
+header_version=$(sed -n 's/^#define ANIMC_VERSION_STRING "\(.*\)"/\1/p' "$prefix/include/animc/version.h")
+[[ $(pkg-config --modversion animc) == "$header_version" ]] || { echo "FAIL: pkg-config version"; exit 1; }
 # shellcheck disable=SC2046 # pkg-config's output is a list of words
 c++ "$source/examples/encode_decode.cpp" -o "$work/pkgconfig_example" $(pkg-config --cflags --libs animc) \
     -Wl,-rpath,"$prefix/lib"
