@@ -3,6 +3,7 @@
 
 #include <vcg/complex/allocate.h>
 
+#include <functional>
 #include <new>
 
 #include "seqio/mesh_checks.h"
@@ -48,23 +49,24 @@ void layerPositions(const MeshModel& layer, std::vector<float>& xyz) {
 
 QList<MeshModel*> frameLayers(const MeshDocument& md, bool visible_only) {
   QList<MeshModel*> layers;
-  for (MeshModel* m : md.meshList)
+  for (MeshModel* m : compat::layers(md))
     if (!visible_only || m->isVisible()) layers << m;
   return layers;
 }
 
-std::string layerName(const MeshModel& layer) {
-  const int index = layer.parent != nullptr ? layer.parent->meshList.indexOf(const_cast<MeshModel*>(&layer)) : -1;
+std::string layerName(const MeshDocument* md, const MeshModel& layer) {
+  const int index = md != nullptr ? compat::layers(*md).indexOf(const_cast<MeshModel*>(&layer)) : -1;
   return "layer " + std::to_string(index) + " ('" + layer.label().toStdString() + "')";
 }
 
-Result<std::unique_ptr<LayerFrameSource>> LayerFrameSource::create(const QList<MeshModel*>& layers) {
+Result<std::unique_ptr<LayerFrameSource>> LayerFrameSource::create(const MeshDocument* md,
+                                                                  const QList<MeshModel*>& layers) {
   if (layers.isEmpty()) return badInput("there are no layers to use as frames");
-  std::unique_ptr<LayerFrameSource> source(new LayerFrameSource());
+  std::unique_ptr<LayerFrameSource> source(new LayerFrameSource(md));
   source->layers_ = layers;
   source->topology_ = layerTopology(layers[0]->cm);
   const Status s = checkTopology(source->topology_);
-  if (!s.ok()) return s.withContext(layerName(*layers[0]));
+  if (!s.ok()) return s.withContext(layerName(md, *layers[0]));
   return source;
 }
 
@@ -72,7 +74,7 @@ Result<bool> LayerFrameSource::next(std::vector<float>& xyz) {
   if (next_ >= layers_.size()) return false;
   const MeshModel& layer = *layers_[next_];
   if (next_ > 0) {
-    const Status same = checkSameTopology(layerTopology(layer.cm), topology_, layerName(*layers_[0]));
+    const Status same = checkSameTopology(layerTopology(layer.cm), topology_, layerName(md_, *layers_[0]));
     if (!same.ok()) return same.withContext(where());
   }
   layerPositions(layer, xyz);
@@ -82,7 +84,7 @@ Result<bool> LayerFrameSource::next(std::vector<float>& xyz) {
 
 std::string LayerFrameSource::where() const {
   if (next_ >= layers_.size()) return "after the last layer";
-  return layerName(*layers_[next_]);
+  return layerName(md_, *layers_[next_]);
 }
 
 void fillMesh(MeshModel& layer, const Topology& topology, const float* xyz) {
@@ -95,7 +97,7 @@ void fillMesh(MeshModel& layer, const Topology& topology, const float* xyz) {
     for (int k = 0; k < 3; ++k) f->V(k) = &cm.vert[t[k]];
     ++f;
   }
-  layer.UpdateBoxAndNormals();
+  compat::updateBoxAndNormals(layer);
 }
 
 namespace {
@@ -128,53 +130,94 @@ uint64_t layerBytes(const Topology& topology) {
          kLayerOverhead;
 }
 
+namespace {
+
+// An opened .ams file and the checked range [first, last] of its frames to make layers of.
+struct AmsRange {
+  std::unique_ptr<AmsSource> source;
+  int64_t first = 0;
+  int64_t last = 0;
+};
+
+Result<AmsRange> openAmsRange(const std::string& path, const AmsImport& range) {
+  AmsRange r;
+  ANIMC_ASSIGN_OR_RETURN(r.source, AmsSource::open(path));
+  const int64_t frames = r.source->frameCount();
+  r.first = range.first_frame;
+  r.last = range.last_frame < 0 ? frames - 1 : range.last_frame;
+  if (r.first < 0 || r.first > r.last || r.last >= frames)
+    return invalidArgument("frames " + std::to_string(r.first) + " to " + std::to_string(r.last) +
+                           " asked for, but " + path + " has frames 0 to " + std::to_string(frames - 1));
+  ANIMC_RETURN_IF_ERROR(
+      checkLayerMemory(path, r.source->topology(), r.first, r.last, range.max_layer_megabytes));
+  ANIMC_RETURN_IF_ERROR(r.source->checkDecodeWork(r.first, r.last + 1));
+  ANIMC_RETURN_IF_ERROR(r.source->seek(r.first));
+  return r;
+}
+
+// Decodes the range frame by frame into the layers layer_for(frame) gives, labelled by frame
+// number. The caller undoes what was made when this fails.
+Status decodeIntoLayers(const std::string& path, AmsRange& r, const std::function<MeshModel*(int64_t)>& layer_for,
+                        const ProgressFn& progress) {
+  std::vector<float> xyz;
+  int64_t frame = r.first;
+  try {
+    for (; frame <= r.last; ++frame) {
+      Result<bool> more = r.source->next(xyz);
+      if (!more.ok()) return more.status();
+      if (!more.value()) return truncated(path + ": frame " + std::to_string(frame) + " is missing");
+      MeshModel& layer = *layer_for(frame);
+      layer.setLabel(frameLabel(frame));
+      fillMesh(layer, r.source->topology(), xyz.data());
+      const int percent = int(100 * (frame - r.first + 1) / (r.last - r.first + 1));
+      if (progress && !progress(percent, "decoding frames")) return cancelled();
+    }
+  } catch (const std::bad_alloc&) {
+    // The estimate was below the limit but the machine has less: the caller gives it back.
+    return limitExceeded("out of memory after " + std::to_string(frame - r.first) + " layers of " + path +
+                         ": load fewer frames or lower the memory limit");
+  }
+  return Status();
+}
+
+}  // namespace
+
 Result<QList<MeshModel*>> importAms(const std::string& path, const AmsImport& range,
                                     MeshDocument* md, MeshModel* first_layer,
                                     const ProgressFn& progress) {
-  ANIMC_ASSIGN_OR_RETURN(std::unique_ptr<AmsSource> source, AmsSource::open(path));
-  const int64_t frames = source->frameCount();
-  const int64_t last = range.last_frame < 0 ? frames - 1 : range.last_frame;
-  if (range.first_frame < 0 || range.first_frame > last || last >= frames)
-    return invalidArgument("frames " + std::to_string(range.first_frame) + " to " +
-                           std::to_string(last) + " asked for, but " + path + " has frames 0 to " +
-                           std::to_string(frames - 1));
-  if (md == nullptr && (first_layer == nullptr || last > range.first_frame))
+  ANIMC_ASSIGN_OR_RETURN(AmsRange r, openAmsRange(path, range));
+  if (md == nullptr && (first_layer == nullptr || r.last > r.first))
     return invalidArgument("no document to add the frames to as layers");
-  ANIMC_RETURN_IF_ERROR(
-      checkLayerMemory(path, source->topology(), range.first_frame, last, range.max_layer_megabytes));
-  ANIMC_RETURN_IF_ERROR(source->checkDecodeWork(range.first_frame, last + 1));
-  ANIMC_RETURN_IF_ERROR(source->seek(range.first_frame));
-  QList<MeshModel*> added;
-  auto undo = [&](const Status& s) {
-    for (MeshModel* m : added) md->delMesh(m);
-    if (first_layer != nullptr) first_layer->Clear();
-    return s;
-  };
-  std::vector<float> xyz;
   QList<MeshModel*> layers;
-  try {
-    for (int64_t frame = range.first_frame; frame <= last; ++frame) {
-      Result<bool> more = source->next(xyz);
-      if (!more.ok()) return undo(more.status());
-      if (!more.value()) return undo(truncated(path + ": frame " + std::to_string(frame) + " is missing"));
-      MeshModel* layer = layers.isEmpty() && first_layer != nullptr ? first_layer : nullptr;
-      if (layer == nullptr) {
-        layer = md->addNewMesh("", frameLabel(frame), false);
-        added << layer;
-      } else {
-        layer->setLabel(frameLabel(frame));
-      }
-      fillMesh(*layer, source->topology(), xyz.data());
-      layers << layer;
-      const int percent = int(100 * (frame - range.first_frame + 1) / (last - range.first_frame + 1));
-      if (progress && !progress(percent, "decoding frames")) return undo(cancelled());
-    }
-  } catch (const std::bad_alloc&) {
-    // The estimate was below the limit but the machine has less: give the memory back first.
-    return undo(limitExceeded("out of memory after " + std::to_string(layers.size()) + " layers of " + path +
-                              ": load fewer frames or lower the memory limit"));
-  }
-  return layers;
+  auto layer_for = [&](int64_t) {
+    MeshModel* layer = layers.isEmpty() && first_layer != nullptr ? first_layer : md->addNewMesh("", "", false);
+    layers << layer;
+    return layer;
+  };
+  const Status s = decodeIntoLayers(path, r, layer_for, progress);
+  if (s.ok()) return layers;
+  for (MeshModel* m : layers)
+    if (m != first_layer) compat::removeLayer(*md, m);
+  if (first_layer != nullptr) compat::clearLayer(*first_layer);
+  return s;
+}
+
+Result<int64_t> amsFrameCount(const std::string& path, const AmsImport& range) {
+  ANIMC_ASSIGN_OR_RETURN(AmsRange r, openAmsRange(path, range));
+  return r.last - r.first + 1;
+}
+
+Status importAmsInto(const std::string& path, const AmsImport& range, const QList<MeshModel*>& layers,
+                     const ProgressFn& progress) {
+  ANIMC_ASSIGN_OR_RETURN(AmsRange r, openAmsRange(path, range));
+  if (r.last - r.first + 1 != layers.size())
+    return invalidArgument("MeshLab made " + std::to_string(layers.size()) + " layers for " +
+                           std::to_string(r.last - r.first + 1) + " frames of " + path);
+  int next = 0;
+  const Status s = decodeIntoLayers(path, r, [&](int64_t) { return layers[next++]; }, progress);
+  if (!s.ok())
+    for (MeshModel* m : layers) compat::clearLayer(*m);
+  return s;
 }
 
 }  // namespace animc::meshlab
