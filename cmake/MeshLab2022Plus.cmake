@@ -46,5 +46,11 @@ target_link_libraries(meshlab_common INTERFACE
   Qt5::Core Qt5::Gui Qt5::Widgets Qt5::OpenGL Qt5::Xml Qt5::Network Eigen3::Eigen)
 
 # MeshLab 2022+ also finds plugins in <bin>/../lib/meshlab/plugins; users without root put them
-# in its per-user MeshLabExtraPlugins/<version> folder instead (README).
+# in its per-user MeshLabExtraPlugins/<version> folder instead (README). mlxrun, installed in
+# bin/, looks there too, and needs io_base beside ours to read PLY and the like: a link to the
+# SDK's.
 set(ANIMC_PLUGIN_INSTALL_DIR "lib/meshlab/plugins")
+install(CODE "
+  set(plugins \"\$ENV{DESTDIR}\${CMAKE_INSTALL_PREFIX}/${ANIMC_PLUGIN_INSTALL_DIR}\")
+  file(MAKE_DIRECTORY \"\${plugins}\")
+  file(CREATE_LINK \"${MESHLAB_LIB_DIR}/plugins/libio_base.so\" \"\${plugins}/libio_base.so\" SYMBOLIC)")
