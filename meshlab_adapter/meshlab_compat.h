@@ -44,14 +44,6 @@ inline QList<MeshModel*> layers(const MeshDocument& md) {
 #endif
 }
 
-inline int layerCount(const MeshDocument& md) {
-#if ANIMC_MESHLAB_API == 2020
-  return md.size();
-#else
-  return int(md.meshNumber());
-#endif
-}
-
 inline void removeLayer(MeshDocument& md, MeshModel* m) {
 #if ANIMC_MESHLAB_API == 2020
   md.delMesh(m);
