@@ -38,11 +38,12 @@ void colourByError(const CompressOutput& out, const QList<MeshModel*>& originals
 
 void addCompressParameters(const MeshDocument& md, RichParameterList& par) {
   addEncodeParameters(par);
-  QString dir = md.meshList.isEmpty() ? QString() : QFileInfo(md.meshList[0]->fullName()).absolutePath();
+  const QList<MeshModel*> all = compat::layers(md);
+  QString dir = all.isEmpty() ? QString() : QFileInfo(all[0]->fullName()).absolutePath();
   const QString default_path = dir.isEmpty() ? QString("animation.ams") : dir + "/animation.ams";
   par.addParam(RichBool("VisibleOnly", false, "Visible layers only",
                         "Use only the visible layers as frames (in document order); otherwise all layers."));
-  par.addParam(RichSaveFile("OutputFile", default_path, "*.ams", "Output .ams file",
+  par.addParam(compat::RichSaveFile("OutputFile", default_path, "*.ams", "Output .ams file",
                             "Where the compressed animation is written (atomically: nothing appears on failure)."));
   par.addParam(RichBool("AddReconstructed", true, "Add reconstructed layers",
                         "Add one layer per frame holding what a decoder of the file will produce."));
@@ -53,7 +54,7 @@ void addCompressParameters(const MeshDocument& md, RichParameterList& par) {
 }
 
 std::string compressLayers(MeshDocument& md, const RichParameterList& par, vcg::CallBackPos* cb,
-                           const LogFn& log) {
+                           const LogFn& log, CompressFigures* figures) {
   const auto started = std::chrono::steady_clock::now();
   const QList<MeshModel*> layers = frameLayers(md, par.getBool("VisibleOnly"));
   if (layers.size() < 2)
@@ -62,7 +63,7 @@ std::string compressLayers(MeshDocument& md, const RichParameterList& par, vcg::
   if (!settings.ok()) return settings.status().message();
   const std::string path = par.getSaveFileName("OutputFile").toStdString();
   if (path.empty()) return "no output file given";
-  Result<std::unique_ptr<LayerFrameSource>> source = LayerFrameSource::create(layers);
+  Result<std::unique_ptr<LayerFrameSource>> source = LayerFrameSource::create(&md, layers);
   if (!source.ok()) return source.status().message();
   const Topology& topology = source.value()->topology();
 
@@ -84,7 +85,7 @@ std::string compressLayers(MeshDocument& md, const RichParameterList& par, vcg::
   Result<EncodeSummary> report = encodeSequence(*source.value(), settings.value(), path, progressFrom(cb),
                                                measuringObserver(out.metrics, show, collect));
   if (!report.ok()) {
-    for (MeshModel* m : out.decoded_layers) md.delMesh(m);
+    for (MeshModel* m : out.decoded_layers) compat::removeLayer(md, m);
     return report.status().message();
   }
 
@@ -99,6 +100,10 @@ std::string compressLayers(MeshDocument& md, const RichParameterList& par, vcg::
   std::snprintf(whole_filter, sizeof whole_filter, "; whole filter %.3f s", seconds);
   logLines(log, formatEncodeSummary(settings.value(), r, m, whole_filter));
   if (add_decoded) log("added " + std::to_string(out.decoded_layers.size()) + " reconstructed layers ('decoded ...')");
+  if (figures != nullptr) {
+    const SizeFigures size = sizeFigures(r.bytes, r.static_bytes, r.vertices, r.frames);
+    *figures = {size.ratio, size.bpvf, m.kg_error, m.psnr, m.max_error, r.bytes};
+  }
   return {};
 }
 

@@ -2,6 +2,7 @@
 #include "filter_animcompress.h"
 
 #include "compress_layers.h"
+#include "filter_texts.h"
 #include "frame_range_parameters.h"
 #include "layer_frames.h"
 #include "reconstruction_error.h"
@@ -16,38 +17,8 @@ FilterAnimCompressPlugin::FilterAnimCompressPlugin() {
 
 QString FilterAnimCompressPlugin::pluginName() const { return "FilterAnimCompress"; }
 
-QString FilterAnimCompressPlugin::filterName(FilterIDType id) const {
-  switch (id) {
-    case FP_COMPRESS: return "Compress Animation Layers";
-    case FP_RECONSTRUCTION_ERROR: return "Animation Reconstruction Error";
-    case FP_IMPORT: return "Import Compressed Animation";
-  }
-  return {};
-}
-
-namespace {
-
-QString filterDescription(FilterAnimCompressPlugin::FilterIDType id) {
-  switch (id) {
-    case FilterAnimCompressPlugin::FP_COMPRESS:
-      return "Compresses an animation whose frames are the layers of the document (same vertices "
-             "and triangles in every layer, in document order) into an .ams file with the "
-             "animcompress codec library, then logs its size, bits per vertex per frame, "
-             "Karni-Gotsman error, PSNR and max error. Optionally adds the frames a decoder will "
-             "reconstruct as new layers and colours them by per-vertex error.";
-    case FilterAnimCompressPlugin::FP_RECONSTRUCTION_ERROR:
-      return "Compares two runs of layers (original frames and reconstructed ones) frame by frame. "
-             "Each reconstructed vertex gets its error as vertex quality and a colour from blue "
-             "(exact) to red (the colour scale's maximum, the same for every frame). Logs the RMS "
-             "and max error of each frame and the figures of the whole animation.";
-    case FilterAnimCompressPlugin::FP_IMPORT:
-      return "Decodes an animcompress .ams file (all frames or a range) into one new layer per "
-             "frame, labelled frame_00000, frame_00001, ... by frame number.";
-  }
-  return {};
-}
-
-}  // namespace
+// The enum's order is filter_texts.h's.
+QString FilterAnimCompressPlugin::filterName(FilterIDType id) const { return filterTitle(id); }
 
 // MeshLab 2020.09's plugin info has no version field: the release goes in every description.
 QString FilterAnimCompressPlugin::filterInfo(FilterIDType id) const {
@@ -80,8 +51,8 @@ void FilterAnimCompressPlugin::initParameterSet(QAction* a, MeshDocument& md, Ri
     case FP_COMPRESS: addCompressParameters(md, par); break;
     case FP_RECONSTRUCTION_ERROR: addErrorParameters(md, par); break;
     case FP_IMPORT:
-      par.addParam(RichOpenFile("AmsFile", "", QStringList() << "*.ams", "Compressed animation",
-                                "The .ams file to decode."));
+      par.addParam(compat::RichOpenFile("AmsFile", "", QStringList() << "*.ams", "Compressed animation",
+                                        "The .ams file to decode."));
       addFrameRangeParameters(par);
       break;
   }

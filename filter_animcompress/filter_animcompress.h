@@ -10,6 +10,7 @@ class FilterAnimCompressPlugin : public QObject, public MeshFilterInterface {
   Q_INTERFACES(MeshFilterInterface)
 
  public:
+  // The same ids as filter_texts.h's FilterId.
   enum { FP_COMPRESS, FP_RECONSTRUCTION_ERROR, FP_IMPORT };
 
   FilterAnimCompressPlugin();

@@ -19,15 +19,16 @@ struct LayerRuns {
 };
 
 // The two runs of `count` layers starting at the chosen layers (count 0: as many as fit).
-Result<LayerRuns> layerRuns(const MeshDocument& md, const RichParameterList& par) {
-  const int first_original = md.meshList.indexOf(par.getMesh("OriginalFirst"));
-  const int first_reconstructed = md.meshList.indexOf(par.getMesh("ReconstructedFirst"));
+Result<LayerRuns> layerRuns(MeshDocument& md, const RichParameterList& par) {
+  const QList<MeshModel*> all = compat::layers(md);
+  const int first_original = all.indexOf(compat::meshValue(par, "OriginalFirst", md));
+  const int first_reconstructed = all.indexOf(compat::meshValue(par, "ReconstructedFirst", md));
   if (first_original < 0 || first_reconstructed < 0) return invalidArgument("choose two layers of the document");
   if (first_original == first_reconstructed)
     return invalidArgument("the original and reconstructed runs start at the same layer");
   const int fit = first_original < first_reconstructed
-                      ? std::min(first_reconstructed - first_original, md.size() - first_reconstructed)
-                      : std::min(first_original - first_reconstructed, md.size() - first_original);
+                      ? std::min(first_reconstructed - first_original, all.size() - first_reconstructed)
+                      : std::min(first_original - first_reconstructed, all.size() - first_original);
   const int count = par.getInt("FrameCount") > 0 ? par.getInt("FrameCount") : fit;
   if (count > fit)
     return invalidArgument("runs of " + std::to_string(count) + " layers starting at layers " +
@@ -35,21 +36,21 @@ Result<LayerRuns> layerRuns(const MeshDocument& md, const RichParameterList& par
                            " overlap or run past the last layer (at most " + std::to_string(fit) + " fit)");
   LayerRuns runs;
   for (int i = 0; i < count; ++i) {
-    runs.originals << md.meshList[first_original + i];
-    runs.reconstructions << md.meshList[first_reconstructed + i];
+    runs.originals << all[first_original + i];
+    runs.reconstructions << all[first_reconstructed + i];
   }
   return runs;
 }
 
 // Both runs' figures; every layer is checked against the first original's topology on the
 // way, so a bad layer ends the filter before any layer was changed.
-Result<SequenceMetrics> measureRuns(const LayerRuns& runs, vcg::CallBackPos* cb) {
-  ANIMC_ASSIGN_OR_RETURN(std::unique_ptr<LayerFrameSource> originals, LayerFrameSource::create(runs.originals));
+Result<SequenceMetrics> measureRuns(const MeshDocument& md, const LayerRuns& runs, vcg::CallBackPos* cb) {
+  ANIMC_ASSIGN_OR_RETURN(std::unique_ptr<LayerFrameSource> originals, LayerFrameSource::create(&md, runs.originals));
   ANIMC_ASSIGN_OR_RETURN(std::unique_ptr<LayerFrameSource> reconstructions,
-                         LayerFrameSource::create(runs.reconstructions));
+                         LayerFrameSource::create(&md, runs.reconstructions));
   const Status same = checkSameTopology(reconstructions->topology(), originals->topology(),
-                                        layerName(*runs.originals[0]));
-  if (!same.ok()) return same.withContext(layerName(*runs.reconstructions[0]));
+                                        layerName(&md, *runs.originals[0]));
+  if (!same.ok()) return same.withContext(layerName(&md, *runs.reconstructions[0]));
   ProgressFn first_half;  // of the progress bar; colouring the layers is the second
   if (cb != nullptr) first_half = [cb](int percent, const char* what) { return cb(percent / 2, what); };
   return compareSequences(*originals, *reconstructions, first_half);
@@ -88,15 +89,16 @@ void logFigures(const LayerRuns& runs, const SequenceMetrics& m, float scale, co
 
 }  // namespace
 
-void addErrorParameters(MeshDocument& md, RichParameterList& par) {
-  const int n = md.size();
-  MeshModel* first = n > 0 ? md.meshList[0] : nullptr;
-  MeshModel* middle = n > 1 ? md.meshList[n / 2] : first;
-  par.addParam(RichMesh("OriginalFirst", first, &md, "First original layer",
-                        "The original frames are this layer and the ones after it."));
-  par.addParam(RichMesh("ReconstructedFirst", middle, &md, "First reconstructed layer",
-                        "The reconstructed frames are this layer and the ones after it (after "
-                        "Compress Animation Layers: the first 'decoded' layer)."));
+void addErrorParameters(const MeshDocument& md, RichParameterList& par) {
+  const QList<MeshModel*> all = compat::layers(md);
+  const int n = all.size();
+  MeshModel* first = n > 0 ? all[0] : nullptr;
+  MeshModel* middle = n > 1 ? all[n / 2] : first;
+  compat::addMeshParameter(par, "OriginalFirst", first, md, "First original layer",
+                           "The original frames are this layer and the ones after it.");
+  compat::addMeshParameter(par, "ReconstructedFirst", middle, md, "First reconstructed layer",
+                           "The reconstructed frames are this layer and the ones after it (after "
+                           "Compress Animation Layers: the first 'decoded' layer).");
   par.addParam(RichInt("FrameCount", 0, "Frames", "How many frames to compare; 0 = as many as fit."));
   par.addParam(RichFloat("ScaleMax", 0.0f, "Colour scale max",
                          "Error shown in full red, in mesh units; 0 = the largest error of the whole animation."));
@@ -108,7 +110,7 @@ std::string measureReconstructionError(MeshDocument& md, const RichParameterList
   if (!runs.ok()) return runs.status().message();
   if (runs.value().originals.isEmpty()) return "no frames to compare";
   // Measure everything first, so a bad layer late in the run leaves every layer untouched.
-  Result<SequenceMetrics> m = measureRuns(runs.value(), cb);
+  Result<SequenceMetrics> m = measureRuns(md, runs.value(), cb);
   if (!m.ok()) return m.status().message();
   const float scale = par.getFloat("ScaleMax") > 0 ? par.getFloat("ScaleMax") : float(m.value().max_error);
   colourRuns(runs.value(), scale, cb);

@@ -3,14 +3,13 @@
 // reconstructions), stores per-vertex error as quality on the reconstructions, colours them on
 // one scale for all frames, and logs per-frame and whole-animation figures.
 #pragma once
-#include <common/filter_parameter/rich_parameter_list.h>
-#include <common/meshmodel.h>
+#include "meshlab_compat.h"
 
 #include "plugin_support.h"
 
 namespace animc::meshlab {
 
-void addErrorParameters(MeshDocument& md, RichParameterList& par);
+void addErrorParameters(const MeshDocument& md, RichParameterList& par);
 
 // Returns an empty string on success, else why nothing was changed.
 std::string measureReconstructionError(MeshDocument& md, const RichParameterList& par,

@@ -80,7 +80,7 @@ bool IoAnimStreamPlugin::saveFrames(const QString& fileName, MeshModel& m, const
   addEncodeParameters(defaults);
   auto settings = encodeSettingsFrom(par.hasParameter("Codec") ? par : defaults);
   if (!settings.ok()) return fail("save", fileName, settings.status().message());
-  auto source = LayerFrameSource::create(layers);
+  auto source = LayerFrameSource::create(m.parent, layers);
   if (!source.ok()) return fail("save", fileName, source.status().message());
   auto report = animc::encodeSequence(*source.value(), settings.value(), fileName.toStdString(), progressFrom(cb));
   if (!report.ok()) return fail("save", fileName, report.status().message());

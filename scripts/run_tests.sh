@@ -9,6 +9,18 @@ bash scripts/setup.sh
 bash scripts/build.sh
 (cd build && ctest --output-on-failure -j"$(nproc)" --timeout 900)
 
+# The plugins for MeshLab 2025.07 (float), against the SDK setup.sh built, and their end-to-end
+# tests through mlxrun (MeshLab 2022+ has no meshlabserver).
+cmake -S . -B build-meshlab2025 -DCMAKE_BUILD_TYPE=Release -DANIMC_MESHLAB=2025.07 -DANIMC_BUILD_PYTHON=OFF \
+  -DANIMC_BUILD_TESTS=ON >/dev/null
+cmake --build build-meshlab2025 -j"$(nproc)"
+(cd build-meshlab2025 && ctest --output-on-failure -R meshlab --timeout 900)
+# The same for MeshLab 2022.02 (Debian 13, Ubuntu 24.04): only what those tests run is built.
+cmake -S . -B build-meshlab2022 -DCMAKE_BUILD_TYPE=Release -DANIMC_MESHLAB=2022.02 -DANIMC_BUILD_PYTHON=OFF \
+  -DANIMC_BUILD_TESTS=ON >/dev/null
+cmake --build build-meshlab2022 -j"$(nproc)" --target animc filter_animcompress io_animstream mlxrun
+(cd build-meshlab2022 && ctest --output-on-failure -R meshlab --timeout 900)
+
 # The portable build (no AVX2 kernels, what other CPUs run): its unit tests, and the golden
 # files, which an AVX2 build wrote, so both builds must write and decode the same bytes.
 cmake -S . -B build-portable -DCMAKE_BUILD_TYPE=Release -DANIMC_NO_AVX2=ON -DANIMC_BUILD_PLUGINS=OFF \

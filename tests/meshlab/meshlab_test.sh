@@ -1,15 +1,25 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: Apache-2.0
 # End-to-end tests of the MeshLab plugins in the real meshlabserver (staged by
-# `cmake --install BUILD --prefix STAGE`, run headless under xvfb-run by scripts/meshlabserver.sh).
-# usage: meshlab_test.sh CASE ANIMC_BINARY SOURCE_DIR STAGE_DIR
+# `cmake --install BUILD --prefix STAGE`, run headless under xvfb-run by scripts/meshlabserver.sh),
+# or, for MeshLab 2022+ (API 2022), in mlxrun (scripts/mlxrun.sh), which takes the same flags.
+# usage: meshlab_test.sh CASE ANIMC_BINARY SOURCE_DIR STAGE_DIR [API]
 #   CASE: dump | scripts | filter_roundtrip | io_roundtrip | wavelet | bad_layers | bad_ams
+#   API:  2020 (default) | 2022
 set -euo pipefail
 
-CASE=${1:?usage: meshlab_test.sh CASE ANIMC SOURCE_DIR STAGE_DIR}
+CASE=${1:?usage: meshlab_test.sh CASE ANIMC SOURCE_DIR STAGE_DIR [API]}
 ANIMC=${2:?}
 SRC=${3:?}
 export ANIMC_STAGE=${4:?}
+API=${5:-2020}
+if [[ $API == 2020 ]]; then
+  RUNNER=$SRC/scripts/meshlabserver.sh
+  OPEN_FAILED="io_animstream: cannot open"  # meshlabserver prints no error: the plugin's stderr line
+else
+  RUNNER=$SRC/scripts/mlxrun.sh
+  OPEN_FAILED="mlxrun: Cannot open"
+fi
 PY=/usr/bin/python3
 FRAMES=("$SRC"/samples/sydney/frames/frame_*.ply)
 N=${#FRAMES[@]}
@@ -29,7 +39,7 @@ server() {
   local name=$1
   shift
   RC=0
-  "$SRC/scripts/meshlabserver.sh" "$@" >"$name.log" 2>&1 || RC=$?
+  "$RUNNER" "$@" >"$name.log" 2>&1 || RC=$?
   if ((RC >= 128 && RC != 255)); then die "$name: meshlabserver died with status $RC"$'\n'"$(tail -20 "$name.log")"; fi
 }
 expect_ok() { ((RC == 0)) || die "$1: exit $RC"$'\n'"$(tail -30 "$1.log")"; }
@@ -207,11 +217,15 @@ PYEOF
   bad_case one_layer "needs at least 2 layers (frames); found 1" "${FRAMES[0]}"
   bad_case vertex_count "layer 2 ('tetra.ply'): vertex count 4 differs from" "${FRAMES[0]}" "${FRAMES[1]}" "$TMP/tetra.ply"
   bad_case face_list "layer 1 ('other_faces.ply'): face list differs from layer 0" "${FRAMES[0]}" "$TMP/other_faces.ply"
-  bad_case infinite "layer 1 ('infinite.ply'): frame 1: vertex 0 has a NaN, infinite or huge coordinate" \
-    "${FRAMES[0]}" "$TMP/infinite.ply"
+  # MeshLab 2022+ removes non-finite vertices (and their faces) from every file it opens, so
+  # the filter sees a layer with a vertex fewer instead.
+  local infinite="frame 1: vertex 0 has a NaN, infinite or huge coordinate"
+  [[ $API == 2020 ]] || infinite="vertex count 341 differs from layer 0"
+  bad_case infinite "layer 1 ('infinite.ply'): $infinite" "${FRAMES[0]}" "$TMP/infinite.ply"
   bad_case nan "layer 1 ('nan.ply')" "${FRAMES[0]}" "$TMP/nan.ply"
   bad_case no_faces "empty mesh (0 triangles)" "$TMP/points.ply" "$TMP/points.ply"
-  failed_compress_leaves_originals
+  # The host is built on the 2020.09 interface only.
+  [[ $API != 2020 ]] || failed_compress_leaves_originals
 }
 
 # Compress Animation Layers colouring the originals (no reconstructed layers) fails on a NaN
@@ -242,7 +256,7 @@ case_bad_ams() {
   for bad in truncated corrupt; do
     server "open_$bad" -i "$TMP/$bad.ams" -o "$TMP/out_$bad.ply"
     ((RC != 0)) || check_failed "open_$bad: meshlabserver reported success"
-    expect_log "open_$bad" "io_animstream: cannot open"
+    expect_log "open_$bad" "$OPEN_FAILED"
     [[ ! -e out_$bad.ply ]] || check_failed "open_$bad: an output was written"
   done
   derive_script import.mlx import_truncated.mlx AmsFile=truncated.ams

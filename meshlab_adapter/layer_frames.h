@@ -8,10 +8,10 @@
 #include <memory>
 #include <vector>
 
-#include <common/meshmodel.h>
 
 #include "api.h"
 #include "core/sequence.h"
+#include "meshlab_compat.h"
 
 namespace animc::meshlab {
 
@@ -20,7 +20,9 @@ QList<MeshModel*> frameLayers(const MeshDocument& md, bool visible_only);
 
 // "layer 3 ('frame_0003.ply')", for messages: the layer's position in its document, which
 // differs from its position in a run of frames that starts later or skips hidden layers.
-std::string layerName(const MeshModel& layer);
+// MeshLab 2022+ layers do not know their document, hence md (null: the position is unknown,
+// shown as -1).
+std::string layerName(const MeshDocument* md, const MeshModel& layer);
 
 // A layer's live vertex positions (x y z per vertex, in vector order), its topology unchecked:
 // for layers a LayerFrameSource already went through.
@@ -31,7 +33,7 @@ void layerPositions(const MeshModel& layer, std::vector<float>& xyz);
 class LayerFrameSource final : public FrameSource {
  public:
   // Fails when there are no layers or the first one has no vertices or no faces.
-  static Result<std::unique_ptr<LayerFrameSource>> create(const QList<MeshModel*>& layers);
+  static Result<std::unique_ptr<LayerFrameSource>> create(const MeshDocument* md, const QList<MeshModel*>& layers);
 
   const Topology& topology() const override { return topology_; }
   int64_t frameCount() const override { return layers_.size(); }
@@ -39,7 +41,8 @@ class LayerFrameSource final : public FrameSource {
   std::string where() const override;
 
  private:
-  LayerFrameSource() = default;
+  explicit LayerFrameSource(const MeshDocument* md) : md_(md) {}
+  const MeshDocument* md_;  // for messages only
   QList<MeshModel*> layers_;
   Topology topology_;
   int next_ = 0;
@@ -69,5 +72,13 @@ uint64_t layerBytes(const Topology& topology);
 Result<QList<MeshModel*>> importAms(const std::string& path, const AmsImport& range,
                                     MeshDocument* md, MeshModel* first_layer,
                                     const ProgressFn& progress);
+
+// MeshLab 2022+ makes the layers of a multi-layer open itself, before the plugin sees the file:
+// how many frames of `path` the range covers (checking the range, the memory limit and the
+// decoding work first, as importAms does), and the decoding of that range into exactly those layers. On failure the layers are
+// left empty.
+Result<int64_t> amsFrameCount(const std::string& path, const AmsImport& range);
+Status importAmsInto(const std::string& path, const AmsImport& range, const QList<MeshModel*>& layers,
+                     const ProgressFn& progress);
 
 }  // namespace animc::meshlab

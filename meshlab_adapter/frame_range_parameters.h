@@ -2,7 +2,7 @@
 // The frames to load from an .ams file as MeshLab parameters, shared by the Import Compressed
 // Animation filter and the .ams open dialog so both offer the same choice.
 #pragma once
-#include <common/filter_parameter/rich_parameter_list.h>
+#include "meshlab_compat.h"
 
 #include "layer_frames.h"
 

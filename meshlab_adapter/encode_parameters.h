@@ -2,7 +2,7 @@
 // The encoder settings as MeshLab parameters, shared by the Compress filter and the .ams save
 // dialog so both offer the same choices, defaults and limits as `animc encode`.
 #pragma once
-#include <common/filter_parameter/rich_parameter_list.h>
+#include "meshlab_compat.h"
 
 #include "api.h"
 

@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <vector>
 
-#include <common/meshmodel.h>
+#include "meshlab_compat.h"
 
 namespace animc::meshlab {
 

@@ -52,10 +52,13 @@ void addEncodeParameters(RichParameterList& par) {
 
 namespace {
 
-// MeshLab keeps a float: 0.3 comes back as 0.30000001. The decimal the user typed (7
-// significant digits) is what animc would get from the same text, so both write the same file.
+// A float MeshLab (every 2020.09 build, the float 2022+ builds) keeps 0.3 as 0.30000001. The
+// decimal the user typed (7 significant digits) is what animc would get from the same text, so
+// both write the same file. A double build keeps what was typed: rounding would lose digits.
 double typedValue(const RichParameterList& par, const QString& name) {
-  return QString::number(double(par.getFloat(name)), 'g', 7).toDouble();
+  const double value = double(par.getFloat(name));
+  if (sizeof(Scalarm) > sizeof(float)) return value;
+  return QString::number(value, 'g', 7).toDouble();
 }
 
 Status readOctreeParameters(const RichParameterList& par, AffineOctreeOptions& o) {
