@@ -93,7 +93,9 @@ say "configuring (log: $sdk/build.log)"
 cmake -S "$project" -B "$sdk/build" -DCMAKE_BUILD_TYPE=Release -DVCG_ALLOW_BUNDLED_EIGEN=OFF \
   -DMESHLAB_PLUGINS=meshlabplugins/io_base "${options[@]}" >"$sdk/build.log" 2>&1 \
   || die "configure failed, see $sdk/build.log"
-jobs=${ANIMC_MESHLAB_JOBS:-1}
+# Every core by default (a fresh CI machine waits on this build); ANIMC_MESHLAB_JOBS=1 leaves
+# room for other work.
+jobs=${ANIMC_MESHLAB_JOBS:-$(nproc)}
 for targets in meshlab-common "meshlab io_base"; do
   say "building $targets (-j$jobs)"
   start=$SECONDS
