@@ -12,9 +12,14 @@
 # The sample frames are copied to a temporary folder (the filter writes animation.ams next
 # to them); HOME/XDG point into it, so nothing is written outside it and docs/img/.
 #   usage: scripts/gui_screenshots.sh        (as root when xvfb/xdotool/imagemagick are missing)
+#          ANIMC_GUI_MESHLAB=2025.07 scripts/gui_screenshots.sh   the same four for MeshLab 2025.07
+#          (built by fetch_meshlab_2022plus.sh) with the plugins of build-meshlab2025, installed
+#          into the private home's per-user plugin folder; written to docs/img/2025.07/.
 #   env:   ANIMC_STAGE (default build/stage), ANIMC_SHOT_FRAME (default 12),
 #          ANIMC_SHOT_LATER_FRAME (default 20), ANIMC_GUI_KEEP_TMP=1 keeps the temporary
-#          folder (with every intermediate screenshot) for debugging.
+#          folder (with every intermediate screenshot) for debugging; for 2025.07
+#          ANIMC_MESHLAB_SDK (default /var/cache/animcompress/meshlab-2025.07-float) and
+#          ANIMC_BUILD_2025 (default build-meshlab2025).
 # The clicks use fixed positions in a 1280x900 main window at (0,0) with Debian's default
 # Qt style and fonts; every step checks its result (dialog window present, layer row
 # highlighted, mesh pixels in the 3D view) and stops with a message when it is not there.
@@ -27,14 +32,33 @@ out="$root/docs/img"
 frame=${ANIMC_SHOT_FRAME:-12}
 later=${ANIMC_SHOT_LATER_FRAME:-20}
 convert=/usr/bin/convert
+gui=${ANIMC_GUI_MESHLAB:-2020.09}
 
 say() { echo "gui_screenshots: $*"; }
 die() { echo "gui_screenshots: error: $*" >&2; exit 1; }
 
+case "$gui" in
+  2020.09) ;;
+  2025.07)
+    sdk=${ANIMC_MESHLAB_SDK:-${ANIMC_CACHE_DIR:-/var/cache/animcompress}/meshlab-2025.07-float}
+    meshlab="$sdk/build/src/distrib/meshlab"
+    plugin_build=${ANIMC_BUILD_2025:-$root/build-meshlab2025}
+    out="$root/docs/img/2025.07" ;;
+  *) die "ANIMC_GUI_MESHLAB must be 2020.09 or 2025.07, not $gui" ;;
+esac
+
 source "$root/scripts/host_setup.sh"
 install_missing_packages gui_screenshots xvfb xauth xdotool imagemagick x11-utils
 
-[ -x "$meshlab" ] || die "$meshlab missing; run: cmake --install build --prefix build/stage"
+if [ "$gui" = 2020.09 ]; then
+  [ -x "$meshlab" ] || die "$meshlab missing; run: cmake --install build --prefix build/stage"
+else
+  [ -x "$meshlab" ] || die "$meshlab missing; run: scripts/fetch_meshlab_2022plus.sh 2025.07 float"
+  for so in libfilter_animcompress.so libio_animstream.so; do
+    [ -f "$plugin_build/plugins/$so" ] \
+      || die "$plugin_build/plugins/$so missing; build targets filter_animcompress io_animstream"
+  done
+fi
 ls "$samples"/frame_*.ply >/dev/null 2>&1 || die "no sample frames in $samples"
 nframes=$(ls "$samples"/frame_*.ply | wc -l)
 [ "$frame" -lt "$nframes" ] && [ "$later" -lt "$nframes" ] || die "frame numbers must be < $nframes"
@@ -85,11 +109,18 @@ say "Xvfb on $display"
 
 export DISPLAY="$display"
 use_private_meshlab_home "$tmp/home"
+if [ "$gui" = 2025.07 ]; then
+  # informativeShown skips the modal "Send Anonymous Statistics" question of a first start; the
+  # plugins go where a user's copy would (HOME is the private one now).
+  echo 'informativeShown=true' >> "$HOME/.config/VCG/MeshLab_64bit_fp.conf"
+  "$root/scripts/install_user_plugins.sh" "$plugin_build" >/dev/null
+fi
 
 # --- helpers -----------------------------------------------------------------------------
-# pixels.py rows FILE X: y centres of the selected (blue) and current (yellow) layer rows in
-#   column X of the layer panel.  pixels.py mesh FILE X0 Y0 X1 Y1: count and bounding box of
-#   the pixels in that part of the 3D view that differ from the row's background (MeshLab's
+# pixels.py rows FILE X [Y0 Y1]: y centres of the selected (blue) and current (yellow) layer rows
+#   in column X of the layer panel (between Y0 and Y1). pixels.py eyes FILE X0 X1 Y0 Y1: y centres
+#   of the open (green) eye icons there, one per visible layer. pixels.py mesh FILE X0 Y0 X1 Y1:
+#   count and bounding box of the pixels in that part of the 3D view that differ from the row's background (MeshLab's
 #   background is a vertical gradient, constant along a row).
 cat > "$tmp/pixels.py" <<'PY'
 import subprocess, sys
@@ -117,9 +148,19 @@ cmd, path = sys.argv[1], sys.argv[2]
 w, h, data = load(path)
 if cmd == "rows":
     x = int(sys.argv[3])
-    blue = [y for y in range(90, 370) if (lambda p: p[2] > 150 and p[0] < 120 and p[2] - p[0] > 80)(px(data, w, x, y))]
-    yellow = [y for y in range(90, 370) if (lambda p: p[0] > 220 and p[1] > 220 and p[2] < 80)(px(data, w, x, y))]
+    ry0, ry1 = (int(sys.argv[4]), int(sys.argv[5])) if len(sys.argv) > 5 else (90, 370)
+    blue = [y for y in range(ry0, ry1) if (lambda p: p[2] > 150 and p[0] < 120 and p[2] - p[0] > 80)(px(data, w, x, y))]
+    yellow = [y for y in range(ry0, ry1) if (lambda p: p[0] > 220 and p[1] > 220 and p[2] < 80)(px(data, w, x, y))]
     print(centre(blue), centre(yellow))
+elif cmd == "eyes":
+    x0, x1, y0, y1 = map(int, sys.argv[3:7])
+    green = lambda p: p[1] > 180 and p[0] < 110 and p[2] < 110
+    ys = [y for y in range(y0, y1) if any(green(px(data, w, x, y)) for x in range(x0, x1))]
+    groups = []
+    for y in ys:
+        if groups and y - groups[-1][-1] <= 3: groups[-1].append(y)
+        else: groups.append([y])
+    print(" ".join(str(centre(g)) for g in groups))
 elif cmd == "mesh":
     x0, y0, x1, y1 = map(int, sys.argv[3:7])
     n, bx0, by0, bx1, by1 = 0, w, h, -1, -1
@@ -157,8 +198,8 @@ start_meshlab() {
   ml_log="$tmp/$1"; shift
   (cd "$work" && exec "$meshlab" "$@") >"$ml_log" 2>&1 &
   ml_pid=$!
-  wait_for 60 window_named '^MeshLab 2020' || die "no MeshLab window (log: $(tail -3 "$ml_log"))"
-  main_win=$(window_id '^MeshLab 2020')
+  wait_for 60 window_named "^MeshLab ${gui%.*}" || die "no MeshLab window (log: $(tail -3 "$ml_log"))"
+  main_win=$(window_id "^MeshLab ${gui%.*}")
 }
 
 # The main window 1280x900 at (0,0); retried because MeshLab resizes itself while loading.
@@ -175,9 +216,18 @@ place_main_window() {
 
 # Windows > View from > Front (Z is up) (the sample is Z-up), then hide the trackball.
 view_front_z_up() {
-  click 290 10; settle 0.7
-  click 318 213; settle 0.7
-  click 677 364; settle 0.5
+  if [ "$gui" = 2020.09 ]; then
+    click 290 10; settle 0.7
+    click 318 213; settle 0.7
+    click 677 364; settle 0.5
+  else
+    # 2025.07 by keyboard: Alt+W opens Windows, V its View from submenu; Front (Z is up) is the
+    # 7th entry. A click into the 3D view first gives the main window the keyboard.
+    click 430 400; settle 0.3
+    xdotool key alt+w; settle 0.5
+    xdotool key v; settle 0.5
+    xdotool key --repeat 6 --delay 60 Down; xdotool key Return; settle 0.5
+  fi
   wait_for 5 log_has "View scene from Front (Z is up)" || die "View from > Front (Z is up) did not apply"
   click 430 400            # focus the 3D view (a click without drag does not rotate)
   xdotool key shift+h      # View > Show Trackball off
@@ -188,6 +238,7 @@ view_front_z_up() {
 # user does: select it in the layer panel with the keyboard (Home, Down...), then Ctrl+click
 # its eye icon (MeshLab: "only that layer will remain visible").
 show_only_layer() {
+  [ "$gui" = 2020.09 ] || { show_only_layer_2025 "$@"; return; }
   local row=$1 ys sel cur
   click 990 114; settle 0.3                   # focus the layer tree (first visible row)
   xdotool key Home
@@ -208,16 +259,47 @@ show_only_layer() {
     || die "layer row $row did not become the current layer"
 }
 
+# 2025.07's layer panel: rows 31 pixels high from y 98 to 333, eye icons at x 840. The current
+# layer follows a click, not the keyboard selection, and a Ctrl+click on an eye scrolls the tree to
+# the current layer; so: select the row by keyboard, click its name, Ctrl+click its eye, then
+# check that one eye is open, in the highlighted row.
+show_only_layer_2025() {
+  local row=$1 sel cur eyes
+  click 925 114; settle 0.3                   # focus the layer tree (first visible row)
+  xdotool key Home
+  [ "$row" -gt 0 ] && xdotool key --repeat "$row" --delay 15 Down
+  settle 0.6
+  shot_root "rows_$row.png"
+  read -r sel cur < <(pixels rows "$shots/rows_$row.png" 1040 98 333)
+  [ "$sel" -gt 0 ] || die "layer row $row not found in the layer panel"
+  click 925 "$sel"; settle 0.5                # make it the current layer
+  xdotool mousemove --sync 840 "$sel"
+  xdotool keydown Control_L; sleep 0.1; xdotool click 1; sleep 0.1; xdotool keyup Control_L
+  settle 1
+  shot_root "rows_${row}_after.png"
+  read -r sel cur < <(pixels rows "$shots/rows_${row}_after.png" 1040 98 333)
+  eyes=$(pixels eyes "$shots/rows_${row}_after.png" 832 849 98 333)
+  [ "$sel" -gt 0 ] && [ -n "$eyes" ] && [ "${eyes// /}" = "$eyes" ] \
+    && [ $((eyes - sel)) -le 8 ] && [ $((sel - eyes)) -le 8 ] \
+    || die "layer row $row is not the only visible layer (highlighted row at $sel, open eyes at: $eyes)"
+}
+
 # The sample's triangles are wound clockwise (their normals point inwards), so with MeshLab's
 # default one-sided lighting they are drawn almost black. Back-Face "Double" (two-sided
 # lighting), applied to all visible layers from the layer panel, shows their shape.
 double_sided_lighting_for_visible_layers() {
-  click 1252 683; settle 0.3     # "apply to all visible layers"
-  click 1115 594; settle 1       # Back-Face: Double
+  if [ "$gui" = 2020.09 ]; then
+    click 1252 683; settle 0.3     # "apply to all visible layers"
+    click 1115 594; settle 1       # Back-Face: Double
+  else
+    click 1251 662; settle 0.3
+    click 1114 573; settle 1
+  fi
 }
 
 # 3D view region of the 1280x900 window (without the info panel at its bottom).
 GL_X0=4 GL_Y0=74 GL_X1=856 GL_Y1=770
+[ "$gui" = 2020.09 ] || { GL_X1=800; GL_Y1=775; }
 
 t_start=$SECONDS
 
@@ -230,11 +312,22 @@ wait_for 60 log_count_is "Opened mesh frame_" "${#frames[@]}" || die "frames not
 place_main_window
 settle 1
 
-click 120 10; settle 0.7            # Filters
-click 162 311; settle 1.2           # Mesh Layer (submenu opens on click)
-shot_root menu.png
-$convert "$shots/menu.png" -crop 850x810+0+0 +repage "$shots/filter_menu.png"
-click 630 386                       # Compress Animation Layers
+if [ "$gui" = 2020.09 ]; then
+  click 120 10; settle 0.7            # Filters
+  click 162 311; settle 1.2           # Mesh Layer (submenu opens on click)
+  shot_root menu.png
+  $convert "$shots/menu.png" -crop 850x810+0+0 +repage "$shots/filter_menu.png"
+  click 630 386                       # Compress Animation Layers
+else
+  # 2025.07's submenus do not open on a click: Mesh Layer is the 11th enabled entry of Filters,
+  # Right opens it and Return runs its first entry, ours (the only Mesh Layer filter built here;
+  # if it were not first, the dialog check below stops the script).
+  click 120 10; settle 0.7
+  xdotool key --repeat 11 --delay 60 Down; xdotool key Right; settle 1.2
+  shot_root menu.png
+  $convert "$shots/menu.png" -crop 850x560+0+0 +repage "$shots/filter_menu.png"
+  xdotool key Return
+fi
 wait_for 10 window_named '^Compress Animation Layers$' || die "filter dialog did not open"
 dialog=$(window_id '^Compress Animation Layers$')
 settle 1
@@ -243,7 +336,7 @@ geom=$(xdotool getwindowgeometry "$dialog" | awk '/Geometry/{print $2}')
 dw=${geom%x*} dh=${geom#*x}
 say "filter dialog ${dw}x${dh}; applying"
 xdotool mousemove --sync --window "$dialog" $((dw * 74 / 100)) $((dh - 23)) click 1   # Apply
-wait_for 120 log_has "Applied filter Compress Animation Layers" \
+wait_for 120 log_has "Applied filter:\? Compress Animation Layers" \
   || die "filter did not finish: $(grep -v '^LOG: 0 \(Opened\|All files\)' "$ml_log" | tail -5)"
 wait_for 10 log_has "added ${#frames[@]} reconstructed layers" || die "no reconstructed layers in the log"
 [ -s "$work/animation.ams" ] || die "$work/animation.ams was not written"
@@ -328,6 +421,6 @@ mkdir -p "$out"
 for f in filter_menu compress_dialog original_vs_reconstructed open_ams; do
   $convert "$shots/$f.png" -strip -define png:compression-level=9 "$out/.$f.png.tmp"
   mv "$out/.$f.png.tmp" "$out/$f.png"
-  say "wrote docs/img/$f.png ($(stat -c %s "$out/$f.png") bytes)"
+  say "wrote ${out#$root/}/$f.png ($(stat -c %s "$out/$f.png") bytes)"
 done
 say "done in $((SECONDS - t_start)) s"
