@@ -16,6 +16,7 @@
 #include "core/temp_registry.h"
 #include "metrics/compare_sequences.h"
 #include "report/report.h"
+#include "seqio/byte_input.h"
 #include "seqio/sequence_io.h"
 
 namespace animc::cli {
@@ -36,18 +37,6 @@ Result<double> timeDecode(const std::function<Result<Decoder>()>& open) {
   std::vector<float> xyz(3 * size_t(decoder.info().vertices));
   for (int64_t k = 0; k < decoder.info().frames; ++k) ANIMC_RETURN_IF_ERROR(decoder.frame(k, xyz.data()));
   return std::chrono::duration<double>(Clock::now() - t0).count();
-}
-
-Result<std::vector<uint8_t>> readWholeFile(const std::string& path) {
-  std::FILE* f = std::fopen(path.c_str(), "rb");
-  if (!f) return ioError(path + ": cannot open");
-  std::vector<uint8_t> bytes;
-  uint8_t block[1 << 16];
-  for (size_t n; (n = std::fread(block, 1, sizeof block, f)) > 0;) bytes.insert(bytes.end(), block, block + n);
-  const bool failed = std::ferror(f);
-  std::fclose(f);
-  if (failed) return ioError(path + ": read failed");
-  return bytes;
 }
 
 // Decoding of an existing .ams, R times from the file and R times from memory, alternating:

@@ -23,7 +23,8 @@ class ByteInput {
 // Opens `path`; names ending in ".xz" (any case) are decompressed while reading.
 Result<std::unique_ptr<ByteInput>> openByteInput(const std::string& path);
 
-// Reads a whole (uncompressed) file; for single meshes and list files only.
+// Reads a whole (uncompressed) file: single meshes, list files, and the .ams that `animc bench`
+// decodes from memory.
 Result<std::vector<uint8_t>> readWholeFile(const std::string& path);
 
 // Case-insensitive "does name end with suffix".
