@@ -234,17 +234,23 @@ view_front_z_up() {
   settle 1
 }
 
+# select_row_by_keyboard ROW X: focuses the layer tree (a click at X on its first visible row),
+# moves the keyboard selection to row ROW and takes the screenshot rows_ROW.png of the result.
+select_row_by_keyboard() {
+  click "$2" 114; settle 0.3
+  xdotool key Home
+  [ "$1" -gt 0 ] && xdotool key --repeat "$1" --delay 15 Down
+  settle 0.6
+  shot_root "rows_$1.png"
+}
+
 # show_only_layer ROW: makes layer ROW (0-based, document order) the only visible one, as a
 # user does: select it in the layer panel with the keyboard (Home, Down...), then Ctrl+click
 # its eye icon (MeshLab: "only that layer will remain visible").
 show_only_layer() {
   [ "$gui" = 2020.09 ] || { show_only_layer_2025 "$@"; return; }
   local row=$1 ys sel cur
-  click 990 114; settle 0.3                   # focus the layer tree (first visible row)
-  xdotool key Home
-  [ "$row" -gt 0 ] && xdotool key --repeat "$row" --delay 15 Down
-  settle 0.6
-  shot_root "rows_$row.png"
+  select_row_by_keyboard "$row" 990
   read -r sel cur < <(pixels rows "$shots/rows_$row.png" 1220)
   [ "$sel" -gt 0 ] || die "layer row $row not found in the layer panel"
   xdotool mousemove --sync 898 "$sel"
@@ -265,11 +271,7 @@ show_only_layer() {
 # check that one eye is open, in the highlighted row.
 show_only_layer_2025() {
   local row=$1 sel cur eyes
-  click 925 114; settle 0.3                   # focus the layer tree (first visible row)
-  xdotool key Home
-  [ "$row" -gt 0 ] && xdotool key --repeat "$row" --delay 15 Down
-  settle 0.6
-  shot_root "rows_$row.png"
+  select_row_by_keyboard "$row" 925
   read -r sel cur < <(pixels rows "$shots/rows_$row.png" 1040 98 333)
   [ "$sel" -gt 0 ] || die "layer row $row not found in the layer panel"
   click 925 "$sel"; settle 0.5                # make it the current layer
