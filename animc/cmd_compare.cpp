@@ -30,19 +30,22 @@ int runCompare(const std::vector<std::string>& argv) {
     recon = std::move(r).value();
   }
   FrameSource& other = ams ? static_cast<FrameSource&>(*ams) : *recon;
+  StedFigures sted;
   auto metrics = compareSequences(*original.value(), other, {},
-                                  args.has("per-frame") ? PerFrameErrors::kKeep : PerFrameErrors::kDrop);
+                                  args.has("per-frame") ? PerFrameErrors::kKeep : PerFrameErrors::kDrop, &sted);
   if (!metrics.ok()) return fail(metrics.status());
   const SequenceMetrics& m = metrics.value();
   if (args.has("json")) {
     JsonObject o = newReport();
     if (ams) addSizes(o, ams->info().file_bytes, ams->info().static_bytes, m.vertices, m.frames);
     addMetrics(o, m, args.has("per-frame"));
+    addSted(o, sted);
     std::printf("%s\n", o.str().c_str());
     return 0;
   }
   if (ams) std::fputs(formatSizeText(ams->info().file_bytes, ams->info().static_bytes, m.vertices, m.frames).c_str(), stdout);
   std::fputs(formatMetricsText(m).c_str(), stdout);
+  std::fputs(formatStedText(sted).c_str(), stdout);
   return 0;
 }
 

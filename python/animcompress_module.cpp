@@ -144,7 +144,7 @@ py::dict metricsDict(const SequenceMetrics& m) {
   return d;
 }
 
-py::dict compare(py::handle original, py::handle reconstructed) {
+py::dict compare(py::handle original, py::handle reconstructed, py::handle faces) {
   const FloatArray a = framesArray(original, "original");
   const FloatArray b = framesArray(reconstructed, "reconstructed");
   if (a.shape(0) != b.shape(0) || a.shape(1) != b.shape(1))
@@ -153,7 +153,16 @@ py::dict compare(py::handle original, py::handle reconstructed) {
   const size_t stride = 3 * size_t(vertex_count);
   MetricsAccumulator metrics(vertex_count, PerFrameErrors::kKeep);
   for (py::ssize_t f = 0; f < a.shape(0); ++f) metrics.addFrame(a.data() + f * stride, b.data() + f * stride);
-  return metricsDict(metrics.finish());
+  py::dict figures = metricsDict(metrics.finish());
+  if (faces.is_none()) return figures;
+  const std::vector<uint32_t> triangles = triangleIndices(faces);
+  StedAccumulator sted(vertex_count, triangles.data(), triangles.size() / 3);
+  for (py::ssize_t f = 0; f < a.shape(0); ++f) sted.addFrame(a.data() + f * stride, b.data() + f * stride);
+  const StedFigures s = sted.finish();
+  figures["sted"] = s.sted;
+  figures["sted_spatial"] = s.spatial;
+  figures["sted_temporal"] = s.temporal;
+  return figures;
 }
 
 }  // namespace
@@ -170,7 +179,8 @@ PYBIND11_MODULE(animcompress, module) {
              py::arg("iframe_interval") = 0, py::arg("frame_rate") = 25.0,
              "The .ams bytes of frames (F, N, 3) over faces (T, 3); keyword options are the codec's "
              "(max_error=0.01 is animc encode's --max-error 0.01; True sets a switch).");
-  module.def("compare", &compare, py::arg("original"), py::arg("reconstructed"),
-             "The error figures (KG, PSNR, max and RMS errors, per frame) of a reconstruction, as animc compare.");
+  module.def("compare", &compare, py::arg("original"), py::arg("reconstructed"), py::arg("faces") = py::none(),
+             "The error figures (KG, PSNR, max and RMS errors, per frame) of a reconstruction, as animc compare; "
+             "with faces (T, 3), STED too (sted, sted_spatial, sted_temporal).");
   bindDecoder(module);
 }

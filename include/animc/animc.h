@@ -6,6 +6,7 @@
 //   Encoder: frames in, an .ams stream out to a file or to memory (or any ByteSink).
 //   Decoder: an .ams stream from a file or from memory, frame k out, in any order.
 //   MetricsAccumulator: the error figures (KG, PSNR, max error) of a reconstruction.
+//   StedAccumulator: its perceptual figure (STED).
 //
 // Errors: nothing here throws (except std::bad_alloc when memory runs out, and value() of a
 // Result that holds an error); every fallible call returns a Status or a Result<T>, whose
@@ -326,6 +327,40 @@ class ANIMC_API MetricsAccumulator {
   std::array<double, 3> sequence_max_;
   PerFrameErrors keep_;
   std::vector<FrameError> per_frame_;
+};
+
+// STED, the spatio-temporal edge difference of Vasa and Skala (IEEE TVCG 17(2), 2011): how
+// much a reconstruction distorts the mesh's local shape (relative edge lengths) and its motion
+// (lengths of the edges joining a vertex's positions in consecutive frames). Definitions and
+// the neighbourhood used here in docs/metrics.md.
+struct StedOptions {
+  int rings = 1;             // neighbourhood of a vertex: its edges within this many rings (1-3)
+  double time_step = 0.01;   // one frame's temporal edge length, times frame 0's bbox diagonal
+  double temporal_weight = 1;  // c in STED = sqrt(spatial^2 + c^2 temporal^2)
+};
+
+struct StedFigures {
+  double spatial = 0;   // mean over frames and vertices of the local deviation of edge change
+  double temporal = 0;  // mean over vertices and frame pairs of the relative temporal edge change
+  double sted = 0;      // sqrt(spatial^2 + (temporal_weight * temporal)^2)
+};
+
+// Streams frames like MetricsAccumulator; memory O(vertices + edges in the neighbourhoods),
+// never O(frames). Triangles with an index >= vertex_count are ignored.
+class ANIMC_API StedAccumulator {
+ public:
+  StedAccumulator(uint32_t vertex_count, const uint32_t* triangles, size_t triangle_count,
+                  const StedOptions& options = {});
+  ~StedAccumulator();
+  StedAccumulator(StedAccumulator&&) noexcept;
+  StedAccumulator& operator=(StedAccumulator&&) noexcept;
+  // original and reconstructed: 3 * vertex_count floats each.
+  void addFrame(const float* original, const float* reconstructed);
+  StedFigures finish() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
 };
 
 struct SizeFigures {

@@ -4,6 +4,7 @@
 ctest (python_module) sets PYTHONPATH to the built module, ANIMC_CLI to the animc executable
 and ANIMC_TEST_DATA to tests/data."""
 import importlib.util
+import json
 import os
 import pathlib
 import subprocess
@@ -94,6 +95,23 @@ def test_affine_octree_round_trip_stays_within_the_bound(sequence):
     assert m['per_frame']['rms'].shape == m['per_frame']['max'].shape == (len(frames),)
     assert m['per_frame']['max'].max() == pytest.approx(m['max_error'])
     assert len(data) < sequence['frames'].nbytes / 5  # it did compress
+
+
+def test_compare_with_faces_gives_animc_compares_sted(sequence, cli, tmp_path):
+    data = animcompress.encode(sequence['frames'], sequence['faces'], max_error=0.01)
+    decoded = animcompress.decode(data)[0]
+    assert 'sted' not in animcompress.compare(sequence['frames'], decoded)
+    m = animcompress.compare(sequence['frames'], decoded, faces=sequence['faces'])
+    (tmp_path / 'x.ams').write_bytes(data)
+    folder = sequence['folder']
+    out = subprocess.run([cli, 'compare', str(folder / f'{SEQUENCE}.pc2.xz'), str(tmp_path / 'x.ams'),
+                          '--mesh', str(folder / f'{SEQUENCE}.ply'), '--json'],
+                         check=True, capture_output=True, text=True).stdout
+    expected = json.loads(out)
+    assert m['sted'] > 0 and m['sted_spatial'] > 0 and m['sted_temporal'] > 0
+    for key in ('sted', 'sted_spatial', 'sted_temporal'):
+        assert m[key] == pytest.approx(expected[key], rel=1e-9)
+    assert animcompress.compare(sequence['frames'], sequence['frames'], faces=sequence['faces'])['sted'] == 0
 
 
 def test_wavelet_target_kg_bounds_the_sequence_error(sequence):

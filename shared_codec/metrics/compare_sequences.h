@@ -13,8 +13,10 @@ namespace animc {
 // or frame counts differ, and with the sources' own status when a frame cannot be read.
 // progress, when given, is called after each frame with the percent of original.frameCount()
 // done (when that count is known) and "measuring errors"; false from it ends with kCancelled.
+// sted, when given, receives STED over the original's triangles with the default StedOptions.
 Result<SequenceMetrics> compareSequences(FrameSource& original, FrameSource& reconstructed,
                                          const ProgressFn& progress = {},
-                                         PerFrameErrors per_frame = PerFrameErrors::kKeep);
+                                         PerFrameErrors per_frame = PerFrameErrors::kKeep,
+                                         StedFigures* sted = nullptr);
 
 }  // namespace animc

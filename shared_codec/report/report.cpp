@@ -48,6 +48,11 @@ std::string formatMetricsText(const SequenceMetrics& m) {
   return out;
 }
 
+std::string formatStedText(const StedFigures& f) {
+  return "sted: " + formatDouble(f.sted, kTextDigits) + " (spatial " + formatDouble(f.spatial, kTextDigits) +
+         ", temporal " + formatDouble(f.temporal, kTextDigits) + ")\n";
+}
+
 double encodeMvps(const EncodeSummary& report) {
   if (!(report.encode_seconds > 0)) return 0;
   return double(report.vertices) * double(report.frames) / report.encode_seconds / 1e6;
@@ -109,6 +114,12 @@ void addMetrics(JsonObject& o, const SequenceMetrics& m, bool per_frame) {
   }
   o.add("per_frame_rms", rms);
   o.add("per_frame_max", max);
+}
+
+void addSted(JsonObject& o, const StedFigures& f) {
+  o.add("sted", f.sted);
+  o.add("sted_spatial", f.spatial);
+  o.add("sted_temporal", f.temporal);
 }
 
 }  // namespace animc

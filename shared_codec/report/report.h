@@ -24,6 +24,9 @@ std::string formatSizeText(uint64_t file_bytes, uint64_t static_bytes, uint32_t 
 // values are not listed.
 std::string formatMetricsText(const SequenceMetrics& m);
 
+// "sted: X (spatial S, temporal T)", the StedOptions used said in docs/metrics.md.
+std::string formatStedText(const StedFigures& f);
+
 // Millions of vertex positions encoded per second. 0 when the encode took no measurable time:
 // a speed computed from a zero (or clamped) time would be meaningless.
 double encodeMvps(const EncodeSummary& report);
@@ -50,5 +53,7 @@ void addSizes(JsonObject& o, uint64_t file_bytes, uint64_t static_bytes, uint32_
 // rms_error, rms_error_rel_diag, bbox_diagonal and, with per_frame, the arrays per_frame_rms
 // and per_frame_max. inf and NaN are written as null.
 void addMetrics(JsonObject& o, const SequenceMetrics& m, bool per_frame);
+// sted, sted_spatial, sted_temporal.
+void addSted(JsonObject& o, const StedFigures& f);
 
 }  // namespace animc
