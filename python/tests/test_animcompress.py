@@ -21,29 +21,17 @@ DATA = pathlib.Path(os.environ.get('ANIMC_TEST_DATA', ROOT / 'tests' / 'data'))
 SEQUENCE = 'sydney_md2'  # 342 vertices x 198 frames: real motion, and quick
 
 
-def load_pc2_module():
-    """bench/pc2.py, the project's one PC2 reader, imported by path (bench is no package)."""
-    spec = importlib.util.spec_from_file_location('pc2', ROOT / 'bench' / 'pc2.py')
+def load_bench_module(name):
+    """bench/NAME.py (pc2: the project's one PC2 reader, ply: its PLY one), imported by path
+    (bench is no package)."""
+    spec = importlib.util.spec_from_file_location(name, ROOT / 'bench' / f'{name}.py')
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
     return module
 
 
-pc2 = load_pc2_module()
-
-
-def read_ply_faces(path):
-    """The triangles of a binary little-endian PLY with float x y z vertices and
-    'list uchar int' faces, the layout of the tests/data meshes."""
-    raw = path.read_bytes()
-    end = raw.index(b'end_header\n') + len(b'end_header\n')
-    header = raw[:end].decode('ascii').splitlines()
-    assert 'format binary_little_endian 1.0' in header, f'{path}: not the expected PLY layout'
-    counts = {line.split()[1]: int(line.split()[2]) for line in header if line.startswith('element')}
-    body = raw[end + counts['vertex'] * 12:]
-    faces = np.frombuffer(body, dtype=[('n', 'u1'), ('v', '<i4', (3,))], count=counts['face'])
-    assert (faces['n'] == 3).all(), f'{path}: not all faces are triangles'
-    return faces['v'].astype(np.uint32)
+pc2 = load_bench_module('pc2')
+ply = load_bench_module('ply')
 
 
 @pytest.fixture(scope='module')
@@ -52,7 +40,7 @@ def sequence():
     if not folder.is_dir():
         pytest.skip(f'no {SEQUENCE} in {DATA} (the folder searched; set ANIMC_TEST_DATA)')
     frames, _header = pc2.read_pc2(str(folder / f'{SEQUENCE}.pc2.xz'))
-    faces = read_ply_faces(folder / f'{SEQUENCE}.ply')
+    faces = ply.read_ply_faces(folder / f'{SEQUENCE}.ply')
     return {'frames': np.ascontiguousarray(frames), 'faces': faces, 'folder': folder}
 
 
