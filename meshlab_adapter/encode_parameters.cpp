@@ -52,12 +52,12 @@ void addEncodeParameters(RichParameterList& par) {
 
 namespace {
 
-// A float MeshLab (every 2020.09 build, the float 2022+ builds) keeps 0.3 as 0.30000001. The
-// decimal the user typed (7 significant digits) is what animc would get from the same text, so
-// both write the same file. A double build keeps what was typed: rounding would lose digits.
+// A float MeshLab (every 2020.09 build, the float 2022+ builds) keeps 0.3 as 0.30000001, and
+// every MeshLab, double builds included, reads a script's values as floats (RichFloat from XML
+// goes through QString::toFloat). The decimal the user typed (7 significant digits) is what
+// animc would get from the same text, so both write the same file in every build.
 double typedValue(const RichParameterList& par, const QString& name) {
   const double value = double(par.getFloat(name));
-  if (sizeof(Scalarm) > sizeof(float)) return value;
   return QString::number(value, 'g', 7).toDouble();
 }
 

@@ -9,18 +9,20 @@ bash scripts/setup.sh
 bash scripts/build.sh
 (cd build && ctest --output-on-failure -j"$(nproc)" --timeout 900)
 
-# The plugins for MeshLab 2025.07 (float), against the SDK setup.sh built, and their end-to-end
-# tests through mlxrun (MeshLab 2022+ has no meshlabserver).
-cmake -S . -B build-meshlab2025 -DCMAKE_BUILD_TYPE=Release -DANIMC_MESHLAB=2025.07 -DANIMC_BUILD_PYTHON=OFF \
-  -DANIMC_BUILD_TESTS=ON >/dev/null
-cmake --build build-meshlab2025 -j"$(nproc)" --target animc filter_animcompress io_animstream mlxrun
-(cd build-meshlab2025 && ctest --output-on-failure -R meshlab --timeout 900)
-# The same for MeshLab 2022.02 (Debian 13, Ubuntu 24.04). Both build only what those tests
-# run: the library and its unit tests were built and run above.
-cmake -S . -B build-meshlab2022 -DCMAKE_BUILD_TYPE=Release -DANIMC_MESHLAB=2022.02 -DANIMC_BUILD_PYTHON=OFF \
-  -DANIMC_BUILD_TESTS=ON >/dev/null
-cmake --build build-meshlab2022 -j"$(nproc)" --target animc filter_animcompress io_animstream mlxrun
-(cd build-meshlab2022 && ctest --output-on-failure -R meshlab --timeout 900)
+# The plugins for MeshLab 2025.07 (float), 2022.02 (Debian 13, Ubuntu 24.04) and 2025.07 built
+# with double (PyMeshLab's scalar, meshlab.net's "d" builds), against the SDKs setup.sh built,
+# and their end-to-end tests through mlxrun (MeshLab 2022+ has no meshlabserver). Each builds
+# only what those tests run: the library and its unit tests were built and run above.
+meshlab_end_to_end() {  # BUILD_DIR, then cmake options
+  local dir=$1
+  shift
+  cmake -S . -B "$dir" -DCMAKE_BUILD_TYPE=Release -DANIMC_BUILD_PYTHON=OFF -DANIMC_BUILD_TESTS=ON "$@" >/dev/null
+  cmake --build "$dir" -j"$(nproc)" --target animc filter_animcompress io_animstream mlxrun compress_failure_host
+  (cd "$dir" && ctest --output-on-failure -R meshlab --timeout 900)
+}
+meshlab_end_to_end build-meshlab2025 -DANIMC_MESHLAB=2025.07
+meshlab_end_to_end build-meshlab2022 -DANIMC_MESHLAB=2022.02
+meshlab_end_to_end build-meshlab2025d -DANIMC_MESHLAB=2025.07 -DANIMC_MESHLAB_SCALAR=double
 
 # The portable build (no AVX2 kernels, what other CPUs run): its unit tests, and the golden
 # files, which an AVX2 build wrote, so both builds must write and decode the same bytes.

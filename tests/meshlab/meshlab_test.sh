@@ -224,8 +224,7 @@ PYEOF
   bad_case infinite "layer 1 ('infinite.ply'): $infinite" "${FRAMES[0]}" "$TMP/infinite.ply"
   bad_case nan "layer 1 ('nan.ply')" "${FRAMES[0]}" "$TMP/nan.ply"
   bad_case no_faces "empty mesh (0 triangles)" "$TMP/points.ply" "$TMP/points.ply"
-  # The host is built on the 2020.09 interface only.
-  [[ $API != 2020 ]] || failed_compress_leaves_originals
+  failed_compress_leaves_originals
 }
 
 # Compress Animation Layers colouring the originals (no reconstructed layers) fails on a NaN
@@ -234,8 +233,12 @@ PYEOF
 # so a small host (compress_failure_host.cpp, built beside the plugins) runs the staged plugin
 # and lists the layers after the failure.
 failed_compress_leaves_originals() {
-  local host=${ANIMC_FAILURE_HOST:-$(dirname "$ANIMC_STAGE")/tests/meshlab/compress_failure_host}
-  local plugin=$ANIMC_STAGE/lib/x86_64-linux-gnu/meshlab/plugins/libfilter_animcompress.so
+  local build=$ANIMC_STAGE plugin=$ANIMC_STAGE/plugins/libfilter_animcompress.so  # 2022+: the build
+  if [[ $API == 2020 ]]; then
+    build=$(dirname "$ANIMC_STAGE")
+    plugin=$ANIMC_STAGE/lib/x86_64-linux-gnu/meshlab/plugins/libfilter_animcompress.so
+  fi
+  local host=${ANIMC_FAILURE_HOST:-$build/tests/meshlab/compress_failure_host}
   local name=failed_compress last=$((N - 1))
   RC=0
   "$host" "$plugin" "$TMP/failed.ams" "${FRAMES[@]}" >"$name.log" 2>&1 || RC=$?
