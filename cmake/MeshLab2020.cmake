@@ -4,7 +4,7 @@
 # scripts/setup.sh into a cache outside the tree. Library: the packaged libmeshlab-common.so.
 # The compile settings below are ABI: a plugin built otherwise loads, then crashes meshlabserver.
 
-set(MESHLAB_SDK_DIR "/var/cache/animcompress/meshlab-2020.09" CACHE PATH
+set(MESHLAB_SDK_DIR "${animc_cache_dir}/meshlab-2020.09" CACHE PATH
     "MeshLab 2020.09 source tree holding src/common and vcglib (scripts/fetch_meshlab_sdk.sh)")
 set(MESHLAB_LIB_DIR "/usr/lib/x86_64-linux-gnu/meshlab" CACHE PATH
     "directory of Debian's libmeshlab-common.so and plugins/")

@@ -8,7 +8,7 @@
 set(ANIMC_MESHLAB_SCALAR "float" CACHE STRING
     "MeshLab's scalar: float (Debian, Flathub, meshlab.net) or double (PyMeshLab, meshlab.net's 'd' builds)")
 set_property(CACHE ANIMC_MESHLAB_SCALAR PROPERTY STRINGS float double)
-set(MESHLAB_SDK_DIR "/var/cache/animcompress/meshlab-${ANIMC_MESHLAB}-${ANIMC_MESHLAB_SCALAR}" CACHE PATH
+set(MESHLAB_SDK_DIR "${animc_cache_dir}/meshlab-${ANIMC_MESHLAB}-${ANIMC_MESHLAB_SCALAR}" CACHE PATH
     "MeshLab ${ANIMC_MESHLAB} SDK built by scripts/fetch_meshlab_2022plus.sh")
 set(MESHLAB_LIB_DIR "${MESHLAB_SDK_DIR}/distrib" CACHE PATH "directory of the SDK's libmeshlab-common.so and plugins/")
 

@@ -8,6 +8,11 @@
 
 set(ANIMC_MESHLAB "2020.09" CACHE STRING "MeshLab release the plugins are built for: 2020.09, 2022.02 or 2025.07")
 set_property(CACHE ANIMC_MESHLAB PROPERTY STRINGS 2020.09 2022.02 2025.07)
+# Where scripts/setup.sh put the MeshLab SDKs: its ANIMC_CACHE_DIR, by default /var/cache/animcompress.
+set(animc_cache_dir "$ENV{ANIMC_CACHE_DIR}")
+if(animc_cache_dir STREQUAL "")
+  set(animc_cache_dir /var/cache/animcompress)
+endif()
 
 if(ANIMC_MESHLAB STREQUAL "2020.09")
   include(${CMAKE_CURRENT_LIST_DIR}/MeshLab2020.cmake)

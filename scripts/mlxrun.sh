@@ -10,7 +10,7 @@ set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 program=${ANIMC_MLXRUN:-$root/build-meshlab2025/bin/mlxrun}
 [ -x "$program" ] || { echo "mlxrun.sh: $program missing; build with -DANIMC_MESHLAB=2025.07" >&2; exit 2; }
-export MLXRUN_PLUGIN_PATH=${MLXRUN_PLUGIN_PATH:-$(dirname "$(dirname "$program")")/plugins:/var/cache/animcompress/meshlab-2025.07-float/distrib/plugins}
+export MLXRUN_PLUGIN_PATH=${MLXRUN_PLUGIN_PATH:-$(dirname "$(dirname "$program")")/plugins:${ANIMC_CACHE_DIR:-/var/cache/animcompress}/meshlab-2025.07-float/distrib/plugins}
 
 source "$root/scripts/host_setup.sh"
 use_private_meshlab_home "${ANIMC_MESHLAB_HOME:-$(dirname "$(dirname "$program")")/meshlab-home}"
