@@ -1,0 +1,249 @@
+#!/usr/bin/python3
+# SPDX-License-Identifier: Apache-2.0
+"""Design measurement for codec 3 (issue 27): how many bits trajectory coding over frame groups
+needs at a KG error, before any of it is written in C++.
+
+Each group of G frames is coded on its own (random access stays). Per group, every vertex's
+trajectory (its G positions) goes through an orthonormal temporal transform:
+  dct     the DCT-II of each coordinate's G values (fixed basis, nothing to send);
+  pca     the principal components of the 3G-long trajectories (CoDDyaC's trajectory space);
+  pca-xyz one G-long basis shared by x, y and z (3V series).
+For the pca kinds the mean trajectory (32-bit floats) and the basis vectors that carry a
+non-zero coefficient are sent, each vector quantised with a step matched to its importance and
+coded as differences along time (basis_cost).
+Coefficients are quantised with one step q (orthonormal transforms keep the squared error, so
+one step is what minimises the error for the bits), the integers predicted from the vertex's
+already-coded neighbours (breadth-first order, rounded mean), and the residuals' cost taken as
+an adaptive arithmetic coder's: an Elias-gamma bucket with adaptive counts per component band,
+raw bits inside the bucket, one sign bit. q is bisected until the sequence's KG error meets the
+target. The estimate is for the motion only; the whole-file figure adds the header and
+connectivity bytes an .ams of the sequence has.
+
+Against it: our codecs at the same KG, from `animc encode --json` (affine-octree max-error sweep,
+log-log interpolated; wavelet --target-kg).
+
+  usage: bench/experiments/trajectory_coding.py ANIMC DATA_DIR [--groups 32,64] [--kinds pca,dct]
+         [--basis-factor F] [--no-prediction]
+"""
+import argparse
+import json
+import math
+import os
+import subprocess
+import sys
+import tempfile
+from collections import deque
+
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+import pc2  # noqa: E402
+import ply  # noqa: E402
+from bench_common import find_sequences, loglog_interp  # noqa: E402
+
+TARGETS = (0.3, 1.0)
+# Variants measured against the design (command-line flags): the basis step's factor on
+# q / sigma_k, and whether coefficients are predicted from neighbours at all.
+VARIANT = {'basis_factor': 1.0, 'prediction': True}
+
+
+def dct_matrix(n):
+    k = np.arange(n)[:, None]
+    m = np.cos(np.pi * (np.arange(n)[None, :] + 0.5) * k / n) * math.sqrt(2 / n)
+    m[0] /= math.sqrt(2)
+    return m
+
+
+def coded_order_predictor(vertex_count, faces):
+    """The breadth-first coding order and, per vertex, its neighbours coded before it."""
+    neighbours = [set() for _ in range(vertex_count)]
+    for a, b, c in faces:
+        neighbours[a] |= {b, c}
+        neighbours[b] |= {a, c}
+        neighbours[c] |= {a, b}
+    position = np.full(vertex_count, -1)
+    order = []
+    for root in range(vertex_count):
+        if position[root] >= 0:
+            continue
+        position[root] = len(order)
+        queue = deque([root])
+        while queue:
+            v = queue.popleft()
+            order.append(v)
+            for w in sorted(neighbours[v]):
+                if position[w] < 0:
+                    position[w] = len(order) + len(queue)
+                    queue.append(w)
+    rows, cols, vals = [], [], []
+    for v in range(vertex_count):
+        earlier = [w for w in neighbours[v] if position[w] < position[v]]
+        for w in earlier:
+            rows.append(v)
+            cols.append(w)
+            vals.append(1.0 / len(earlier))
+    return np.array(order), (np.array(rows, dtype=int), np.array(cols, dtype=int), np.array(vals))
+
+
+def predict(predictor, values):
+    """The rounded mean of each vertex's earlier neighbours' integers (0 without any)."""
+    rows, cols, vals = predictor
+    out = np.zeros_like(values, dtype=float)
+    np.add.at(out, rows, vals[:, None] * values[cols])
+    return np.rint(out).astype(np.int64)
+
+
+def adaptive_bits(symbols, alphabet):
+    """Bits an adaptive frequency model (counts start at 0.5, Krichevsky-Trofimov) spends on the
+    symbols: the product of its probabilities does not depend on their order, so it has the
+    closed form log2 of Gamma(n + M/2) / Gamma(M/2) / prod Gamma(n_s + 1/2) / Gamma(1/2)."""
+    n = len(symbols)
+    if n == 0:
+        return 0.0
+    counts = np.bincount(symbols, minlength=alphabet)
+    nats = math.lgamma(n + alphabet / 2) - math.lgamma(alphabet / 2)
+    nats -= sum(math.lgamma(c + 0.5) - math.lgamma(0.5) for c in counts if c)
+    return nats / math.log(2)
+
+
+def residual_bits(residuals):
+    """residuals: (vertices in coding order, components). One context per component band."""
+    bits = 0.0
+    magnitude = np.abs(residuals)
+    bucket = np.where(magnitude > 0, np.floor(np.log2(np.maximum(magnitude, 1))).astype(int) + 1, 0)
+    bits += float((np.maximum(bucket - 1, 0)).sum() + (magnitude > 0).sum())  # mantissa + sign
+    components = residuals.shape[1]
+    band = lambda k: min(int(math.log2(k + 1)), 7)  # noqa: E731
+    for b in sorted({band(k) for k in range(components)}):
+        columns = [k for k in range(components) if band(k) == b]
+        bits += adaptive_bits(bucket[:, columns].T.reshape(-1), 48)
+    return bits
+
+
+def transform(group, kind):
+    """(mean, basis (components, length), coefficients (rows, components), whether the basis is
+    fixed): rows are vertex-coordinates (dct, pca-xyz: length G) or vertices (pca: length 3G)."""
+    g, v, _ = group.shape
+    if kind == 'dct':
+        rows = group.transpose(1, 2, 0).reshape(3 * v, g)
+        basis = dct_matrix(g)
+        return np.zeros(g), basis, rows @ basis.T, True
+    if kind == 'pca':
+        rows = group.transpose(1, 2, 0).reshape(v, 3 * g)
+    elif kind == 'pca-xyz':
+        rows = group.transpose(1, 2, 0).reshape(3 * v, g)
+    else:
+        raise ValueError(kind)
+    mean = rows.mean(axis=0)
+    _, _, basis = np.linalg.svd(rows - mean, full_matrices=False)
+    return mean, basis, (rows - mean) @ basis.T, False
+
+
+def basis_cost(basis, singular, q, used, segments):
+    """(bits, quantised basis) of the used basis vectors. Vector k gets the step q / sigma_k (an
+    error d in it moves every vertex by its coefficient times d: sigma_k spreads that over the
+    group as the coefficients' own step q would), and its values are coded as differences along
+    time within each of its segments (x, y, z of a trajectory), which are smooth."""
+    quantised = np.zeros_like(basis)
+    bits = 0.0
+    for k in used:
+        step = VARIANT['basis_factor'] * q / max(singular[k], 1e-300)
+        ints = np.rint(basis[k] / step).astype(np.int64)
+        quantised[k] = ints * step
+        deltas = np.concatenate([np.diff(seg, prepend=0) for seg in np.split(ints, segments)])
+        bits += 16 + residual_bits(deltas[:, None])  # the step's exponent, then the values
+    return bits, quantised
+
+
+def code(frames, groups, kind, predictor, order, q):
+    """(bits, squared error) of the whole sequence at step q."""
+    bits, sq = 0.0, 0.0
+    for group, (mean, basis, coefficients, fixed) in groups:
+        g, v, _ = group.shape
+        cq = np.rint(coefficients / q).astype(np.int64)
+        used = np.flatnonzero(np.abs(cq).sum(axis=0) > 0)
+        quantised = basis
+        if not fixed:
+            b, quantised = basis_cost(basis, np.linalg.norm(coefficients, axis=0), q, used,
+                                      3 if kind == 'pca' else 1)
+            bits += b + 32 * mean.size
+        rows = mean + (cq * q) @ quantised
+        original = group.transpose(1, 2, 0).reshape(rows.shape)
+        sq += float(((rows - original) ** 2).sum())
+        # A vertex's coefficients side by side, component by component (x y z of each for the
+        # kinds with one row per coordinate), so that the context bands follow the component.
+        per_vertex = cq.reshape(v, -1, cq.shape[1]).transpose(0, 2, 1).reshape(v, -1)
+        residual = per_vertex - predict(predictor, per_vertex) if VARIANT['prediction'] else per_vertex
+        bits += residual_bits(residual[order])
+    return bits, sq
+
+
+def at_target(frames, groups, kind, predictor, order, target):
+    denominator = float(((frames - frames.mean(axis=1, keepdims=True)) ** 2).sum())
+    scale = math.log2(float(np.ptp(frames, axis=(0, 1)).max()))
+    lo, hi = scale - 24, scale  # log2 of q
+    best = None
+    for _ in range(20):
+        mid = (lo + hi) / 2
+        bits, sq = code(frames, groups, kind, predictor, order, 2 ** mid)
+        kg = 100 * math.sqrt(sq / denominator)
+        if kg <= target:
+            best, lo = (bits, kg), mid
+        else:
+            hi = mid
+    return best
+
+
+def our_codecs(animc, pc2_path, ply_path, targets):
+    """{target: (affine-octree bpvf interpolated, wavelet bpvf)} and the static bytes."""
+    points, static, wavelet = [], None, {}
+    with tempfile.TemporaryDirectory() as tmp:
+        out = os.path.join(tmp, 'x.ams')
+        for me in (0.0015, 0.002, 0.003, 0.004, 0.006, 0.008, 0.011, 0.016, 0.022, 0.03, 0.045):
+            r = json.loads(subprocess.run([animc, 'encode', pc2_path, '--mesh', ply_path, '-o', out,
+                                           '--max-error', str(me), '--json'],
+                                          check=True, capture_output=True, text=True).stdout)
+            points.append((r['kg_error'], r['bpvf']))
+            static = r['static_bytes']
+        for target in targets:
+            r = json.loads(subprocess.run([animc, 'encode', pc2_path, '--mesh', ply_path, '-o', out, '--codec',
+                                           'wavelet', '--target-kg', str(target), '--step', '1e-5', '--json'],
+                                          check=True, capture_output=True, text=True).stdout)
+            wavelet[target] = r['bpvf']
+    return {t: (loglog_interp(points, t), wavelet[t]) for t in targets}, static
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument('animc')
+    parser.add_argument('data_dir')
+    parser.add_argument('--groups', default='16,32,64')
+    parser.add_argument('--kinds', default='dct,pca,pca-xyz')
+    parser.add_argument('--basis-factor', type=float, default=1.0)
+    parser.add_argument('--no-prediction', action='store_true')
+    args = parser.parse_args()
+    VARIANT.update(basis_factor=args.basis_factor, prediction=not args.no_prediction)
+    print('| sequence | KG % | affine-octree bpvf | wavelet bpvf | ' +
+          ' | '.join(f'{k} G={g}' for k in args.kinds.split(',') for g in args.groups.split(',')) + ' |')
+    for name, pc2_path, ply_path in find_sequences(args.data_dir):
+        frames, _ = pc2.read_pc2(pc2_path)
+        frames = frames.astype(np.float64)
+        faces = ply.read_ply_faces(ply_path)
+        f, v, _ = frames.shape
+        order, predictor = coded_order_predictor(v, faces)
+        ours, static = our_codecs(args.animc, pc2_path, ply_path, TARGETS)
+        for target in TARGETS:
+            octree, wavelet = ours[target]
+            cells = []
+            for kind in args.kinds.split(','):
+                for g in map(int, args.groups.split(',')):
+                    parts = [frames[s:s + g] for s in range(0, f, g)]
+                    groups = [(p, transform(p, kind)) for p in parts]
+                    bits, _ = at_target(frames, groups, kind, predictor, order, target)
+                    cells.append((bits + 8 * static) / (v * f))
+            print(f'| {name} | {target} | {octree:.3f} | {wavelet:.3f} | ' +
+                  ' | '.join(f'{c:.3f}' for c in cells) + ' |', flush=True)
+
+
+if __name__ == '__main__':
+    main()
