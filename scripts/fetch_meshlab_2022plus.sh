@@ -5,8 +5,10 @@
 # only io_base, then libmeshlab-common, io_base and the meshlab GUI. Debian's own binaries need a
 # newer glibc than bookworm's, and there is no meshlab-dev, hence the build. Everything lands in a
 # cache outside the source tree and is never committed.
-#   usage: fetch_meshlab_2022plus.sh VERSION SCALAR [CACHE_DIR]
+#   usage: fetch_meshlab_2022plus.sh VERSION SCALAR [CACHE_DIR] [--no-gui]
 #          VERSION 2025.07 | 2022.02, SCALAR float | double; default cache /var/cache/animcompress
+#          --no-gui: only libmeshlab-common and io_base (what the plugins, mlxrun and their tests
+#          need; the GUI, for scripts/gui_screenshots.sh, is half of the build)
 # Result: CACHE_DIR/meshlab-VERSION-SCALAR/{src,build,distrib} and .complete, written last.
 # Idempotent: does nothing when .complete is there. A run that stopped half-way is resumed: the
 # tarball is unpacked again only when its unpacking did not finish, and make rebuilds only
@@ -15,7 +17,12 @@ set -euo pipefail
 
 version=${1:?usage: fetch_meshlab_2022plus.sh VERSION SCALAR [CACHE_DIR]}
 scalar=${2:?usage: fetch_meshlab_2022plus.sh VERSION SCALAR [CACHE_DIR]}
-cache=${3:-${ANIMC_CACHE_DIR:-/var/cache/animcompress}}
+gui=1
+places=()
+for arg in "${@:3}"; do
+  case "$arg" in --no-gui) gui=0 ;; *) places+=("$arg") ;; esac
+done
+cache=${places[0]:-${ANIMC_CACHE_DIR:-/var/cache/animcompress}}
 sdk="$cache/meshlab-$version-$scalar"
 say() { echo "meshlab $version $scalar: $*"; }
 die() { echo "meshlab $version $scalar: error: $*" >&2; exit 1; }
@@ -32,7 +39,7 @@ case "$scalar" in
   float) double=OFF ;; double) double=ON ;; *) die "scalar must be float or double" ;;
 esac
 
-if [ -f "$sdk/.complete" ]; then
+if [ -f "$sdk/.complete" ] && { [ $gui = 0 ] || [ -e "$sdk/distrib/meshlab" ]; }; then
   say "SDK present in $sdk"
   exit 0
 fi
@@ -96,7 +103,9 @@ cmake -S "$project" -B "$sdk/build" -DCMAKE_BUILD_TYPE=Release -DVCG_ALLOW_BUNDL
 # Every core by default (a fresh CI machine waits on this build); ANIMC_MESHLAB_JOBS=1 leaves
 # room for other work.
 jobs=${ANIMC_MESHLAB_JOBS:-$(nproc)}
-for targets in meshlab-common "meshlab io_base"; do
+gui_target=meshlab
+[ $gui = 1 ] || gui_target=
+for targets in meshlab-common "${gui_target:+$gui_target }io_base"; do
   say "building $targets (-j$jobs)"
   start=$SECONDS
   # shellcheck disable=SC2086  # two targets in one word on purpose
@@ -105,7 +114,7 @@ for targets in meshlab-common "meshlab io_base"; do
   say "built $targets in $((SECONDS - start)) s"
 done
 
-for f in libmeshlab-common.so meshlab plugins/libio_base.so; do
+for f in libmeshlab-common.so plugins/libio_base.so ${gui_target}; do
   [ -e "$sdk/$distrib/$f" ] || die "the build made no $sdk/$distrib/$f"
 done
 ln -sfn "$distrib" "$sdk/distrib"
