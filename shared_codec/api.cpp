@@ -2,6 +2,7 @@
 #include "api.h"
 
 #include <algorithm>
+#include <deque>
 
 #include "core/atomic_file.h"
 
@@ -34,13 +35,26 @@ Result<EncodeSummary> encodeSequence(FrameSource& source, const EncodeSettings& 
   Encoder& encoder = created.value();
   const int64_t total = source.frameCount();
   std::vector<float> xyz;
+  // The frames added whose reconstruction the observer has not seen yet (a group codec
+  // reconstructs a group when it closes).
+  std::deque<std::vector<float>> unobserved;
+  int64_t observed = 0;
+  auto observe = [&] {
+    for (; observed < encoder.reconstructedFrames(); ++observed) {
+      observer(observed, unobserved.front().data(), encoder.reconstruction(observed));
+      unobserved.pop_front();
+    }
+  };
   for (int64_t frame = 0;; ++frame) {
     const std::string where = source.where();  // before next() moves past the frame
     ANIMC_ASSIGN_OR_RETURN(bool more, source.next(xyz));
     if (!more) break;
     Status s = encoder.addFrame(xyz.data());
     if (!s.ok()) return s.withContext(where);
-    if (observer) observer(frame, xyz.data(), encoder.reconstruction());
+    if (observer) {
+      unobserved.push_back(xyz);
+      observe();
+    }
     if (progress) {
       const int pct = total > 0 ? int(std::min<int64_t>(99, 100 * (frame + 1) / total)) : 0;
       if (!progress(pct, "encoding")) return cancelled();
@@ -48,6 +62,7 @@ Result<EncodeSummary> encodeSequence(FrameSource& source, const EncodeSettings& 
   }
   auto summary = encoder.finish();
   if (!summary.ok()) return summary.status().withContext(source.where());
+  if (observer) observe();
   if (progress) progress(100, "encoded");
   return summary;
 }

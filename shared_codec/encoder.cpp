@@ -72,13 +72,55 @@ struct Encoder::Impl {
   EncodeSettings settings;
   Topology topology;
   ContainerWriter writer;
-  std::unique_ptr<FrameEncoder> codec;
+  std::unique_ptr<FrameEncoder> codec;        // a codec that codes frame by frame,
+  std::unique_ptr<GroupEncoder> group_codec;  // or one that codes whole groups
   EncodeSummary summary;
   std::vector<uint8_t> payload;
   std::vector<float> reconstruction;
-  bool reconstruction_current = false;
+  int64_t reconstruction_frame = -1;  // the frame `reconstruction` holds
+  // Group codecs: the frames of the open group, and the first frame of the last coded one.
+  std::vector<float> group;
+  uint32_t group_frames = 0;
+  int64_t coded_group_first = 0;
   bool finished = false;
+
+  bool groupEnds(int64_t next_frame) const;
+  Status codeGroup();
+  Status writeFrame(const std::vector<uint8_t>& payload, bool intra, const FrameCodingStats& stats);
 };
+
+// Whether the open group closes before frame next_frame: the I-frame interval starts a
+// group there, or the group is as long as the codec takes.
+bool Encoder::Impl::groupEnds(int64_t next_frame) const {
+  const uint32_t interval = settings.iframe_interval;
+  return group_frames > 0 && ((interval > 0 && next_frame % interval == 0) ||
+                              group_frames >= group_codec->maxGroupFrames());
+}
+
+Status Encoder::Impl::codeGroup() {
+  std::vector<std::vector<uint8_t>> payloads;
+  const auto start = Clock::now();
+  group_codec->encodeGroup(group.data(), group_frames, payloads);
+  summary.encode_seconds += std::chrono::duration<double>(Clock::now() - start).count();
+  FrameCodingStats stats;
+  for (size_t i = 0; i < payloads.size(); ++i) {
+    stats.intra = i == 0;
+    ANIMC_RETURN_IF_ERROR(writeFrame(payloads[i], stats.intra, stats));
+  }
+  coded_group_first = summary.frames - group_frames;
+  group_frames = 0;
+  group.clear();
+  reconstruction_frame = -1;
+  return Status();
+}
+
+Status Encoder::Impl::writeFrame(const std::vector<uint8_t>& bytes, bool intra, const FrameCodingStats& stats) {
+  ANIMC_RETURN_IF_ERROR(writer.addFrame(bytes, intra));
+  if (summary.static_bytes == 0) summary.static_bytes = writer.bytesWritten();
+  summary.intra_frames += intra;
+  summary.cells += stats.cells;
+  return Status();
+}
 
 struct EncoderAccess {
   static Result<Encoder> create(const EncodeSettings& settings, Topology topology, double frame_rate,
@@ -97,7 +139,11 @@ struct EncoderAccess {
     header.frame_rate = frame_rate;
     header.iframe_interval = settings.iframe_interval;
     ANIMC_RETURN_IF_ERROR(impl->writer.open(std::move(sink), header, impl->topology));
-    impl->codec = settings.entry().makeEncoder(settings.options, impl->topology, bestSimdPath());
+    const CodecEntry& codec = settings.entry();
+    if (codec.makeGroupEncoder)
+      impl->group_codec = codec.makeGroupEncoder(settings.options, impl->topology);
+    else
+      impl->codec = codec.makeEncoder(settings.options, impl->topology, bestSimdPath());
     impl->summary.vertices = impl->topology.vertex_count;
     impl->summary.triangles = impl->topology.triangles.size();
     return Encoder(std::move(impl));
@@ -160,6 +206,13 @@ Status Encoder::addFrame(const float* xyz) {
   if (xyz == nullptr) return invalidArgument("no frame");
   const int64_t frame = e.summary.frames;
   ANIMC_RETURN_IF_ERROR(checkFrame(xyz, e.topology.vertex_count, frame));
+  if (e.group_codec) {
+    e.group.insert(e.group.end(), xyz, xyz + size_t(e.topology.vertex_count) * 3);
+    ++e.group_frames;
+    ++e.summary.frames;
+    if (e.groupEnds(e.summary.frames)) ANIMC_RETURN_IF_ERROR(e.codeGroup());
+    return Status();
+  }
   const uint32_t interval = e.settings.iframe_interval;
   const bool intra = frame == 0 || (interval > 0 && frame % interval == 0);
   FrameCodingStats stats;
@@ -167,31 +220,42 @@ Status Encoder::addFrame(const float* xyz) {
   const auto start = Clock::now();
   e.codec->encodeFrame(xyz, intra, e.payload, stats);
   e.summary.encode_seconds += std::chrono::duration<double>(Clock::now() - start).count();
-  e.reconstruction_current = false;
-  ANIMC_RETURN_IF_ERROR(e.writer.addFrame(e.payload, stats.intra));
-  if (frame == 0) e.summary.static_bytes = e.writer.bytesWritten();
-  e.summary.intra_frames += stats.intra;
-  e.summary.cells += stats.cells;
+  e.reconstruction_frame = -1;
   ++e.summary.frames;
-  return Status();
+  return e.writeFrame(e.payload, stats.intra, stats);
 }
 
-const float* Encoder::reconstruction() {
+int64_t Encoder::reconstructedFrames() const {
+  const Impl& e = *impl_;
+  return e.group_codec ? e.summary.frames - e.group_frames : e.summary.frames;
+}
+
+const float* Encoder::reconstruction(int64_t frame) {
   Impl& e = *impl_;
-  if (!e.reconstruction_current) {
-    // The codecs reconstruct in double; decoders output these rounded to float.
-    const std::vector<double>& r = e.codec->reconstruction();
-    e.reconstruction.assign(r.begin(), r.end());
-    e.reconstruction_current = true;
+  const int64_t first = e.group_codec ? e.coded_group_first : e.summary.frames - 1;
+  if (frame < first || frame >= reconstructedFrames()) return nullptr;
+  if (e.reconstruction_frame != frame) {
+    e.reconstruction.resize(size_t(e.topology.vertex_count) * 3);
+    if (e.group_codec) {
+      e.group_codec->reconstruction(uint32_t(frame - first), e.reconstruction.data());
+    } else {
+      // The codecs reconstruct in double; decoders output these rounded to float.
+      const std::vector<double>& r = e.codec->reconstruction();
+      e.reconstruction.assign(r.begin(), r.end());
+    }
+    e.reconstruction_frame = frame;
   }
   return e.reconstruction.data();
 }
+
+const float* Encoder::reconstruction() { return reconstruction(impl_->summary.frames - 1); }
 
 Result<EncodeSummary> Encoder::finish() {
   Impl& e = *impl_;
   if (e.finished) return invalidArgument("the encoder has finished already");
   if (e.summary.frames == 0) return badInput("the sequence has no frames");
   e.finished = true;
+  if (e.group_frames > 0) ANIMC_RETURN_IF_ERROR(e.codeGroup());
   ANIMC_RETURN_IF_ERROR(e.writer.finish());
   e.summary.bytes = e.writer.bytesWritten();
   return e.summary;

@@ -163,8 +163,16 @@ class ANIMC_API Encoder {
 
   // Codes the next frame (3 * vertex_count floats, finite).
   Status addFrame(const float* xyz);
-  // The last frame added, as every decoder will reconstruct it (3 * vertex_count floats,
-  // valid until the next call of addFrame()): what the caller measures errors on.
+  // Frames whose reconstruction is known. A codec that codes frame by frame knows each as
+  // soon as it is added; the trajectory codec knows a group's frames when the group closes
+  // (when the next frame would not fit in it, and at finish()).
+  int64_t reconstructedFrames() const;
+  // Frame k as every decoder will reconstruct it (3 * vertex_count floats, valid until the
+  // next call of addFrame() or reconstruction()): what the caller measures errors on. Known
+  // for the last frame added (frame-by-frame codecs) or the frames of the last closed group;
+  // null for any other frame.
+  const float* reconstruction(int64_t frame);
+  // reconstruction() of the last frame added: null for a frame of a group still open.
   const float* reconstruction();
   // Writes the index and commits the sink; the encoder takes no frames afterwards.
   Result<EncodeSummary> finish();

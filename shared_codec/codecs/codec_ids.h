@@ -9,6 +9,7 @@ namespace animc {
 enum class CodecId : uint8_t {
   kAffineOctree = 1,  // docs/affine_octree.md
   kWavelet = 2,       // Guskov & Khodakovsky 2004 (docs/wavelet.md)
+  kTrajectory = 3,    // trajectory PCA over frame groups (docs/trajectory.md)
 };
 
 // Profiles of the Affine-Octree codec (its Profile parameter).

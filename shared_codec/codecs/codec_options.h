@@ -5,11 +5,12 @@
 #include <variant>
 
 #include "codecs/affine_octree/options.h"
+#include "codecs/trajectory/options.h"
 #include "codecs/wavelet/options.h"
 
 namespace animc {
 
 // One alternative per codec, in Codec_Id order (a new codec appends its options type).
-using CodecOptions = std::variant<AffineOctreeOptions, WaveletOptions>;
+using CodecOptions = std::variant<AffineOctreeOptions, WaveletOptions, TrajectoryOptions>;
 
 }  // namespace animc

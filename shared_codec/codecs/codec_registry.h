@@ -48,6 +48,8 @@ struct CodecEntry {
   // caller (the API passes bestSimdPath()), and the same bytes and frames either way.
   std::unique_ptr<FrameEncoder> (*makeEncoder)(const CodecOptions& options, const Topology& topology,
                                                SimdPath path);
+  // For a codec that codes whole groups, instead of makeEncoder (which is then null).
+  std::unique_ptr<GroupEncoder> (*makeGroupEncoder)(const CodecOptions& options, const Topology& topology);
   // A decoder for the file's options; `file` names the file in messages (a partial `control`
   // is refused for codecs and files that cannot be cut).
   Result<std::unique_ptr<FrameDecoder>> (*makeDecoder)(const CodecOptions& options, const Topology& topology,
@@ -80,11 +82,12 @@ Result<const CodecEntry*> findCodecByName(const std::string& name);
 // The entry of the codec whose options these are.
 const CodecEntry& codecOf(const CodecOptions& options);
 
-const char* codecName(CodecId id);  // "affine-octree", "wavelet"
-std::string knownCodecList();       // "1 (affine-octree), 2 (wavelet)"
+const char* codecName(CodecId id);  // "affine-octree", "wavelet", "trajectory"
+std::string knownCodecList();       // "1 (affine-octree), 2 (wavelet), 3 (trajectory)"
 
 // The entries of the codecs (each in its codec's folder).
 extern const CodecEntry kAffineOctreeEntry;
 extern const CodecEntry kWaveletEntry;
+extern const CodecEntry kTrajectoryEntry;
 
 }  // namespace animc

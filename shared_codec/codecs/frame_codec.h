@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 // The interface every codec offers the container: frames in, one self-delimited payload per
 // frame out, and the reverse. A group starts with an intra frame that needs no earlier one.
+// A codec codes frame by frame (FrameEncoder) or a whole group at once (GroupEncoder); the
+// decoders of both take one payload per frame.
 #pragma once
 #include <cstdint>
 #include <memory>
@@ -29,6 +31,20 @@ class FrameEncoder {
                            FrameCodingStats& stats) = 0;
   // The frame the decoder will produce for the last encoded payload.
   virtual const std::vector<double>& reconstruction() const = 0;
+};
+
+// A codec that codes the frames of a group together (the trajectory codec): the caller
+// gathers up to maxGroupFrames() frames and hands them over at once.
+class GroupEncoder {
+ public:
+  virtual ~GroupEncoder() = default;
+  // Most frames one group may hold (its memory grows with vertices x frames).
+  virtual uint32_t maxGroupFrames() const = 0;
+  // Codes frame_count frames (3 * vertex_count floats each, one after the other) as a
+  // group: one payload per frame, the first an intra frame.
+  virtual void encodeGroup(const float* frames, uint32_t frame_count, std::vector<std::vector<uint8_t>>& payloads) = 0;
+  // Frame k of the last coded group as the decoder will produce it (3 * vertex_count floats).
+  virtual void reconstruction(uint32_t k, float* xyz) const = 0;
 };
 
 class FrameDecoder {

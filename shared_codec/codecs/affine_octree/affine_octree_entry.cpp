@@ -78,6 +78,7 @@ const CodecEntry kAffineOctreeEntry = {
     settings,
     checkMesh,
     makeEncoder,
+    nullptr,
     makeDecoder,
 };
 

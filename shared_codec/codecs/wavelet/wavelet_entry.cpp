@@ -98,6 +98,7 @@ const CodecEntry kWaveletEntry = {
     settings,
     checkMesh,
     makeEncoder,
+    nullptr,
     makeDecoder,
 };
 

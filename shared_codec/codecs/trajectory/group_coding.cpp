@@ -1,0 +1,234 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "codecs/trajectory/group_coding.h"
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <memory>
+
+#include "codecs/trajectory/options.h"
+#include "core/adjacency.h"
+#include "entropy/classed_integer.h"
+#include "io/byte_writer.h"
+
+namespace animc {
+namespace {
+
+// Components are coded in bands of doubling width (0, 1, 2-3, 4-7, ...): the first carry
+// most of the motion and so the largest values.
+constexpr int kBands = 8;
+int bandOf(uint32_t k) { return std::min(31 - __builtin_clz(k + 1), kBands - 1); }
+
+// A coefficient's context: its component's band, and what its prediction says (no coded
+// neighbour, a zero prediction, a non-zero one).
+constexpr int kPredictionKinds = 3;
+
+struct GroupModels {
+  ClassedIntegerModel mean;
+  ClassedIntegerModel basis[kBands];
+  ClassedIntegerModel coefficient[kBands * kPredictionKinds];
+};
+
+// The rounded mean of the earlier neighbours' values of component k (half away from
+// -infinity), and the context it gives.
+struct Prediction {
+  int64_t value = 0;
+  int kind = 0;
+};
+Prediction predict(const CodingOrder& order, const int32_t* values, uint32_t components, uint32_t position,
+                   uint32_t k) {
+  const uint32_t begin = order.first[position], end = order.first[position + 1];
+  if (begin == end) return {};
+  int64_t sum = 0;
+  for (uint32_t i = begin; i < end; ++i) sum += values[size_t(order.earlier[i]) * components + k];
+  const int64_t n = end - begin;
+  const int64_t numerator = 2 * sum + n, denominator = 2 * n;
+  const int64_t floor = numerator / denominator - ((numerator % denominator) < 0 ? 1 : 0);
+  return {floor, floor == 0 ? 1 : 2};
+}
+
+// Values coded as differences along time within each of the three coordinate runs of a
+// trajectory row, which are smooth.
+void encodeRow(RangeEncoder& rc, RawBitWriter& raw, ClassedIntegerModel& m, const int32_t* row, uint32_t frames) {
+  for (uint32_t c = 0; c < 3; ++c) {
+    int64_t previous = 0;
+    for (uint32_t t = 0; t < frames; ++t) {
+      const int64_t v = row[c * frames + t];
+      encodeClassed(rc, raw, m, v - previous);
+      previous = v;
+    }
+  }
+}
+
+bool fitsInt32(int64_t v) { return v >= INT32_MIN && v <= INT32_MAX; }
+
+bool decodeRow(RangeDecoder& rc, RawBitReader& raw, ClassedIntegerModel& m, int32_t* row, uint32_t frames) {
+  for (uint32_t c = 0; c < 3; ++c) {
+    int64_t previous = 0;
+    for (uint32_t t = 0; t < frames; ++t) {
+      const int64_t v = previous + decodeClassed(rc, raw, m);
+      if (!fitsInt32(v)) return false;
+      row[c * frames + t] = int32_t(v);
+      previous = v;
+    }
+  }
+  return true;
+}
+
+bool usableStep(float s) { return std::isfinite(s) && s > 0; }
+
+}  // namespace
+
+CodingOrder::CodingOrder(const Topology& topology) {
+  const uint32_t n = topology.vertex_count;
+  const VertexAdjacency adjacency(topology);
+  std::vector<uint32_t> position(n, UINT32_MAX);
+  vertex.reserve(n);
+  std::deque<uint32_t> queue;
+  for (uint32_t root = 0; root < n; ++root) {
+    if (position[root] != UINT32_MAX) continue;
+    position[root] = uint32_t(vertex.size());
+    vertex.push_back(root);
+    queue.push_back(root);
+    while (!queue.empty()) {
+      const uint32_t v = queue.front();
+      queue.pop_front();
+      for (const uint32_t* w = adjacency.begin(v); w != adjacency.end(v); ++w) {
+        if (position[*w] != UINT32_MAX) continue;
+        position[*w] = uint32_t(vertex.size());
+        vertex.push_back(*w);
+        queue.push_back(*w);
+      }
+    }
+  }
+  first.assign(1, 0);
+  for (uint32_t p = 0; p < n; ++p) {
+    const uint32_t v = vertex[p];
+    for (const uint32_t* w = adjacency.begin(v); w != adjacency.end(v); ++w)
+      if (position[*w] < p) earlier.push_back(position[*w]);
+    first.push_back(uint32_t(earlier.size()));
+  }
+}
+
+void writeTrajectoryGroup(const TrajectoryGroup& g, const CodingOrder& order, std::vector<uint8_t>& out) {
+  ByteWriter head;
+  head.u8(kTrajectoryGroupFrame);
+  head.u16(uint16_t(g.frames));
+  head.u16(uint16_t(g.components));
+  head.f32(g.coefficient_step);
+  head.f32(g.mean_step);
+  for (float s : g.basis_step) head.f32(s);
+  out.insert(out.end(), head.bytes().begin(), head.bytes().end());
+
+  auto models = std::make_unique<GroupModels>();
+  RangeEncoder rc(out);
+  RawBitWriter raw;
+  encodeRow(rc, raw, models->mean, g.mean.data(), g.frames);
+  const size_t row = size_t(3) * g.frames;
+  for (uint32_t k = 0; k < g.components; ++k)
+    encodeRow(rc, raw, models->basis[bandOf(k)], &g.basis[k * row], g.frames);
+  const uint32_t n = uint32_t(order.vertex.size());
+  for (uint32_t p = 0; p < n; ++p)
+    for (uint32_t k = 0; k < g.components; ++k) {
+      const Prediction pred = predict(order, g.coefficients.data(), g.components, p, k);
+      const int64_t v = g.coefficients[size_t(p) * g.components + k];
+      encodeClassed(rc, raw, models->coefficient[bandOf(k) * kPredictionKinds + pred.kind], v - pred.value);
+    }
+  rc.finish();
+  raw.appendTo(out);
+}
+
+Status readTrajectoryGroup(ByteReader payload, const CodingOrder& order, TrajectoryGroup& g) {
+  const uint64_t n = order.vertex.size();
+  ANIMC_ASSIGN_OR_RETURN(uint16_t frames, payload.u16("Frame_Count"));
+  ANIMC_ASSIGN_OR_RETURN(uint16_t components, payload.u16("Component_Count"));
+  if (frames < 1 || frames > kMaxTrajectoryGroupFrames)
+    return corrupt("trajectory group of " + std::to_string(frames) + " frames, outside [1, " +
+                   std::to_string(kMaxTrajectoryGroupFrames) + "]");
+  if (components > std::min<uint64_t>(n, uint64_t(3) * frames) || components * n > kMaxTrajectoryCoefficients)
+    return corrupt("trajectory group of " + std::to_string(components) + " components for " + std::to_string(n) +
+                   " vertices and " + std::to_string(frames) + " frames");
+  g.frames = frames;
+  g.components = components;
+  ANIMC_ASSIGN_OR_RETURN(g.coefficient_step, payload.f32("Coefficient_Step"));
+  ANIMC_ASSIGN_OR_RETURN(g.mean_step, payload.f32("Mean_Step"));
+  g.basis_step.resize(components);
+  for (float& step : g.basis_step) {
+    ANIMC_ASSIGN_OR_RETURN(step, payload.f32("Basis_Step"));
+  }
+  if (!usableStep(g.coefficient_step) || !usableStep(g.mean_step) ||
+      !std::all_of(g.basis_step.begin(), g.basis_step.end(), usableStep))
+    return corrupt("trajectory group: a step is not a positive finite number");
+
+  const size_t row = size_t(3) * frames;
+  g.mean.assign(row, 0);
+  g.basis.assign(components * row, 0);
+  g.coefficients.assign(n * components, 0);
+  auto models = std::make_unique<GroupModels>();
+  RangeDecoder rc(payload.cursor(), payload.remaining());
+  RawBitReader raw(payload.cursor(), payload.remaining());
+  bool fits = decodeRow(rc, raw, models->mean, g.mean.data(), frames);
+  for (uint32_t k = 0; fits && k < components; ++k)
+    fits = decodeRow(rc, raw, models->basis[bandOf(k)], &g.basis[k * row], frames);
+  // Damaged data is found at the end: the loops are as long whatever the bytes, and a
+  // decoder that reads past its input gets zeros.
+  for (uint32_t p = 0; fits && p < n; ++p)
+    for (uint32_t k = 0; k < components; ++k) {
+      const Prediction pred = predict(order, g.coefficients.data(), components, p, k);
+      const int64_t v = pred.value + decodeClassed(rc, raw, models->coefficient[bandOf(k) * kPredictionKinds + pred.kind]);
+      if (!fitsInt32(v)) fits = false;
+      g.coefficients[size_t(p) * components + k] = int32_t(v);
+    }
+  const size_t coded_bytes = size_t(rc.position() - payload.cursor());
+  if (!fits || rc.overran() || raw.overran() ||
+      coded_bytes + raw.bytesUsed() > payload.remaining() + kFinishReadAhead)
+    return corrupt("trajectory group: coded data ends early or is damaged");
+  return Status();
+}
+
+void GroupFrames::reset(const TrajectoryGroup& g, const CodingOrder& order) {
+  frames_ = g.frames;
+  components_ = g.components;
+  vertices_ = uint32_t(order.vertex.size());
+  const size_t row = size_t(3) * frames_;
+  mean_.resize(row);
+  for (size_t i = 0; i < row; ++i) mean_[i] = float(g.mean[i]) * g.mean_step;
+  basis_.resize(components_ * row);
+  for (uint32_t k = 0; k < components_; ++k)
+    for (size_t i = 0; i < row; ++i) basis_[k * row + i] = float(g.basis[k * row + i]) * g.basis_step[k];
+  coefficients_.resize(size_t(components_) * vertices_);
+  for (uint32_t p = 0; p < vertices_; ++p)
+    for (uint32_t k = 0; k < components_; ++k)
+      coefficients_[size_t(k) * vertices_ + order.vertex[p]] =
+          float(g.coefficients[size_t(p) * components_ + k]) * g.coefficient_step;
+  sums_.resize(size_t(3) * vertices_);
+}
+
+void GroupFrames::frame(uint32_t t, float* xyz) const {
+  const uint32_t n = vertices_;
+  const size_t row = size_t(3) * frames_;
+  float* sx = sums_.data();
+  float* sy = sx + n;
+  float* sz = sy + n;
+  std::fill(sums_.begin(), sums_.end(), 0.0f);
+  // Component by component over all vertices: the same operations in the same order for
+  // every vertex, whatever the compiler vectorises.
+  for (uint32_t k = 0; k < components_; ++k) {
+    const float* b = &basis_[k * row];
+    const float bx = b[t], by = b[frames_ + t], bz = b[2 * frames_ + t];
+    const float* c = &coefficients_[size_t(k) * n];
+    for (uint32_t v = 0; v < n; ++v) {
+      sx[v] += c[v] * bx;
+      sy[v] += c[v] * by;
+      sz[v] += c[v] * bz;
+    }
+  }
+  const float mx = mean_[t], my = mean_[frames_ + t], mz = mean_[2 * frames_ + t];
+  for (uint32_t v = 0; v < n; ++v) {
+    xyz[3 * v] = mx + sx[v];
+    xyz[3 * v + 1] = my + sy[v];
+    xyz[3 * v + 2] = mz + sz[v];
+  }
+}
+
+}  // namespace animc

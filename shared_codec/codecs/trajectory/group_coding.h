@@ -1,0 +1,63 @@
+// SPDX-License-Identifier: Apache-2.0
+// One frame group of the trajectory codec as integers (what the payload carries), its
+// payload, and the frames a decoder makes of it (docs/format.md, section 12).
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "core/sequence.h"
+#include "core/status.h"
+#include "io/byte_reader.h"
+
+namespace animc {
+
+// The order vertices are coded in (breadth-first over the mesh edges from vertex 0, each
+// vertex's neighbours in index order, then the next unreached vertex) and, for each position
+// in it, the positions of the neighbours coded before it: they predict its coefficients.
+struct CodingOrder {
+  explicit CodingOrder(const Topology& topology);
+  std::vector<uint32_t> vertex;       // vertex at each position
+  std::vector<uint32_t> first;        // earlier[first[p] .. first[p + 1]) for position p
+  std::vector<uint32_t> earlier;      // positions
+};
+
+// The group as coded. Trajectory rows are 3G long: x over the G frames, then y, then z.
+struct TrajectoryGroup {
+  uint32_t frames = 0;               // G
+  uint32_t components = 0;           // K
+  float coefficient_step = 0;
+  float mean_step = 0;
+  std::vector<int32_t> mean;         // 3G, in units of mean_step
+  std::vector<float> basis_step;     // K
+  std::vector<int32_t> basis;        // K rows of 3G, in units of their basis_step
+  std::vector<int32_t> coefficients; // per coding position, K values, in units of coefficient_step
+};
+
+// Frame_Type, the payload's first byte.
+constexpr uint8_t kTrajectoryGroupFrame = 0;  // the group's first frame: the whole group
+constexpr uint8_t kTrajectoryNextFrame = 1;   // the group's next frame: nothing else
+
+void writeTrajectoryGroup(const TrajectoryGroup& group, const CodingOrder& order, std::vector<uint8_t>& out);
+// Reads a group payload after its Frame_Type byte.
+Status readTrajectoryGroup(ByteReader payload, const CodingOrder& order, TrajectoryGroup& group);
+
+// The decoded frames of a group: every decoder and the encoder compute them with these
+// float operations in this order, so that they agree to the bit.
+class GroupFrames {
+ public:
+  void reset(const TrajectoryGroup& group, const CodingOrder& order);
+  uint32_t frames() const { return frames_; }
+  // Frame t of the group (t < frames()) into xyz (3 floats a vertex, vertex order).
+  void frame(uint32_t t, float* xyz) const;
+
+ private:
+  uint32_t frames_ = 0;
+  uint32_t components_ = 0;
+  uint32_t vertices_ = 0;
+  std::vector<float> mean_;          // 3G
+  std::vector<float> basis_;         // K rows of 3G
+  std::vector<float> coefficients_;  // K rows of N, vertex order
+  mutable std::vector<float> sums_;  // 3 rows of N
+};
+
+}  // namespace animc

@@ -1,0 +1,46 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "codecs/trajectory/group_coding.h"
+#include "codecs/trajectory/trajectory_codec.h"
+
+namespace animc {
+namespace {
+
+class TrajectoryDecoder final : public FrameDecoder {
+ public:
+  explicit TrajectoryDecoder(const Topology& topology) : order_(topology) {}
+
+  Status decodeFrame(ByteReader payload, std::vector<float>& xyz, bool* intra) override {
+    ANIMC_ASSIGN_OR_RETURN(uint8_t type, payload.u8("Frame_Type"));
+    if (type == kTrajectoryGroupFrame) {
+      next_ = 0;
+      frames_ = GroupFrames();  // a failed read leaves no group to continue
+      ANIMC_RETURN_IF_ERROR(readTrajectoryGroup(payload, order_, group_));
+      frames_.reset(group_, order_);
+    } else if (type == kTrajectoryNextFrame) {
+      if (payload.remaining() != 0) return corrupt("trajectory frame: bytes after the frame type");
+      if (next_ >= frames_.frames())
+        return corrupt(frames_.frames() == 0 ? "trajectory frame: no group before it"
+                                             : "trajectory frame: more frames than its group holds");
+    } else {
+      return corrupt("trajectory frame: unknown frame type " + std::to_string(type));
+    }
+    if (intra) *intra = type == kTrajectoryGroupFrame;
+    xyz.resize(order_.vertex.size() * 3);
+    frames_.frame(next_++, xyz.data());
+    return Status();
+  }
+
+ private:
+  CodingOrder order_;
+  TrajectoryGroup group_;
+  GroupFrames frames_;
+  uint32_t next_ = 0;
+};
+
+}  // namespace
+
+std::unique_ptr<FrameDecoder> makeTrajectoryDecoder(const Topology& topology) {
+  return std::make_unique<TrajectoryDecoder>(topology);
+}
+
+}  // namespace animc

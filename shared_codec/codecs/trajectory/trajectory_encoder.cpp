@@ -1,0 +1,206 @@
+// SPDX-License-Identifier: Apache-2.0
+// The trajectory encoder: principal components of a group's trajectories (Eigen), then the
+// coarsest coefficient step that meets the target error, measured on the frames the decoder
+// will produce.
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+
+#include "codecs/trajectory/group_coding.h"
+#include "codecs/trajectory/trajectory_codec.h"
+
+namespace animc {
+namespace {
+
+using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+// The trajectories of one group held in double: at most this many values (256 MB).
+constexpr uint64_t kMaxGroupValues = uint64_t(1) << 25;
+// Integers of the payload stay below 2^30 in magnitude (their differences below 2^31).
+constexpr double kMaxQuantised = double(1 << 29);
+
+// The principal components of a group's trajectories: the mean trajectory, unit basis
+// vectors by decreasing singular value, and every vertex's coefficients on them.
+struct Components {
+  Eigen::RowVectorXd mean;  // 3G
+  Eigen::MatrixXd basis;    // 3G x K, columns
+  Eigen::VectorXd sigma;    // K
+  RowMatrix coefficients;   // N x K
+};
+
+Components principalComponents(RowMatrix x, uint64_t max_components) {
+  Components pc;
+  pc.mean = x.colwise().mean();
+  x.rowwise() -= pc.mean;
+  const Eigen::Index n = x.rows(), row = x.cols();
+  // The smaller of the two Gram matrices: trajectories (row x row) or vertices (n x n).
+  const bool by_trajectory = row <= n;
+  Eigen::MatrixXd gram = by_trajectory ? Eigen::MatrixXd(x.transpose() * x) : Eigen::MatrixXd(x * x.transpose());
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(gram);
+  const Eigen::Index dim = gram.rows();
+  const Eigen::Index k_count = std::min<Eigen::Index>(dim, Eigen::Index(max_components));
+  pc.sigma.resize(k_count);
+  Eigen::MatrixXd vectors(dim, k_count);
+  for (Eigen::Index k = 0; k < k_count; ++k) {  // the solver sorts ascending
+    pc.sigma[k] = std::sqrt(std::max(0.0, solver.eigenvalues()[dim - 1 - k]));
+    vectors.col(k) = solver.eigenvectors().col(dim - 1 - k);
+  }
+  if (by_trajectory) {
+    pc.basis = vectors;
+    pc.coefficients = x * pc.basis;
+  } else {
+    pc.basis = x.transpose() * vectors;
+    for (Eigen::Index k = 0; k < k_count; ++k) {
+      if (pc.sigma[k] > 0) pc.basis.col(k) /= pc.sigma[k];
+      vectors.col(k) *= pc.sigma[k];
+    }
+    pc.coefficients = vectors;
+  }
+  return pc;
+}
+
+int32_t quantise(double value, double step) {
+  return int32_t(std::clamp(std::nearbyint(value / step), -kMaxQuantised, kMaxQuantised));
+}
+
+class TrajectoryEncoder final : public GroupEncoder {
+ public:
+  TrajectoryEncoder(const TrajectoryOptions& options, const Topology& topology)
+      : options_(options), order_(topology), vertices_(topology.vertex_count) {}
+
+  uint32_t maxGroupFrames() const override {
+    const uint64_t by_memory = std::max<uint64_t>(1, kMaxGroupValues / (uint64_t(3) * vertices_));
+    return uint32_t(std::min<uint64_t>(options_.group_frames, by_memory));
+  }
+
+  void encodeGroup(const float* frames, uint32_t frame_count, std::vector<std::vector<uint8_t>>& payloads) override {
+    original_ = frames;
+    frame_count_ = frame_count;
+    const Components pc = principalComponents(trajectories(), kMaxTrajectoryCoefficients / vertices_);
+    const TrajectoryGroup group = quantised(pc, chooseStep(pc));
+    payloads.assign(frame_count, std::vector<uint8_t>{kTrajectoryNextFrame});
+    payloads[0].clear();
+    writeTrajectoryGroup(group, order_, payloads[0]);
+    frames_.reset(group, order_);
+    original_ = nullptr;
+  }
+
+  void reconstruction(uint32_t k, float* xyz) const override { frames_.frame(k, xyz); }
+
+ private:
+  const float* vertexOf(uint32_t t, uint32_t v) const { return original_ + (size_t(t) * vertices_ + v) * 3; }
+
+  RowMatrix trajectories() const {
+    const uint32_t g = frame_count_;
+    RowMatrix x(vertices_, 3 * g);
+    for (uint32_t t = 0; t < g; ++t)
+      for (uint32_t v = 0; v < vertices_; ++v)
+        for (uint32_t c = 0; c < 3; ++c) x(v, c * g + t) = vertexOf(t, v)[c];
+    return x;
+  }
+
+  double firstFrameDiagonal() const {
+    double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+    for (uint32_t v = 0; v < vertices_; ++v)
+      for (int c = 0; c < 3; ++c) {
+        lo[c] = std::min(lo[c], double(vertexOf(0, v)[c]));
+        hi[c] = std::max(hi[c], double(vertexOf(0, v)[c]));
+      }
+    return std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                     (hi[2] - lo[2]) * (hi[2] - lo[2]));
+  }
+
+  // Sum over the group's frames of |x - centroid of its frame|^2: the KG error's denominator.
+  double spread() const {
+    double sum = 0;
+    for (uint32_t t = 0; t < frame_count_; ++t) {
+      double centroid[3] = {0, 0, 0};
+      for (uint32_t v = 0; v < vertices_; ++v)
+        for (int c = 0; c < 3; ++c) centroid[c] += vertexOf(t, v)[c];
+      for (double& c : centroid) c /= vertices_;
+      for (uint32_t v = 0; v < vertices_; ++v)
+        for (int c = 0; c < 3; ++c) sum += (vertexOf(t, v)[c] - centroid[c]) * (vertexOf(t, v)[c] - centroid[c]);
+    }
+    return sum;
+  }
+
+  // The coefficient step: fixed, or the coarsest that meets the target (bisection on its
+  // logarithm; the error grows with the step).
+  double chooseStep(const Components& pc) const {
+    const double largest = pc.coefficients.size() ? pc.coefficients.cwiseAbs().maxCoeff() : 0.0;
+    const double scale = std::max({largest, firstFrameDiagonal(), 1e-30});
+    const double finest = std::max(largest / kMaxQuantised, scale * 1e-12);
+    if (options_.step > 0) return std::max(options_.step * firstFrameDiagonal(), finest);
+    const double allowed = std::pow(options_.target_kg / 100, 2) * spread();
+    double lo = std::log2(finest), hi = std::log2(2 * scale);
+    if (squaredError(quantised(pc, std::exp2(hi))) <= allowed) return std::exp2(hi);
+    for (int i = 0; i < 24; ++i) {
+      const double mid = (lo + hi) / 2;
+      (squaredError(quantised(pc, std::exp2(mid))) <= allowed ? lo : hi) = mid;
+    }
+    return std::exp2(lo);
+  }
+
+  TrajectoryGroup quantised(const Components& pc, double step) const {
+    TrajectoryGroup g;
+    g.frames = frame_count_;
+    g.coefficient_step = float(step);
+    const double q = g.coefficient_step;
+    const size_t row = size_t(3) * frame_count_;
+    const Eigen::Index k_all = pc.coefficients.cols();
+    std::vector<int32_t> all(size_t(vertices_) * k_all);
+    uint32_t used = 0;
+    for (uint32_t p = 0; p < vertices_; ++p)
+      for (Eigen::Index k = 0; k < k_all; ++k) {
+        const int32_t c = quantise(pc.coefficients(order_.vertex[p], k), q);
+        all[p * k_all + k] = c;
+        if (c != 0) used = std::max(used, uint32_t(k) + 1);
+      }
+    g.components = used;
+    g.coefficients.resize(size_t(vertices_) * used);
+    for (uint32_t p = 0; p < vertices_; ++p)
+      std::copy_n(&all[p * k_all], used, &g.coefficients[size_t(p) * used]);
+    // An error d in the mean moves all N vertices by d, and one in basis vector k moves
+    // them by their coefficients times d, sigma_k in total: these steps make each cost the
+    // squared error of one coefficient's step.
+    const double mean_reach = pc.mean.cwiseAbs().maxCoeff();
+    g.mean_step = float(std::max(q / std::sqrt(double(vertices_)), mean_reach / kMaxQuantised + 1e-30));
+    g.mean.resize(row);
+    for (size_t i = 0; i < row; ++i) g.mean[i] = quantise(pc.mean[Eigen::Index(i)], g.mean_step);
+    g.basis_step.resize(used);
+    g.basis.resize(used * row);
+    for (uint32_t k = 0; k < used; ++k) {
+      g.basis_step[k] = float(std::clamp(q / pc.sigma[k], 1.0 / kMaxQuantised, 2.0));
+      for (size_t i = 0; i < row; ++i) g.basis[k * row + i] = quantise(pc.basis(Eigen::Index(i), k), g.basis_step[k]);
+    }
+    return g;
+  }
+
+  double squaredError(const TrajectoryGroup& group) const {
+    GroupFrames decoded;
+    decoded.reset(group, order_);
+    std::vector<float> xyz(size_t(3) * vertices_);
+    double sum = 0;
+    for (uint32_t t = 0; t < frame_count_; ++t) {
+      decoded.frame(t, xyz.data());
+      const float* original = vertexOf(t, 0);
+      for (size_t i = 0; i < xyz.size(); ++i) sum += (double(xyz[i]) - original[i]) * (double(xyz[i]) - original[i]);
+    }
+    return sum;
+  }
+
+  TrajectoryOptions options_;
+  CodingOrder order_;
+  uint32_t vertices_;
+  const float* original_ = nullptr;  // the group being coded
+  uint32_t frame_count_ = 0;
+  GroupFrames frames_;                // the last group as decoded
+};
+
+}  // namespace
+
+std::unique_ptr<GroupEncoder> makeTrajectoryEncoder(const TrajectoryOptions& options, const Topology& topology) {
+  return std::make_unique<TrajectoryEncoder>(options, topology);
+}
+
+}  // namespace animc

@@ -1,0 +1,180 @@
+// SPDX-License-Identifier: Apache-2.0
+// The trajectory codec (codec 3) through the public API: decoders give the encoder's
+// reconstructions bit for bit, in order and at random; groups follow the I-frame interval
+// and the group cap; the target error holds; damaged groups are refused.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "animc/animc.h"
+#include "test_sequences.h"
+
+namespace animc {
+namespace {
+
+using testing_support::gridSequence;
+
+struct Coded {
+  std::vector<uint8_t> bytes;
+  std::vector<std::vector<float>> reconstructions;  // from the encoder, frame by frame
+  std::vector<int64_t> known_after_each_frame;     // reconstructedFrames() after each addFrame
+};
+
+Coded encode(const MemorySequence& seq, const EncoderOptions& options) {
+  Coded out;
+  std::vector<uint32_t> triangles;
+  for (const Triangle& t : seq.topology().triangles) triangles.insert(triangles.end(), t.begin(), t.end());
+  auto encoder = Encoder::create(options, seq.topology().vertex_count, triangles.data(), triangles.size() / 3,
+                                 memorySink(&out.bytes));
+  EXPECT_TRUE(encoder.ok()) << encoder.status().message();
+  if (!encoder.ok()) return out;
+  Encoder& e = encoder.value();
+  auto collect = [&] {
+    for (int64_t k = int64_t(out.reconstructions.size()); k < e.reconstructedFrames(); ++k) {
+      const float* r = e.reconstruction(k);
+      EXPECT_NE(r, nullptr) << "frame " << k;
+      if (r != nullptr) out.reconstructions.emplace_back(r, r + 3 * size_t(seq.topology().vertex_count));
+    }
+  };
+  for (const std::vector<float>& frame : seq.frames()) {
+    EXPECT_TRUE(e.addFrame(frame.data()).ok());
+    out.known_after_each_frame.push_back(e.reconstructedFrames());
+    collect();
+  }
+  EXPECT_TRUE(e.finish().ok());
+  collect();
+  return out;
+}
+
+double kgError(const MemorySequence& seq, const std::vector<std::vector<float>>& decoded) {
+  MetricsAccumulator metrics(seq.topology().vertex_count);
+  for (size_t f = 0; f < decoded.size(); ++f) metrics.addFrame(seq.frames()[f].data(), decoded[f].data());
+  return metrics.finish().kg_error;
+}
+
+std::vector<std::vector<float>> decodeAll(const std::vector<uint8_t>& bytes) {
+  auto decoder = Decoder::openMemory(bytes.data(), bytes.size());
+  EXPECT_TRUE(decoder.ok()) << decoder.status().message();
+  std::vector<std::vector<float>> frames;
+  if (!decoder.ok()) return frames;
+  std::vector<float> xyz(3 * size_t(decoder.value().info().vertices));
+  for (int64_t k = 0; k < decoder.value().info().frames; ++k) {
+    EXPECT_TRUE(decoder.value().frame(k, xyz.data()).ok());
+    frames.push_back(xyz);
+  }
+  return frames;
+}
+
+EncoderOptions trajectory(double target_kg) {
+  EncoderOptions o;
+  o.codec = "trajectory";
+  o.set("target-kg", target_kg);
+  return o;
+}
+
+TEST(Trajectory, DecodesToTheEncodersReconstructionWithinTheTarget) {
+  const MemorySequence seq = gridSequence(12, 10, 40, 1.0, 1.0);
+  for (double target : {0.1, 1.0, 5.0}) {
+    const Coded coded = encode(seq, trajectory(target));
+    const auto decoded = decodeAll(coded.bytes);
+    ASSERT_EQ(decoded.size(), 40u);
+    EXPECT_EQ(decoded, coded.reconstructions) << "target " << target;
+    const double kg = kgError(seq, decoded);
+    EXPECT_LE(kg, target) << "target " << target;
+    EXPECT_GT(kg, target / 4) << "a much finer step than needed, target " << target;
+  }
+}
+
+TEST(Trajectory, AFinerTargetCostsMoreBytes) {
+  const MemorySequence seq = gridSequence(12, 10, 40, 1.0, 1.0);
+  EXPECT_GT(encode(seq, trajectory(0.1)).bytes.size(), encode(seq, trajectory(1.0)).bytes.size());
+}
+
+TEST(Trajectory, ReconstructionsComeWhenTheirGroupCloses) {
+  const MemorySequence seq = gridSequence(12, 10, 20, 1.0, 1.0);
+  EncoderOptions options = trajectory(0.5);
+  options.iframe_interval = 8;
+  const Coded coded = encode(seq, options);
+  // Groups 0-7, 8-15 and 16-19 (the last closed by finish()).
+  const std::vector<int64_t> expected = {0, 0, 0, 0, 0, 0, 0, 8, 8, 8, 8, 8, 8, 8, 8, 16, 16, 16, 16, 16};
+  EXPECT_EQ(coded.known_after_each_frame, expected);
+  ASSERT_EQ(coded.reconstructions.size(), 20u);
+
+  auto decoder = Decoder::openMemory(coded.bytes.data(), coded.bytes.size());
+  ASSERT_TRUE(decoder.ok());
+  EXPECT_EQ(decoder.value().info().codec, "trajectory");
+  EXPECT_EQ(decoder.value().info().groups, 3u);
+  std::vector<float> xyz(3 * size_t(seq.topology().vertex_count));
+  for (int64_t k : {17, 3, 19, 0, 9, 8, 15, 16}) {
+    ASSERT_TRUE(decoder.value().frame(k, xyz.data()).ok());
+    EXPECT_EQ(xyz, coded.reconstructions[size_t(k)]) << "frame " << k;
+  }
+}
+
+TEST(Trajectory, GroupFramesCapsTheGroupWithoutAnInterval) {
+  const MemorySequence seq = gridSequence(12, 10, 20, 1.0, 1.0);
+  EncoderOptions options = trajectory(0.5);
+  options.set("group-frames", 6.0);
+  const Coded coded = encode(seq, options);
+  auto decoder = Decoder::openMemory(coded.bytes.data(), coded.bytes.size());
+  ASSERT_TRUE(decoder.ok());
+  EXPECT_EQ(decoder.value().info().groups, 4u);  // 6 + 6 + 6 + 2
+  EXPECT_EQ(decodeAll(coded.bytes), coded.reconstructions);
+}
+
+TEST(Trajectory, AFixedStepBoundsTheErrorBySize) {
+  const MemorySequence seq = gridSequence(12, 10, 30, 1.0, 1.0);
+  EncoderOptions fine, coarse;
+  fine.codec = coarse.codec = "trajectory";
+  fine.set("step", 1e-4);
+  coarse.set("step", 1e-2);
+  const Coded a = encode(seq, fine), b = encode(seq, coarse);
+  EXPECT_LT(kgError(seq, decodeAll(a.bytes)), kgError(seq, decodeAll(b.bytes)));
+  EXPECT_GT(a.bytes.size(), b.bytes.size());
+}
+
+TEST(Trajectory, OneFrameAndStillSequences) {
+  const MemorySequence one = gridSequence(5, 4, 1, 1.0, 1.0);
+  const Coded coded = encode(one, trajectory(0.3));
+  EXPECT_EQ(decodeAll(coded.bytes), coded.reconstructions);
+  EXPECT_LE(kgError(one, coded.reconstructions), 0.3);
+
+  std::vector<std::vector<float>> same(10, one.frames()[0]);
+  const MemorySequence still(one.topology(), same, 25.0, "still");
+  const Coded still_coded = encode(still, trajectory(0.3));
+  EXPECT_EQ(decodeAll(still_coded.bytes), still_coded.reconstructions);
+  EXPECT_LE(kgError(still, still_coded.reconstructions), 0.3);
+}
+
+TEST(Trajectory, OptionsAreChecked) {
+  EncoderOptions both = trajectory(0.3);
+  both.set("step", 1e-3);
+  EXPECT_FALSE(both.validate().ok());
+  EXPECT_FALSE(trajectory(0).validate().ok());
+  EXPECT_FALSE(trajectory(0.3).set("group-frames", 0.0).validate().ok());
+  EXPECT_FALSE(trajectory(0.3).set("group-frames", 2000.0).validate().ok());
+  EXPECT_FALSE(trajectory(0.3).set("max-error", 0.01).validate().ok());
+  EXPECT_TRUE(trajectory(0.3).set("group-frames", 64.0).validate().ok());
+}
+
+// Every cut and every single-byte change of a small stream is refused with an error or
+// decodes to some frames: never a crash (the fuzzers go further).
+TEST(Trajectory, DamagedStreamsAreRefusedOrDecodedSafely) {
+  const MemorySequence seq = gridSequence(6, 5, 8, 1.0, 1.0);
+  const Coded coded = encode(seq, trajectory(0.5));
+  int refused = 0;
+  for (size_t cut = 0; cut < coded.bytes.size(); ++cut) {
+    auto decoder = Decoder::openMemory(coded.bytes.data(), cut);
+    refused += !decoder.ok() || !decoder.value().verify().ok();
+  }
+  EXPECT_EQ(refused, int(coded.bytes.size())) << "a cut stream passed verify()";
+  for (size_t i = 0; i < coded.bytes.size(); ++i) {
+    std::vector<uint8_t> bytes = coded.bytes;
+    bytes[i] ^= 0x5A;
+    auto decoder = Decoder::openMemory(bytes.data(), bytes.size());
+    if (decoder.ok()) (void)decoder.value().verify();
+  }
+}
+
+}  // namespace
+}  // namespace animc
