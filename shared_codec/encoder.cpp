@@ -141,7 +141,7 @@ struct EncoderAccess {
     ANIMC_RETURN_IF_ERROR(impl->writer.open(std::move(sink), header, impl->topology));
     const CodecEntry& codec = settings.entry();
     if (codec.makeGroupEncoder)
-      impl->group_codec = codec.makeGroupEncoder(settings.options, impl->topology);
+      impl->group_codec = codec.makeGroupEncoder(settings.options, impl->topology, bestSimdPath());
     else
       impl->codec = codec.makeEncoder(settings.options, impl->topology, bestSimdPath());
     impl->summary.vertices = impl->topology.vertex_count;

@@ -49,7 +49,8 @@ struct CodecEntry {
   std::unique_ptr<FrameEncoder> (*makeEncoder)(const CodecOptions& options, const Topology& topology,
                                                SimdPath path);
   // For a codec that codes whole groups, instead of makeEncoder (which is then null).
-  std::unique_ptr<GroupEncoder> (*makeGroupEncoder)(const CodecOptions& options, const Topology& topology);
+  std::unique_ptr<GroupEncoder> (*makeGroupEncoder)(const CodecOptions& options, const Topology& topology,
+                                                    SimdPath path);
   // A decoder for the file's options; `file` names the file in messages (a partial `control`
   // is refused for codecs and files that cannot be cut).
   Result<std::unique_ptr<FrameDecoder>> (*makeDecoder)(const CodecOptions& options, const Topology& topology,

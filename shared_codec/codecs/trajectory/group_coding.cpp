@@ -186,49 +186,103 @@ Status readTrajectoryGroup(ByteReader payload, const CodingOrder& order, Traject
   return Status();
 }
 
-void GroupFrames::reset(const TrajectoryGroup& g, const CodingOrder& order) {
+void GroupFrames::reset(const TrajectoryGroup& g, const CodingOrder& order, SimdPath path) {
+  path_ = path;
   frames_ = g.frames;
   components_ = g.components;
   vertices_ = uint32_t(order.vertex.size());
+  padded_ = (vertices_ + kLanes - 1) / kLanes * kLanes;
   const size_t row = size_t(3) * frames_;
   mean_.resize(row);
   for (size_t i = 0; i < row; ++i) mean_[i] = float(g.mean[i]) * g.mean_step;
   basis_.resize(components_ * row);
   for (uint32_t k = 0; k < components_; ++k)
     for (size_t i = 0; i < row; ++i) basis_[k * row + i] = float(g.basis[k * row + i]) * g.basis_step[k];
-  coefficients_.resize(size_t(components_) * vertices_);
+  coefficients_.assign(size_t(components_) * padded_, 0.0f);
   for (uint32_t p = 0; p < vertices_; ++p)
     for (uint32_t k = 0; k < components_; ++k)
-      coefficients_[size_t(k) * vertices_ + order.vertex[p]] =
+      coefficients_[size_t(k) * padded_ + order.vertex[p]] =
           float(g.coefficients[size_t(p) * components_ + k]) * g.coefficient_step;
-  sums_.resize(size_t(3) * vertices_);
+  batch_.resize(size_t(kBatch) * 3 * vertices_);
+  batch_first_ = UINT32_MAX;
+}
+
+namespace {
+
+using Floats8 = float __attribute__((vector_size(32), aligned(4)));
+
+// The sums of kBatch frames (from `first`) for the vertices of one kernel step, component by
+// component: each lane does the same float multiply and add in the same order, whether the
+// compiler makes one AVX2 operation of the 8 lanes or two SSE ones.
+__attribute__((always_inline)) inline void sumLanes(const float* coefficients, size_t stride, const float* basis,
+                                                    uint32_t components, uint32_t frames, uint32_t first,
+                                                    Floats8 sums[][3]) {
+  constexpr uint32_t kBatch = GroupFrames::kBatch;
+  uint32_t column[kBatch];  // frames past the group repeat its last one, and are not stored
+  for (uint32_t f = 0; f < kBatch; ++f) column[f] = std::min(first + f, frames - 1);
+  for (uint32_t f = 0; f < kBatch; ++f)
+    for (int d = 0; d < 3; ++d) sums[f][d] = Floats8{};
+  const size_t row = size_t(3) * frames;
+  for (uint32_t k = 0; k < components; ++k) {
+    const Floats8 c = *reinterpret_cast<const Floats8*>(coefficients + k * stride);
+    const float* b = basis + k * row;
+    for (uint32_t f = 0; f < kBatch; ++f)
+      for (uint32_t d = 0; d < 3; ++d) sums[f][d] += c * b[d * frames + column[f]];
+  }
+}
+
+__attribute__((always_inline)) inline void batchKernel(const float* coefficients, size_t stride, const float* basis,
+                                                       const float* mean, uint32_t components, uint32_t frames,
+                                                       uint32_t vertices, uint32_t first, float* out) {
+  constexpr uint32_t kBatch = GroupFrames::kBatch, kLanes = GroupFrames::kLanes;
+  const uint32_t count = std::min(kBatch, frames - first);
+  for (uint32_t v0 = 0; v0 < vertices; v0 += kLanes) {
+    Floats8 sums[kBatch][3];
+    sumLanes(coefficients + v0, stride, basis, components, frames, first, sums);
+    const uint32_t lanes = std::min(kLanes, vertices - v0);
+    for (uint32_t f = 0; f < count; ++f) {
+      float* xyz = out + (size_t(f) * vertices + v0) * 3;
+      for (uint32_t d = 0; d < 3; ++d) {
+        const float m = mean[d * frames + first + f];
+        for (uint32_t l = 0; l < lanes; ++l) xyz[3 * l + d] = m + sums[f][d][l];
+      }
+    }
+  }
+}
+
+__attribute__((noinline)) void batchPortable(const float* c, size_t stride, const float* b, const float* m,
+                                             uint32_t k, uint32_t g, uint32_t n, uint32_t first, float* out) {
+  batchKernel(c, stride, b, m, k, g, n, first, out);
+}
+
+#ifndef ANIMC_NO_AVX2
+ANIMC_TARGET_AVX2 __attribute__((noinline)) void batchAvx2(const float* c, size_t stride, const float* b,
+                                                           const float* m, uint32_t k, uint32_t g, uint32_t n,
+                                                           uint32_t first, float* out) {
+  batchKernel(c, stride, b, m, k, g, n, first, out);
+}
+#endif
+
+}  // namespace
+
+void GroupFrames::computeBatch(uint32_t first) const {
+#ifndef ANIMC_NO_AVX2
+  if (path_ == SimdPath::kAvx2) {
+    batchAvx2(coefficients_.data(), padded_, basis_.data(), mean_.data(), components_, frames_, vertices_, first,
+              batch_.data());
+    batch_first_ = first;
+    return;
+  }
+#endif
+  batchPortable(coefficients_.data(), padded_, basis_.data(), mean_.data(), components_, frames_, vertices_, first,
+                batch_.data());
+  batch_first_ = first;
 }
 
 void GroupFrames::frame(uint32_t t, float* xyz) const {
-  const uint32_t n = vertices_;
-  const size_t row = size_t(3) * frames_;
-  float* sx = sums_.data();
-  float* sy = sx + n;
-  float* sz = sy + n;
-  std::fill(sums_.begin(), sums_.end(), 0.0f);
-  // Component by component over all vertices: the same operations in the same order for
-  // every vertex, whatever the compiler vectorises.
-  for (uint32_t k = 0; k < components_; ++k) {
-    const float* b = &basis_[k * row];
-    const float bx = b[t], by = b[frames_ + t], bz = b[2 * frames_ + t];
-    const float* c = &coefficients_[size_t(k) * n];
-    for (uint32_t v = 0; v < n; ++v) {
-      sx[v] += c[v] * bx;
-      sy[v] += c[v] * by;
-      sz[v] += c[v] * bz;
-    }
-  }
-  const float mx = mean_[t], my = mean_[frames_ + t], mz = mean_[2 * frames_ + t];
-  for (uint32_t v = 0; v < n; ++v) {
-    xyz[3 * v] = mx + sx[v];
-    xyz[3 * v + 1] = my + sy[v];
-    xyz[3 * v + 2] = mz + sz[v];
-  }
+  if (batch_first_ == UINT32_MAX || t < batch_first_ || t >= batch_first_ + kBatch) computeBatch(t);
+  const size_t size = size_t(3) * vertices_;
+  std::copy_n(&batch_[(t - batch_first_) * size], size, xyz);
 }
 
 }  // namespace animc

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/sequence.h"
+#include "core/simd_math.h"
 #include "core/status.h"
 #include "io/byte_reader.h"
 
@@ -42,22 +43,31 @@ void writeTrajectoryGroup(const TrajectoryGroup& group, const CodingOrder& order
 Status readTrajectoryGroup(ByteReader payload, const CodingOrder& order, TrajectoryGroup& group);
 
 // The decoded frames of a group: every decoder and the encoder compute them with these
-// float operations in this order, so that they agree to the bit.
+// float operations in this order, so that they agree to the bit (docs/format.md 12.4).
 class GroupFrames {
  public:
-  void reset(const TrajectoryGroup& group, const CodingOrder& order);
+  // Frames are computed kBatch at a time: the coefficients are read once for all of them.
+  static constexpr uint32_t kBatch = 4;
+  static constexpr uint32_t kLanes = 8;  // vertices a kernel step computes
+
+  void reset(const TrajectoryGroup& group, const CodingOrder& order, SimdPath path);
   uint32_t frames() const { return frames_; }
   // Frame t of the group (t < frames()) into xyz (3 floats a vertex, vertex order).
   void frame(uint32_t t, float* xyz) const;
 
  private:
+  void computeBatch(uint32_t first) const;
+
+  SimdPath path_ = SimdPath::kPortable;
   uint32_t frames_ = 0;
   uint32_t components_ = 0;
   uint32_t vertices_ = 0;
+  uint32_t padded_ = 0;              // vertices_ rounded up to kLanes
   std::vector<float> mean_;          // 3G
   std::vector<float> basis_;         // K rows of 3G
-  std::vector<float> coefficients_;  // K rows of N, vertex order
-  mutable std::vector<float> sums_;  // 3 rows of N
+  std::vector<float> coefficients_;  // K rows of padded_, vertex order, zeros after the last
+  mutable std::vector<float> batch_;  // frames batch_first_ .. + kBatch, 3N floats each
+  mutable uint32_t batch_first_ = UINT32_MAX;
 };
 
 }  // namespace animc

@@ -6,10 +6,13 @@
 
 #include "codecs/frame_codec.h"
 #include "codecs/trajectory/options.h"
+#include "core/simd_math.h"
 
 namespace animc {
 
-std::unique_ptr<GroupEncoder> makeTrajectoryEncoder(const TrajectoryOptions& options, const Topology& topology);
-std::unique_ptr<FrameDecoder> makeTrajectoryDecoder(const Topology& topology);
+// `path` chooses the decoded frames' kernel (the same floats either way).
+std::unique_ptr<GroupEncoder> makeTrajectoryEncoder(const TrajectoryOptions& options, const Topology& topology,
+                                                    SimdPath path);
+std::unique_ptr<FrameDecoder> makeTrajectoryDecoder(const Topology& topology, SimdPath path);
 
 }  // namespace animc

@@ -7,7 +7,7 @@ namespace {
 
 class TrajectoryDecoder final : public FrameDecoder {
  public:
-  explicit TrajectoryDecoder(const Topology& topology) : order_(topology) {}
+  TrajectoryDecoder(const Topology& topology, SimdPath path) : order_(topology), path_(path) {}
 
   Status decodeFrame(ByteReader payload, std::vector<float>& xyz, bool* intra) override {
     ANIMC_ASSIGN_OR_RETURN(uint8_t type, payload.u8("Frame_Type"));
@@ -15,7 +15,7 @@ class TrajectoryDecoder final : public FrameDecoder {
       next_ = 0;
       frames_ = GroupFrames();  // a failed read leaves no group to continue
       ANIMC_RETURN_IF_ERROR(readTrajectoryGroup(payload, order_, group_));
-      frames_.reset(group_, order_);
+      frames_.reset(group_, order_, path_);
     } else if (type == kTrajectoryNextFrame) {
       if (payload.remaining() != 0) return corrupt("trajectory frame: bytes after the frame type");
       if (next_ >= frames_.frames())
@@ -32,6 +32,7 @@ class TrajectoryDecoder final : public FrameDecoder {
 
  private:
   CodingOrder order_;
+  SimdPath path_;
   TrajectoryGroup group_;
   GroupFrames frames_;
   uint32_t next_ = 0;
@@ -39,8 +40,8 @@ class TrajectoryDecoder final : public FrameDecoder {
 
 }  // namespace
 
-std::unique_ptr<FrameDecoder> makeTrajectoryDecoder(const Topology& topology) {
-  return std::make_unique<TrajectoryDecoder>(topology);
+std::unique_ptr<FrameDecoder> makeTrajectoryDecoder(const Topology& topology, SimdPath path) {
+  return std::make_unique<TrajectoryDecoder>(topology, path);
 }
 
 }  // namespace animc

@@ -65,8 +65,8 @@ int32_t quantise(double value, double step) {
 
 class TrajectoryEncoder final : public GroupEncoder {
  public:
-  TrajectoryEncoder(const TrajectoryOptions& options, const Topology& topology)
-      : options_(options), order_(topology), vertices_(topology.vertex_count) {}
+  TrajectoryEncoder(const TrajectoryOptions& options, const Topology& topology, SimdPath path)
+      : options_(options), order_(topology), vertices_(topology.vertex_count), path_(path) {}
 
   uint32_t maxGroupFrames() const override {
     const uint64_t by_memory = std::max<uint64_t>(1, kMaxGroupValues / (uint64_t(3) * vertices_));
@@ -81,7 +81,7 @@ class TrajectoryEncoder final : public GroupEncoder {
     payloads.assign(frame_count, std::vector<uint8_t>{kTrajectoryNextFrame});
     payloads[0].clear();
     writeTrajectoryGroup(group, order_, payloads[0]);
-    frames_.reset(group, order_);
+    frames_.reset(group, order_, path_);
     original_ = nullptr;
   }
 
@@ -178,7 +178,7 @@ class TrajectoryEncoder final : public GroupEncoder {
 
   double squaredError(const TrajectoryGroup& group) const {
     GroupFrames decoded;
-    decoded.reset(group, order_);
+    decoded.reset(group, order_, path_);
     std::vector<float> xyz(size_t(3) * vertices_);
     double sum = 0;
     for (uint32_t t = 0; t < frame_count_; ++t) {
@@ -192,6 +192,7 @@ class TrajectoryEncoder final : public GroupEncoder {
   TrajectoryOptions options_;
   CodingOrder order_;
   uint32_t vertices_;
+  SimdPath path_;
   const float* original_ = nullptr;  // the group being coded
   uint32_t frame_count_ = 0;
   GroupFrames frames_;                // the last group as decoded
@@ -199,8 +200,9 @@ class TrajectoryEncoder final : public GroupEncoder {
 
 }  // namespace
 
-std::unique_ptr<GroupEncoder> makeTrajectoryEncoder(const TrajectoryOptions& options, const Topology& topology) {
-  return std::make_unique<TrajectoryEncoder>(options, topology);
+std::unique_ptr<GroupEncoder> makeTrajectoryEncoder(const TrajectoryOptions& options, const Topology& topology,
+                                                    SimdPath path) {
+  return std::make_unique<TrajectoryEncoder>(options, topology, path);
 }
 
 }  // namespace animc

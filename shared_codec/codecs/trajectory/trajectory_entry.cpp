@@ -40,17 +40,17 @@ std::vector<SettingValue> settings(const CodecOptions& options) {
 
 Status checkMesh(const Topology&) { return Status(); }
 
-std::unique_ptr<GroupEncoder> makeEncoder(const CodecOptions& o, const Topology& topology) {
-  return makeTrajectoryEncoder(trajectory(o), topology);
+std::unique_ptr<GroupEncoder> makeEncoder(const CodecOptions& o, const Topology& topology, SimdPath path) {
+  return makeTrajectoryEncoder(trajectory(o), topology, path);
 }
 
 Result<std::unique_ptr<FrameDecoder>> makeDecoder(const CodecOptions&, const Topology& topology,
                                                   const WaveletDecodeControl& control, const std::string& file,
-                                                  SimdPath) {
+                                                  SimdPath path) {
   if (control.partial())
     return invalidArgument(file + ": progressive decoding (fewer bitplanes or bytes) needs a wavelet-coded "
                            "file; this one is trajectory");
-  return makeTrajectoryDecoder(topology);
+  return makeTrajectoryDecoder(topology, path);
 }
 
 }  // namespace
