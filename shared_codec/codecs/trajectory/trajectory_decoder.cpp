@@ -1,4 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
+#include <cmath>
+
 #include "codecs/trajectory/group_coding.h"
 #include "codecs/trajectory/trajectory_codec.h"
 
@@ -27,6 +29,9 @@ class TrajectoryDecoder final : public FrameDecoder {
     if (intra) *intra = type == kTrajectoryGroupFrame;
     xyz.resize(order_.vertex.size() * 3);
     frames_.frame(next_++, xyz.data());
+    // As for the other codecs: a damaged group may not hand out infinities or huge values.
+    for (float v : xyz)
+      if (!(std::fabs(v) <= 1e30f)) return corrupt("trajectory frame: a decoded value is not finite or above 1e30");
     return Status();
   }
 
