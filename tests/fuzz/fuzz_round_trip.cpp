@@ -6,7 +6,8 @@
 // error) is a bug, reported by abort().
 //
 // Input = 4 control bytes, then coordinates:
-//   [0] bit 0: codec (affine-octree, wavelet); bits 1-2: profile or detail-frame kind;
+//   [0] bit 0: codec (0: affine-octree, or trajectory when bit 2 is set; 1: wavelet);
+//       bits 1-2: profile, detail-frame kind or trajectory group length;
 //       bits 3-7: I-frame interval
 //   [1] grid width - 2 (mod 7)   [2] grid height - 2 (mod 7)   [3] quality (max error, step)
 //   then int16 coordinates (scaled by 1/256), x y z per vertex per frame, until they run out
@@ -44,7 +45,11 @@ animc::EncoderOptions options(const uint8_t* control) {
   animc::EncoderOptions o;
   const int kind = (control[0] >> 1) & 3;
   o.iframe_interval = control[0] >> 3;
-  if ((control[0] & 1) == 0) {
+  if ((control[0] & 1) == 0 && (kind & 2)) {
+    o.codec = "trajectory";
+    o.set("target-kg", 0.05 + 5.0 * control[3] / 255.0);
+    if (kind & 1) o.set("group-frames", 4.0);
+  } else if ((control[0] & 1) == 0) {
     o.codec = "affine-octree";
     o.set("profile", kind & 1 ? "paper" : "predictive");
     o.set("max-error", 0.0005 + 0.2 * control[3] / 255.0);
@@ -109,12 +114,21 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
                                         animc::memorySink(&stream));
   if (!encoder.ok()) return 0;  // e.g. a mesh the wavelet codec cannot use
   std::vector<std::vector<float>> expected;
+  // Reconstructions come frame by frame, or a group at a time (trajectory).
+  auto collect = [&] {
+    for (int64_t k = int64_t(expected.size()); k < encoder.value().reconstructedFrames(); ++k) {
+      const float* r = encoder.value().reconstruction(k);
+      if (r == nullptr) bug("a known reconstruction is missing", k);
+      expected.emplace_back(r, r + originals[0].size());
+    }
+  };
   for (const std::vector<float>& frame : originals) {
     if (!encoder.value().addFrame(frame.data()).ok()) bug("a finite frame was refused", int64_t(expected.size()));
-    const float* r = encoder.value().reconstruction();
-    expected.emplace_back(r, r + frame.size());
+    collect();
   }
   if (!encoder.value().finish().ok()) bug("finish failed", frames);
+  collect();
+  if (int(expected.size()) != frames) bug("reconstructions missing", int64_t(expected.size()));
 
   auto decoder = animc::Decoder::openMemory(stream.data(), stream.size());
   if (!decoder.ok()) bug("the encoder's stream does not open", 0);

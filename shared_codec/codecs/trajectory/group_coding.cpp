@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <deque>
 #include <memory>
 
@@ -126,7 +127,7 @@ void writeTrajectoryGroup(const TrajectoryGroup& g, const CodingOrder& order, st
   encodeRow(rc, raw, models->mean, g.mean.data(), g.frames);
   const size_t row = size_t(3) * g.frames;
   for (uint32_t k = 0; k < g.components; ++k)
-    encodeRow(rc, raw, models->basis[bandOf(k)], &g.basis[k * row], g.frames);
+    encodeRow(rc, raw, models->basis[bandOf(k)], g.basis.data() + k * row, g.frames);
   const uint32_t n = uint32_t(order.vertex.size());
   for (uint32_t p = 0; p < n; ++p)
     for (uint32_t k = 0; k < g.components; ++k) {
@@ -169,7 +170,7 @@ Status readTrajectoryGroup(ByteReader payload, const CodingOrder& order, Traject
   RawBitReader raw(payload.cursor(), payload.remaining());
   bool fits = decodeRow(rc, raw, models->mean, g.mean.data(), frames);
   for (uint32_t k = 0; fits && k < components; ++k)
-    fits = decodeRow(rc, raw, models->basis[bandOf(k)], &g.basis[k * row], frames);
+    fits = decodeRow(rc, raw, models->basis[bandOf(k)], g.basis.data() + k * row, frames);
   // Damaged data is found at the end: the loops are as long whatever the bytes, and a
   // decoder that reads past its input gets zeros.
   for (uint32_t p = 0; fits && p < n; ++p)
@@ -209,14 +210,14 @@ void GroupFrames::reset(const TrajectoryGroup& g, const CodingOrder& order, Simd
 
 namespace {
 
-using Floats8 = float __attribute__((vector_size(32), aligned(4)));
+using Floats8 = float __attribute__((vector_size(32)));
 
 // The sums of kBatch frames (from `first`) for the vertices of one kernel step, component by
 // component: each lane does the same float multiply and add in the same order, whether the
 // compiler makes one AVX2 operation of the 8 lanes or two SSE ones.
-__attribute__((always_inline)) inline void sumLanes(const float* coefficients, size_t stride, const float* basis,
-                                                    uint32_t components, uint32_t frames, uint32_t first,
-                                                    Floats8 sums[][3]) {
+__attribute__((always_inline)) inline void sumLanes(const float* coefficients, size_t stride, uint32_t v0,
+                                                    const float* basis, uint32_t components, uint32_t frames,
+                                                    uint32_t first, Floats8 sums[][3]) {
   constexpr uint32_t kBatch = GroupFrames::kBatch;
   uint32_t column[kBatch];  // frames past the group repeat its last one, and are not stored
   for (uint32_t f = 0; f < kBatch; ++f) column[f] = std::min(first + f, frames - 1);
@@ -224,7 +225,8 @@ __attribute__((always_inline)) inline void sumLanes(const float* coefficients, s
     for (int d = 0; d < 3; ++d) sums[f][d] = Floats8{};
   const size_t row = size_t(3) * frames;
   for (uint32_t k = 0; k < components; ++k) {
-    const Floats8 c = *reinterpret_cast<const Floats8*>(coefficients + k * stride);
+    Floats8 c;
+    std::memcpy(&c, coefficients + k * stride + v0, sizeof c);  // an unaligned load
     const float* b = basis + k * row;
     for (uint32_t f = 0; f < kBatch; ++f)
       for (uint32_t d = 0; d < 3; ++d) sums[f][d] += c * b[d * frames + column[f]];
@@ -238,7 +240,7 @@ __attribute__((always_inline)) inline void batchKernel(const float* coefficients
   const uint32_t count = std::min(kBatch, frames - first);
   for (uint32_t v0 = 0; v0 < vertices; v0 += kLanes) {
     Floats8 sums[kBatch][3];
-    sumLanes(coefficients + v0, stride, basis, components, frames, first, sums);
+    sumLanes(coefficients, stride, v0, basis, components, frames, first, sums);
     const uint32_t lanes = std::min(kLanes, vertices - v0);
     for (uint32_t f = 0; f < count; ++f) {
       float* xyz = out + (size_t(f) * vertices + v0) * 3;

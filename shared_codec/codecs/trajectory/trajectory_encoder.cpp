@@ -63,6 +63,15 @@ int32_t quantise(double value, double step) {
   return int32_t(std::clamp(std::nearbyint(value / step), -kMaxQuantised, kMaxQuantised));
 }
 
+// Coefficients are rounded towards zero a little (a value within 0.6 of a step of zero
+// becomes 0, and so on): a zero costs far fewer bits than a 1, and the step the target then
+// needs is only a little finer. 0.6 beat 0.5 and 0.7 on the shared sequences (trajectory.md).
+constexpr double kRoundingThreshold = 0.6;
+int32_t quantiseCoefficient(double value, double step) {
+  const double magnitude = std::min(std::floor(std::fabs(value) / step + 1 - kRoundingThreshold), kMaxQuantised);
+  return int32_t(std::copysign(magnitude, value));
+}
+
 class TrajectoryEncoder final : public GroupEncoder {
  public:
   TrajectoryEncoder(const TrajectoryOptions& options, const Topology& topology, SimdPath path)
@@ -152,14 +161,14 @@ class TrajectoryEncoder final : public GroupEncoder {
     uint32_t used = 0;
     for (uint32_t p = 0; p < vertices_; ++p)
       for (Eigen::Index k = 0; k < k_all; ++k) {
-        const int32_t c = quantise(pc.coefficients(order_.vertex[p], k), q);
+        const int32_t c = quantiseCoefficient(pc.coefficients(order_.vertex[p], k), q);
         all[p * k_all + k] = c;
         if (c != 0) used = std::max(used, uint32_t(k) + 1);
       }
     g.components = used;
     g.coefficients.resize(size_t(vertices_) * used);
     for (uint32_t p = 0; p < vertices_; ++p)
-      std::copy_n(&all[p * k_all], used, &g.coefficients[size_t(p) * used]);
+      std::copy_n(all.data() + p * k_all, used, g.coefficients.data() + size_t(p) * used);
     // An error d in the mean moves all N vertices by d, and one in basis vector k moves
     // them by their coefficients times d, sigma_k in total: these steps make each cost the
     // squared error of one coefficient's step.
