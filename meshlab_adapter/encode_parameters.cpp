@@ -7,7 +7,7 @@ namespace animc::meshlab {
 namespace {
 
 // Enum order is the script value: append, never reorder.
-const QStringList kCodecs = {"Affine-Octree", "Wavelet"};
+const QStringList kCodecs = {"Affine-Octree", "Wavelet", "Trajectory"};
 const QStringList kProfiles = {"predictive", "paper"};
 // How wavelet detail frames refer to the frame before them (animc encode: default,
 // --progressive-p-frames, --i-frames-only).
@@ -22,7 +22,9 @@ void addEncodeParameters(RichParameterList& par) {
   par.addParam(RichEnum("Codec", 0, kCodecs, "Codec",
                         "Affine-Octree: per-frame octree of affine motions, every vertex within the max error "
                         "(docs/affine_octree.md). Wavelet: progressive wavelet coding on a mesh hierarchy, "
-                        "error set by the step or the bits per vertex (docs/wavelet.md)."));
+                        "error set by the step or the bits per vertex (docs/wavelet.md). Trajectory: each group of frames "
+                        "as principal trajectories, the smallest files at a KG error; its groups are the I-frame "
+                        "interval, or up to 512 frames (docs/trajectory.md)."));
   par.addParam(RichEnum("Profile", 0, kProfiles, "Profile (Affine-Octree)",
                         "predictive (the default): our predictive octree, smaller files; paper: the method exactly as published."));
   par.addParam(RichFloat("MaxErrorPercent", float(100 * octree_defaults.max_error), "Max error (%) (Affine-Octree)",
@@ -38,9 +40,10 @@ void addEncodeParameters(RichParameterList& par) {
                          "Bits per vertex per frame (Wavelet)",
                          "Fixed rate: each frame is cut at this many bits per vertex (the paper's 1, 2, 4, 8); "
                          "0 = no limit, the step alone sets the quality."));
-  par.addParam(RichFloat("WaveletTargetKG", float(wavelet_defaults.target_kg), "Target KG error (%) (Wavelet)",
-                         "Rate control by error: each frame gets the fewest bits that keep the animation's "
-                         "KG error at or below this (down to what the step allows); 0 = off."));
+  par.addParam(RichFloat("WaveletTargetKG", float(wavelet_defaults.target_kg), "Target KG error (%) (Wavelet, Trajectory)",
+                         "Rate control by error: each frame (Wavelet) or group of frames (Trajectory) gets the "
+                         "fewest bits that keep the animation's KG error at or below this (Wavelet: down to "
+                         "what the step allows). 0 = off for Wavelet, 0.3 % for Trajectory."));
   par.addParam(RichEnum("WaveletFrames", 0, kWaveletFrames, "Detail frames (Wavelet)",
                         "P-frames: each frame predicted from the last (smallest files). Progressive P-frames: "
                         "the same without temporal contexts, so a decoder may cut them (animc decode "
@@ -86,6 +89,16 @@ Status readWaveletParameters(const RichParameterList& par, WaveletOptions& o) {
   return Status();
 }
 
+// The trajectory codec has no parameters of its own, so that every script written for the two
+// earlier codecs still runs (MeshLab 2020.09's meshlabserver aborts on a script that lacks one
+// of a filter's parameters): it takes the target KG error of the wavelet codec (0 = its own
+// default), and the I-frame interval, when set, as its group length.
+Status readTrajectoryParameters(const RichParameterList& par, TrajectoryOptions& o) {
+  const double target = typedValue(par, "WaveletTargetKG");
+  if (target > 0) o.target_kg = target;
+  return Status();
+}
+
 }  // namespace
 
 Result<EncodeSettings> encodeSettingsFrom(const RichParameterList& par) {
@@ -94,6 +107,8 @@ Result<EncodeSettings> encodeSettingsFrom(const RichParameterList& par) {
   if (codec < 0 || codec >= kCodecs.size()) return invalidArgument("unknown codec " + std::to_string(codec));
   if (codec == 1) {
     ANIMC_RETURN_IF_ERROR(readWaveletParameters(par, s.wavelet()));
+  } else if (codec == 2) {
+    ANIMC_RETURN_IF_ERROR(readTrajectoryParameters(par, s.trajectory()));
   } else {
     ANIMC_RETURN_IF_ERROR(readOctreeParameters(par, s.octree()));
   }

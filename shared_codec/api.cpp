@@ -18,6 +18,11 @@ WaveletOptions& EncodeSettings::wavelet() {
   return std::get<WaveletOptions>(options);
 }
 
+TrajectoryOptions& EncodeSettings::trajectory() {
+  if (!std::holds_alternative<TrajectoryOptions>(options)) options = TrajectoryOptions();
+  return std::get<TrajectoryOptions>(options);
+}
+
 Result<EncodeSummary> encodeSequence(FrameSource& source, const EncodeSettings& settings,
                                      const std::string& out_path, const ProgressFn& progress,
                                      const FrameObserver& observer) {

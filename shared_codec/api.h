@@ -27,6 +27,7 @@ struct EncodeSettings {
   // when another one was chosen, so `s.wavelet().step = 1e-3` selects the wavelet codec.
   AffineOctreeOptions& octree();
   WaveletOptions& wavelet();
+  TrajectoryOptions& trajectory();
   const AffineOctreeOptions& octree() const { return std::get<AffineOctreeOptions>(options); }
   const WaveletOptions& wavelet() const { return std::get<WaveletOptions>(options); }
 

@@ -4,7 +4,8 @@
 # `cmake --install BUILD --prefix STAGE`, run headless under xvfb-run by scripts/meshlabserver.sh),
 # or, for MeshLab 2022+ (API 2022), in mlxrun (scripts/mlxrun.sh), which takes the same flags.
 # usage: meshlab_test.sh CASE ANIMC_BINARY SOURCE_DIR STAGE_DIR [API]
-#   CASE: dump | scripts | filter_roundtrip | io_roundtrip | wavelet | bad_layers | bad_ams
+#   CASE: dump | scripts | filter_roundtrip | io_roundtrip | wavelet | trajectory | bad_layers |
+#         bad_ams
 #   API:  2020 (default) | 2022
 set -euo pipefail
 
@@ -79,7 +80,7 @@ case_dump() {
               "Max error (%)" "I-frame interval" "Output .ams file" "Add reconstructed layers" "Colour by error" \
               "Visible layers only" "First original layer" "First reconstructed layer" "Colour scale max" \
               "Compressed animation" "Last frame" "Step (% of diagonal) (Wavelet)" \
-              "Bits per vertex per frame (Wavelet)" "Target KG error (%) (Wavelet)" "Profile (Affine-Octree)" \
+              "Bits per vertex per frame (Wavelet)" "Target KG error (%) (Wavelet, Trajectory)" "Profile (Affine-Octree)" \
               "(animcompress $("$ANIMC" --version | cut -d' ' -f2))"; do
     grep -qF -- "$text" dump.txt || check_failed "dump: '$text' missing"
   done
@@ -177,6 +178,26 @@ case_wavelet() {
     cmp -s sydney_24.ams "cli_$flag.ams" || check_failed "the filter's WaveletFrames $frames file differs from animc --$flag's"
     if cmp -s sydney_24.ams cli_plain.ams; then check_failed "WaveletFrames $frames wrote a plain P-frame file"; fi
   done
+}
+
+case_trajectory() {
+  # The filter with Codec = Trajectory writes what animc encode --codec trajectory writes, its
+  # reconstructed layers (which come a group at a time) are what animc decodes, and the IO
+  # plugin opens the file.
+  derive_script compress_error.mlx trajectory.mlx Codec=2 WaveletTargetKG=0.5 IFrameInterval=10
+  layer_exports "$N" "$N" recon
+  server trajectory -i "${FRAMES[@]}" -s "$TMP/trajectory.mlx" "${EXPORTS[@]}"
+  expect_ok trajectory
+  expect_log trajectory "codec: trajectory, target KG 0.5 %, groups of up to 512 frames"
+  "$ANIMC" encode "$SRC/samples/sydney/frames" -o cli_trajectory.ams --codec trajectory --target-kg 0.5 \
+    --iframe-interval 10 >/dev/null
+  cmp -s sydney_24.ams cli_trajectory.ams || check_failed "the filter's trajectory sydney_24.ams differs from animc encode's"
+  "$ANIMC" decode sydney_24.ams -o decoded --format ply >/dev/null
+  expect_same_frames trajectory recon.txt decoded "$N"
+  layer_exports 0 "$N" opened
+  server trajectory_open -i "$TMP/sydney_24.ams" "${EXPORTS[@]}"
+  expect_ok trajectory_open
+  expect_same_frames trajectory_open opened.txt decoded "$N"
 }
 
 # bad_case NAME EXPECTED_TEXT FRAME_FILES...: compress.mlx on these layers fails cleanly.
