@@ -68,7 +68,7 @@ def cli_flags(codec, options):
 
 def test_version_and_codecs():
     assert animcompress.__version__.count('.') == 2
-    assert {'affine-octree', 'wavelet'} <= set(animcompress.codecs())
+    assert {'affine-octree', 'wavelet', 'trajectory'} <= set(animcompress.codecs())
 
 
 def test_affine_octree_round_trip_stays_within_the_bound(sequence):
@@ -111,11 +111,20 @@ def test_wavelet_target_kg_bounds_the_sequence_error(sequence):
     assert 0 < m['kg_error'] <= 0.5
 
 
+def test_trajectory_target_kg_bounds_the_sequence_error(sequence):
+    data = animcompress.encode(sequence['frames'], sequence['faces'], codec='trajectory', target_kg=0.3)
+    assert animcompress.info(data)['codec'] == 'trajectory'
+    m = animcompress.compare(sequence['frames'], animcompress.decode(data)[0])
+    assert 0.2 < m['kg_error'] <= 0.3
+
+
 @pytest.mark.parametrize('codec, options', [
     ('affine-octree', {'max_error': 0.01}),
     ('affine-octree', {'max_error': 0.005, 'profile': 'paper', 'iframe_interval': 20}),
     ('wavelet', {'target_kg': 0.5, 'step': 1e-05, 'iframe_interval': 50}),
     ('wavelet', {'step': 0.001, 'i_frames_only': True}),
+    ('trajectory', {'target_kg': 0.5}),
+    ('trajectory', {'step': 0.001, 'group_frames': 30, 'iframe_interval': 50}),
 ])
 def test_bytes_and_frames_equal_the_command_line(sequence, cli, tmp_path, codec, options):
     ams, pc2_out = tmp_path / 'out.ams', tmp_path / 'out.pc2'
