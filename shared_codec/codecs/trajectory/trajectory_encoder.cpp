@@ -67,6 +67,8 @@ int32_t quantise(double value, double step) {
 // becomes 0, and so on): a zero costs far fewer bits than a 1, and the step the target then
 // needs is only a little finer. 0.6 beat 0.5 and 0.7 on the shared sequences (trajectory.md).
 constexpr double kRoundingThreshold = 0.6;
+// The squared error a bit buys at a uniform quantiser's slope, per squared step: 2 ln 2 / 12.
+constexpr double kBitSlope = 0.1155;
 int32_t quantiseCoefficient(double value, double step) {
   const double magnitude = std::min(std::floor(std::fabs(value) / step + 1 - kRoundingThreshold), kMaxQuantised);
   return int32_t(std::copysign(magnitude, value));
@@ -156,33 +158,75 @@ class TrajectoryEncoder final : public GroupEncoder {
     g.coefficient_step = float(step);
     const double q = g.coefficient_step;
     const size_t row = size_t(3) * frame_count_;
+    // An error d in basis vector k moves the vertices by their coefficients times d, sigma_k
+    // in total, and one in the mean moves all N vertices by d: these steps make each cost
+    // the squared error of one coefficient's step.
     const Eigen::Index k_all = pc.coefficients.cols();
-    std::vector<int32_t> all(size_t(vertices_) * k_all);
-    uint32_t used = 0;
-    for (uint32_t p = 0; p < vertices_; ++p)
-      for (Eigen::Index k = 0; k < k_all; ++k) {
-        const int32_t c = quantiseCoefficient(pc.coefficients(order_.vertex[p], k), q);
-        all[p * k_all + k] = c;
-        if (c != 0) used = std::max(used, uint32_t(k) + 1);
+    std::vector<uint32_t> kept;
+    std::vector<std::vector<int32_t>> columns, rows;
+    std::vector<float> steps;
+    for (Eigen::Index k = 0; k < k_all; ++k) {
+      std::vector<int32_t> column(vertices_);
+      bool any = false;
+      for (uint32_t p = 0; p < vertices_; ++p) {
+        column[p] = quantiseCoefficient(pc.coefficients(order_.vertex[p], k), q);
+        any |= column[p] != 0;
       }
+      if (!any) continue;
+      const float basis_step = float(std::clamp(q / pc.sigma[k], 1.0 / kMaxQuantised, 2.0));
+      std::vector<int32_t> basis(row);
+      for (size_t i = 0; i < row; ++i) basis[i] = quantise(pc.basis(Eigen::Index(i), k), basis_step);
+      if (!worthSending(pc, k, q, column, basis, basis_step)) continue;
+      columns.push_back(std::move(column));
+      rows.push_back(std::move(basis));
+      steps.push_back(basis_step);
+    }
+    const uint32_t used = uint32_t(columns.size());
     g.components = used;
     g.coefficients.resize(size_t(vertices_) * used);
     for (uint32_t p = 0; p < vertices_; ++p)
-      std::copy_n(all.data() + p * k_all, used, g.coefficients.data() + size_t(p) * used);
-    // An error d in the mean moves all N vertices by d, and one in basis vector k moves
-    // them by their coefficients times d, sigma_k in total: these steps make each cost the
-    // squared error of one coefficient's step.
+      for (uint32_t k = 0; k < used; ++k) g.coefficients[size_t(p) * used + k] = columns[k][p];
+    g.basis_step = steps;
+    g.basis.resize(used * row);
+    for (uint32_t k = 0; k < used; ++k) std::copy(rows[k].begin(), rows[k].end(), g.basis.begin() + k * row);
     const double mean_reach = pc.mean.cwiseAbs().maxCoeff();
     g.mean_step = float(std::max(q / std::sqrt(double(vertices_)), mean_reach / kMaxQuantised + 1e-30));
     g.mean.resize(row);
     for (size_t i = 0; i < row; ++i) g.mean[i] = quantise(pc.mean[Eigen::Index(i)], g.mean_step);
-    g.basis_step.resize(used);
-    g.basis.resize(used * row);
-    for (uint32_t k = 0; k < used; ++k) {
-      g.basis_step[k] = float(std::clamp(q / pc.sigma[k], 1.0 / kMaxQuantised, 2.0));
-      for (size_t i = 0; i < row; ++i) g.basis[k * row + i] = quantise(pc.basis(Eigen::Index(i), k), g.basis_step[k]);
-    }
     return g;
+  }
+
+  // Rate-distortion choice of a component: sent when the squared error it removes (its
+  // energy, less the error of its quantised coefficients and basis vector) is worth its
+  // estimated bits at the slope of a uniform quantiser, 2 ln 2 q^2 / 12 per bit. Weak
+  // components otherwise cost a whole basis vector for a few coefficients.
+  bool worthSending(const Components& pc, Eigen::Index k, double q, const std::vector<int32_t>& column,
+                    const std::vector<int32_t>& basis, float basis_step) const {
+    double coded_error = 0, coded_energy = 0, bits = 0;
+    for (uint32_t p = 0; p < vertices_; ++p) {
+      const double c = pc.coefficients(order_.vertex[p], k), chat = column[p] * q;
+      coded_error += (c - chat) * (c - chat);
+      coded_energy += chat * chat;
+      bits += estimatedBits(column[p]);
+    }
+    double basis_error = 0;
+    int64_t previous = 0;
+    for (size_t i = 0; i < basis.size(); ++i) {
+      const double b = pc.basis(Eigen::Index(i), k), bhat = basis[i] * double(basis_step);
+      basis_error += (b - bhat) * (b - bhat);
+      if (i % frame_count_ == 0) previous = 0;
+      bits += estimatedBits(basis[i] - previous);
+      previous = basis[i];
+    }
+    coded_error += coded_energy * basis_error;
+    const double removed = pc.sigma[k] * pc.sigma[k] - coded_error;
+    return removed > kBitSlope * q * q * bits;
+  }
+
+  // Bits of a value through an adaptive classed model, roughly: zeros are the common case.
+  static double estimatedBits(int64_t v) {
+    if (v == 0) return 0.3;
+    return 2 + 2 * std::log2(double(v < 0 ? -v : v));
   }
 
   double squaredError(const TrajectoryGroup& group) const {
