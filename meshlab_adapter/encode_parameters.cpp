@@ -95,7 +95,7 @@ Status readWaveletParameters(const RichParameterList& par, WaveletOptions& o) {
 // default), and the I-frame interval, when set, as its group length.
 Status readTrajectoryParameters(const RichParameterList& par, TrajectoryOptions& o) {
   const double target = typedValue(par, "WaveletTargetKG");
-  if (target > 0) o.target_kg = target;
+  if (target > 0) o.rate_value = target;
   return Status();
 }
 

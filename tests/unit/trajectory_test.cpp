@@ -4,6 +4,7 @@
 // and the group cap; the target error holds; damaged groups are refused.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "animc/animc.h"
@@ -133,6 +134,62 @@ TEST(Trajectory, AFixedStepBoundsTheErrorBySize) {
   EXPECT_GT(a.bytes.size(), b.bytes.size());
 }
 
+// The largest side of a frame's bounding box (the affine-octree codec's cube).
+double cubeSide(const std::vector<float>& xyz) {
+  float lo[3] = {xyz[0], xyz[1], xyz[2]}, hi[3] = {xyz[0], xyz[1], xyz[2]};
+  for (size_t i = 0; i < xyz.size(); ++i) {
+    lo[i % 3] = std::min(lo[i % 3], xyz[i]);
+    hi[i % 3] = std::max(hi[i % 3], xyz[i]);
+  }
+  return std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
+}
+
+TEST(Trajectory, MaxErrorBoundsEveryVertexOfEveryFrame) {
+  const MemorySequence seq = gridSequence(12, 10, 30, 1.0, 1.0);
+  for (double bound : {0.002, 0.02}) {
+    EncoderOptions options;
+    options.codec = "trajectory";
+    options.set("max-error", bound);
+    options.iframe_interval = 16;
+    const Coded coded = encode(seq, options);
+    const auto decoded = decodeAll(coded.bytes);
+    ASSERT_EQ(decoded, coded.reconstructions);
+    double worst = 0;  // the largest error, in units of its frame's bound
+    for (size_t f = 0; f < decoded.size(); ++f) {
+      const std::vector<float>& original = seq.frames()[f];
+      for (size_t v = 0; v < original.size(); v += 3) {
+        const double d = std::hypot(decoded[f][v] - original[v], decoded[f][v + 1] - original[v + 1],
+                                    decoded[f][v + 2] - original[v + 2]);
+        worst = std::max(worst, d / (bound * cubeSide(original)));
+      }
+    }
+    EXPECT_LE(worst, 1.0) << "max error " << bound;
+    EXPECT_GT(worst, 0.25) << "a much finer step than the bound needs, max error " << bound;
+  }
+}
+
+TEST(Trajectory, BpvfFillsItsBudget) {
+  const MemorySequence seq = gridSequence(12, 10, 40, 1.0, 1.0);
+  const double vertex_frames = 40.0 * seq.topology().vertex_count;
+  EncoderOptions coarsest;
+  coarsest.codec = "trajectory";
+  coarsest.set("step", 1.0);  // next to nothing but the container and the mean
+  const double overhead = double(encode(seq, coarsest).bytes.size());
+  double previous = 0;
+  for (double budget : {0.5, 2.0, 8.0}) {
+    EncoderOptions options;
+    options.codec = "trajectory";
+    options.set("bpvf", budget);
+    const Coded coded = encode(seq, options);
+    EXPECT_EQ(decodeAll(coded.bytes), coded.reconstructions);
+    const double bpvf = 8 * (double(coded.bytes.size()) - overhead) / vertex_frames;
+    EXPECT_LE(bpvf, budget) << "budget " << budget;
+    EXPECT_GT(bpvf, budget / 2) << "budget " << budget;
+    EXPECT_GT(double(coded.bytes.size()), previous);
+    previous = double(coded.bytes.size());
+  }
+}
+
 TEST(Trajectory, OneFrameAndStillSequences) {
   const MemorySequence one = gridSequence(5, 4, 1, 1.0, 1.0);
   const Coded coded = encode(one, trajectory(0.3));
@@ -150,10 +207,14 @@ TEST(Trajectory, OptionsAreChecked) {
   EncoderOptions both = trajectory(0.3);
   both.set("step", 1e-3);
   EXPECT_FALSE(both.validate().ok());
+  EncoderOptions bound;
+  bound.codec = "trajectory";
+  EXPECT_TRUE(bound.set("max-error", 0.01).validate().ok());
+  EXPECT_FALSE(bound.set("bpvf", 2.0).validate().ok());
   EXPECT_FALSE(trajectory(0).validate().ok());
   EXPECT_FALSE(trajectory(0.3).set("group-frames", 0.0).validate().ok());
   EXPECT_FALSE(trajectory(0.3).set("group-frames", 2000.0).validate().ok());
-  EXPECT_FALSE(trajectory(0.3).set("max-error", 0.01).validate().ok());
+  EXPECT_FALSE(trajectory(0.3).set("bits", 12.0).validate().ok());
   EXPECT_TRUE(trajectory(0.3).set("group-frames", 64.0).validate().ok());
 }
 

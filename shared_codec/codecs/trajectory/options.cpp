@@ -4,13 +4,45 @@
 #include <string>
 
 namespace animc {
+namespace {
+
+struct RateRange {
+  double low, high;
+  bool low_included;
+  const char* unit;
+};
+
+RateRange rangeOf(TrajectoryRate rate) {
+  switch (rate) {
+    case TrajectoryRate::kTargetKg: return {0, kMaxTrajectoryTargetKg, false, " % (KG error)"};
+    case TrajectoryRate::kStep: return {kMinTrajectoryStep, kMaxTrajectoryStep, true, " of the diagonal"};
+    case TrajectoryRate::kMaxError: return {kMinTrajectoryMaxError, kMaxTrajectoryMaxError, true, " of the cube's side"};
+    case TrajectoryRate::kBitsPerVertexFrame: return {0, kMaxTrajectoryBpvf, false, " bits per vertex per frame"};
+  }
+  return {0, 0, false, ""};
+}
+
+}  // namespace
+
+const char* rateName(TrajectoryRate rate) {
+  switch (rate) {
+    case TrajectoryRate::kTargetKg: return "target KG";
+    case TrajectoryRate::kStep: return "step";
+    case TrajectoryRate::kMaxError: return "max error";
+    case TrajectoryRate::kBitsPerVertexFrame: return "bpvf";
+  }
+  return "unknown";
+}
 
 Status TrajectoryOptions::validate() const {
-  if (step == 0 && !(target_kg > 0 && target_kg <= kMaxTrajectoryTargetKg))
-    return invalidArgument("target KG error " + std::to_string(target_kg) + " % outside (0, 100]");
-  if (step != 0 && !(step >= kMinTrajectoryStep && step <= kMaxTrajectoryStep))
-    return invalidArgument("trajectory step " + std::to_string(step) +
-                           " outside [1e-9, 1] (a fraction of the first frame's diagonal)");
+  if (uint8_t(rate) > uint8_t(TrajectoryRate::kBitsPerVertexFrame))
+    return invalidArgument("unknown trajectory rate mode " + std::to_string(int(rate)));
+  const RateRange r = rangeOf(rate);
+  const bool above_low = r.low_included ? rate_value >= r.low : rate_value > r.low;
+  if (!(above_low && rate_value <= r.high))
+    return invalidArgument(std::string(rateName(rate)) + " " + std::to_string(rate_value) + " outside " +
+                           (r.low_included ? "[" : "(") + std::to_string(r.low) + ", " + std::to_string(r.high) +
+                           "]" + r.unit);
   if (group_frames < 1 || group_frames > kMaxTrajectoryGroupFrames)
     return invalidArgument("group frames " + std::to_string(group_frames) + " outside [1, " +
                            std::to_string(kMaxTrajectoryGroupFrames) + "]");
@@ -18,15 +50,16 @@ Status TrajectoryOptions::validate() const {
 }
 
 void TrajectoryOptions::write(ByteWriter& w) const {
-  w.f64(target_kg);
-  w.f64(step);
+  w.u8(uint8_t(rate));
+  w.f64(rate_value);
   w.u32(group_frames);
 }
 
 Result<TrajectoryOptions> TrajectoryOptions::read(ByteReader& r) {
   TrajectoryOptions o;
-  ANIMC_ASSIGN_OR_RETURN(o.target_kg, r.f64("Target_KG"));
-  ANIMC_ASSIGN_OR_RETURN(o.step, r.f64("Trajectory_Step"));
+  ANIMC_ASSIGN_OR_RETURN(uint8_t rate, r.u8("Rate_Mode"));
+  o.rate = TrajectoryRate(rate);
+  ANIMC_ASSIGN_OR_RETURN(o.rate_value, r.f64("Rate_Value"));
   ANIMC_ASSIGN_OR_RETURN(o.group_frames, r.u32("Group_Frames"));
   if (r.remaining() != 0) return corrupt("codec parameters: " + std::to_string(r.remaining()) + " unread bytes");
   Status s = o.validate();

@@ -11,14 +11,23 @@
 
 namespace animc {
 
+// How a group's coefficient step is chosen (Rate_Mode in the codec parameters).
+enum class TrajectoryRate : uint8_t {
+  // The coarsest step whose decoded frames have a squared error <= (value / 100)^2 times
+  // the group's sum of |x - centroid|^2: the sequence's KG error is then <= value (percent).
+  kTargetKg = 0,
+  // One fixed step, value times the group's first-frame bounding-box diagonal.
+  kStep = 1,
+  // The coarsest step whose decoded vertices are all within value times the side of their
+  // frame's bounding cube (1 for a point), as the affine-octree codec's max error.
+  kMaxError = 2,
+  // The finest step whose group payload fits value bits per vertex per frame.
+  kBitsPerVertexFrame = 3,
+};
+
 struct TrajectoryOptions {
-  // Rate control by target error, in percent of the KG error: each group gets the coarsest
-  // coefficient step whose decoded frames have a squared error <= (target_kg / 100)^2 times
-  // the group's sum of |x - centroid|^2, so the sequence's KG error is <= target_kg.
-  double target_kg = 0.3;
-  // Instead of a target: one fixed coefficient step, a fraction of the first frame's
-  // bounding-box diagonal (0 = use target_kg).
-  double step = 0;
+  TrajectoryRate rate = TrajectoryRate::kTargetKg;
+  double rate_value = 0.3;
   // Most frames in one group when the I-frame interval does not set it: memory is
   // O(vertices x group frames), and longer groups cost fewer bits.
   uint32_t group_frames = 512;
@@ -28,12 +37,18 @@ struct TrajectoryOptions {
   static Result<TrajectoryOptions> read(ByteReader& r);
 };
 
+// "target KG", "step", "max error", "bpvf".
+const char* rateName(TrajectoryRate rate);
+
 // Ranges accepted by validate(), by the decoder and, for the group limits, by the payload
 // reader: a group holds at most kMaxTrajectoryGroupFrames frames, and its coefficients
 // (vertices x components) at most kMaxTrajectoryCoefficients values.
 constexpr double kMaxTrajectoryTargetKg = 100;
 constexpr double kMinTrajectoryStep = 1e-9;
 constexpr double kMaxTrajectoryStep = 1;
+constexpr double kMinTrajectoryMaxError = 1e-6;
+constexpr double kMaxTrajectoryMaxError = 0.5;
+constexpr double kMaxTrajectoryBpvf = 1024;
 constexpr uint32_t kMaxTrajectoryGroupFrames = 1024;
 constexpr uint64_t kMaxTrajectoryCoefficients = uint64_t(1) << 26;
 

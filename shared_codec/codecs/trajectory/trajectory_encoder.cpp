@@ -5,6 +5,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <functional>
 
 #include "codecs/trajectory/group_coding.h"
 #include "codecs/trajectory/trajectory_codec.h"
@@ -135,21 +136,47 @@ class TrajectoryEncoder final : public GroupEncoder {
     return sum;
   }
 
-  // The coefficient step: fixed, or the coarsest that meets the target (bisection on its
-  // logarithm; the error grows with the step).
+  // The coefficient step of the rate mode: fixed, or found by bisection on its logarithm
+  // (the error grows and the size falls with the step).
   double chooseStep(const Components& pc) const {
     const double largest = pc.coefficients.size() ? pc.coefficients.cwiseAbs().maxCoeff() : 0.0;
     const double scale = std::max({largest, firstFrameDiagonal(), 1e-30});
     const double finest = std::max(largest / kMaxQuantised, scale * 1e-12);
-    if (options_.step > 0) return std::max(options_.step * firstFrameDiagonal(), finest);
-    const double allowed = std::pow(options_.target_kg / 100, 2) * spread();
-    double lo = std::log2(finest), hi = std::log2(2 * scale);
-    if (squaredError(quantised(pc, std::exp2(hi))) <= allowed) return std::exp2(hi);
-    for (int i = 0; i < 24; ++i) {
-      const double mid = (lo + hi) / 2;
-      (squaredError(quantised(pc, std::exp2(mid))) <= allowed ? lo : hi) = mid;
+    const double value = options_.rate_value;
+    std::function<bool(double)> acceptable;  // of a step; true for the steps below some bound
+    bool larger_is_acceptable = false;
+    switch (options_.rate) {
+      case TrajectoryRate::kStep:
+        return std::max(value * firstFrameDiagonal(), finest);
+      case TrajectoryRate::kTargetKg: {
+        const double allowed = (value / 100) * (value / 100) * spread();
+        acceptable = [&, allowed](double q) { return measure(quantised(pc, q)).squared <= allowed; };
+        break;
+      }
+      case TrajectoryRate::kMaxError:
+        acceptable = [&](double q) { return measure(quantised(pc, q)).within_max_error; };
+        break;
+      case TrajectoryRate::kBitsPerVertexFrame: {
+        const double budget = value * vertices_ * frame_count_ / 8;
+        acceptable = [&, budget](double q) {
+          std::vector<uint8_t> payload;
+          writeTrajectoryGroup(quantised(pc, q), order_, payload);
+          return double(payload.size()) <= budget;
+        };
+        larger_is_acceptable = true;
+        break;
+      }
     }
-    return std::exp2(lo);
+    // pass: the end of the range known to be acceptable (assumed for the finest step with an
+    // error bound, which meets any bound but float rounding; for a budget, the coarsest).
+    double pass = larger_is_acceptable ? std::log2(2 * scale) : std::log2(finest);
+    double fail = larger_is_acceptable ? std::log2(finest) : std::log2(2 * scale);
+    if (acceptable(std::exp2(fail))) return std::exp2(fail);
+    for (int i = 0; i < 24; ++i) {
+      const double mid = (pass + fail) / 2;
+      (acceptable(std::exp2(mid)) ? pass : fail) = mid;
+    }
+    return std::exp2(pass);
   }
 
   TrajectoryGroup quantised(const Components& pc, double step) const {
@@ -229,17 +256,45 @@ class TrajectoryEncoder final : public GroupEncoder {
     return 2 + 2 * std::log2(double(v < 0 ? -v : v));
   }
 
-  double squaredError(const TrajectoryGroup& group) const {
+  struct GroupError {
+    double squared = 0;            // summed over the group's vertices and frames
+    bool within_max_error = true;  // every vertex within the max error (kMaxError)
+  };
+
+  // The error of the frames the decoder will make of `group`.
+  GroupError measure(const TrajectoryGroup& group) const {
     GroupFrames decoded;
     decoded.reset(group, order_, path_);
     std::vector<float> xyz(size_t(3) * vertices_);
-    double sum = 0;
+    GroupError e;
     for (uint32_t t = 0; t < frame_count_; ++t) {
       decoded.frame(t, xyz.data());
       const float* original = vertexOf(t, 0);
-      for (size_t i = 0; i < xyz.size(); ++i) sum += (double(xyz[i]) - original[i]) * (double(xyz[i]) - original[i]);
+      double worst = 0;
+      for (size_t v = 0; v < xyz.size(); v += 3) {
+        double sq = 0;
+        for (int c = 0; c < 3; ++c) sq += (double(xyz[v + c]) - original[v + c]) * (double(xyz[v + c]) - original[v + c]);
+        e.squared += sq;
+        worst = std::max(worst, sq);
+      }
+      if (options_.rate == TrajectoryRate::kMaxError) {
+        const double bound = options_.rate_value * cubeSide(t);
+        e.within_max_error &= worst <= bound * bound;
+      }
     }
-    return sum;
+    return e;
+  }
+
+  // The largest side of frame t's bounding box, 1 for a point (the affine-octree's cube).
+  double cubeSide(uint32_t t) const {
+    double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+    for (uint32_t v = 0; v < vertices_; ++v)
+      for (int c = 0; c < 3; ++c) {
+        lo[c] = std::min(lo[c], double(vertexOf(t, v)[c]));
+        hi[c] = std::max(hi[c], double(vertexOf(t, v)[c]));
+      }
+    const double side = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
+    return side > 0 ? side : 1;
   }
 
   TrajectoryOptions options_;

@@ -10,12 +10,25 @@ namespace {
 
 const TrajectoryOptions& trajectory(const CodecOptions& o) { return std::get<TrajectoryOptions>(o); }
 
+// The rate flags, one of which may be given (the default is --target-kg 0.3).
+struct RateFlag {
+  const char* flag;
+  TrajectoryRate rate;
+};
+constexpr RateFlag kRateFlags[] = {{"target-kg", TrajectoryRate::kTargetKg},
+                                   {"step", TrajectoryRate::kStep},
+                                   {"max-error", TrajectoryRate::kMaxError},
+                                   {"bpvf", TrajectoryRate::kBitsPerVertexFrame}};
+
 Result<CodecOptions> fromFlags(const OptionValues& values) {
   TrajectoryOptions o;
-  if (values.has("step") && values.has("target-kg"))
-    return invalidArgument("--step and --target-kg exclude each other (a fixed step, or a target error)");
-  ANIMC_ASSIGN_OR_RETURN(o.target_kg, values.number("target-kg", o.target_kg));
-  ANIMC_ASSIGN_OR_RETURN(o.step, values.number("step", o.step));
+  int given = 0;
+  for (const RateFlag& f : kRateFlags) {
+    if (!values.has(f.flag)) continue;
+    if (++given > 1) return invalidArgument("--target-kg, --step, --max-error and --bpvf exclude each other");
+    o.rate = f.rate;
+    ANIMC_ASSIGN_OR_RETURN(o.rate_value, values.number(f.flag, 0));
+  }
   ANIMC_ASSIGN_OR_RETURN(long long frames, values.integer("group-frames", o.group_frames));
   if (frames < 1 || frames > kMaxTrajectoryGroupFrames)
     return invalidArgument("--group-frames must be in [1, " + std::to_string(kMaxTrajectoryGroupFrames) + "]");
@@ -26,16 +39,20 @@ Result<CodecOptions> fromFlags(const OptionValues& values) {
 std::string describe(const CodecOptions& options) {
   const TrajectoryOptions& o = trajectory(options);
   char text[160];
-  if (o.step > 0)
-    std::snprintf(text, sizeof text, "step %g of the diagonal, groups of up to %u frames", o.step, o.group_frames);
-  else
-    std::snprintf(text, sizeof text, "target KG %g %%, groups of up to %u frames", o.target_kg, o.group_frames);
+  const char* unit = o.rate == TrajectoryRate::kTargetKg   ? " %"
+                     : o.rate == TrajectoryRate::kStep     ? " of the diagonal"
+                     : o.rate == TrajectoryRate::kMaxError ? " of the cube's side"
+                                                           : "";
+  std::snprintf(text, sizeof text, "%s %g%s, groups of up to %u frames", rateName(o.rate), o.rate_value, unit,
+                o.group_frames);
   return text;
 }
 
 std::vector<SettingValue> settings(const CodecOptions& options) {
   const TrajectoryOptions& o = trajectory(options);
-  return {{"target_kg_setting", o.target_kg}, {"step", o.step}, {"group_frames", int64_t(o.group_frames)}};
+  return {{"rate_mode", std::string(rateName(o.rate))},
+          {"rate_value", o.rate_value},
+          {"group_frames", int64_t(o.group_frames)}};
 }
 
 Status checkMesh(const Topology&) { return Status(); }
@@ -58,12 +75,14 @@ Result<std::unique_ptr<FrameDecoder>> makeDecoder(const CodecOptions&, const Top
 const CodecEntry kTrajectoryEntry = {
     CodecId::kTrajectory,
     "trajectory",
-    {"target-kg", "step", "group-frames"},
+    {"target-kg", "step", "max-error", "bpvf", "group-frames"},
     {},
-    "[--target-kg X | --step S] [--group-frames G]\n"
-    "           X: the KG error (in %) to reach with the fewest bits (default 0.3); S: a fixed\n"
-    "           coefficient step, a fraction of the first frame's diagonal; G: the most frames\n"
-    "           coded together when --iframe-interval does not set it (default 512)",
+    "[--target-kg X | --step S | --max-error E | --bpvf B] [--group-frames G]\n"
+    "           per group: X the KG error (in %) to reach with the fewest bits (default 0.3);\n"
+    "           S a fixed coefficient step (fraction of the first frame's diagonal); E the\n"
+    "           largest vertex error (fraction of its frame's cube side); B the bits per vertex\n"
+    "           per frame to fill; G the most frames coded together when --iframe-interval\n"
+    "           does not set it (default 512)",
     fromFlags,
     validateOptions<TrajectoryOptions>,
     writeOptions<TrajectoryOptions>,
