@@ -10,6 +10,7 @@ enum class CodecId : uint8_t {
   kAffineOctree = 1,  // docs/affine_octree.md
   kWavelet = 2,       // Guskov & Khodakovsky 2004 (docs/wavelet.md)
   kTrajectory = 3,    // trajectory PCA over frame groups (docs/trajectory.md)
+  kAuto = 4,          // per group, the smallest of the others (docs/auto.md)
 };
 
 // Profiles of the Affine-Octree codec (its Profile parameter).

@@ -5,12 +5,13 @@
 #include <variant>
 
 #include "codecs/affine_octree/options.h"
+#include "codecs/auto/options.h"
 #include "codecs/trajectory/options.h"
 #include "codecs/wavelet/options.h"
 
 namespace animc {
 
 // One alternative per codec, in Codec_Id order (a new codec appends its options type).
-using CodecOptions = std::variant<AffineOctreeOptions, WaveletOptions, TrajectoryOptions>;
+using CodecOptions = std::variant<AffineOctreeOptions, WaveletOptions, TrajectoryOptions, AutoOptions>;
 
 }  // namespace animc

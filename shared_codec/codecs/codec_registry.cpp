@@ -6,7 +6,7 @@ namespace animc {
 const std::vector<const CodecEntry*>& allCodecs() {
   // A new codec: one line here, in Codec_Id order, and its options in codec_options.h.
   static const std::vector<const CodecEntry*> codecs = {&kAffineOctreeEntry, &kWaveletEntry,
-                                                              &kTrajectoryEntry};
+                                                              &kTrajectoryEntry, &kAutoEntry};
   return codecs;
 }
 

@@ -84,11 +84,12 @@ Result<const CodecEntry*> findCodecByName(const std::string& name);
 const CodecEntry& codecOf(const CodecOptions& options);
 
 const char* codecName(CodecId id);  // "affine-octree", "wavelet", "trajectory"
-std::string knownCodecList();       // "1 (affine-octree), 2 (wavelet), 3 (trajectory)"
+std::string knownCodecList();       // "1 (affine-octree), 2 (wavelet), 3 (trajectory), 4 (auto)"
 
 // The entries of the codecs (each in its codec's folder).
 extern const CodecEntry kAffineOctreeEntry;
 extern const CodecEntry kWaveletEntry;
 extern const CodecEntry kTrajectoryEntry;
+extern const CodecEntry kAutoEntry;
 
 }  // namespace animc

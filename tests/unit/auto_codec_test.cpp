@@ -1,0 +1,167 @@
+// SPDX-License-Identifier: Apache-2.0
+// `--codec auto`: each group coded by the smallest candidate, the file decoding to the
+// encoder's reconstructions whatever codec each group took, and the error bound of the mode
+// holding for every group.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "animc/animc.h"
+#include "container/container_reader.h"
+#include "io/byte_source.h"
+#include "test_sequences.h"
+
+namespace animc {
+namespace {
+
+using testing_support::gridSequence;
+
+struct Coded {
+  std::vector<uint8_t> bytes;
+  std::vector<std::vector<float>> reconstructions;
+};
+
+Coded encode(const MemorySequence& seq, const EncoderOptions& options) {
+  Coded out;
+  std::vector<uint32_t> triangles;
+  for (const Triangle& t : seq.topology().triangles) triangles.insert(triangles.end(), t.begin(), t.end());
+  auto encoder = Encoder::create(options, seq.topology().vertex_count, triangles.data(), triangles.size() / 3,
+                                 memorySink(&out.bytes));
+  EXPECT_TRUE(encoder.ok()) << encoder.status().message();
+  if (!encoder.ok()) return out;
+  Encoder& e = encoder.value();
+  auto collect = [&] {
+    for (int64_t k = int64_t(out.reconstructions.size()); k < e.reconstructedFrames(); ++k) {
+      const float* r = e.reconstruction(k);
+      out.reconstructions.emplace_back(r, r + 3 * size_t(seq.topology().vertex_count));
+    }
+  };
+  for (const std::vector<float>& frame : seq.frames()) {
+    EXPECT_TRUE(e.addFrame(frame.data()).ok());
+    collect();
+  }
+  EXPECT_TRUE(e.finish().ok());
+  collect();
+  return out;
+}
+
+std::vector<std::vector<float>> decodeAll(const std::vector<uint8_t>& bytes) {
+  auto decoder = Decoder::openMemory(bytes.data(), bytes.size());
+  EXPECT_TRUE(decoder.ok()) << decoder.status().message();
+  std::vector<std::vector<float>> frames;
+  if (!decoder.ok()) return frames;
+  std::vector<float> xyz(3 * size_t(decoder.value().info().vertices));
+  // Backwards: every group is entered by random access.
+  frames.resize(size_t(decoder.value().info().frames));
+  for (int64_t k = decoder.value().info().frames - 1; k >= 0; --k) {
+    EXPECT_TRUE(decoder.value().frame(k, xyz.data()).ok());
+    frames[size_t(k)] = xyz;
+  }
+  return frames;
+}
+
+// How many groups each candidate (its index in the file) coded: the first byte of each
+// group's first frame.
+std::map<int, int> groupsByCandidate(const std::vector<uint8_t>& bytes) {
+  std::map<int, int> count;
+  auto reader = ContainerReader::open(memorySource(bytes.data(), bytes.size()), "auto", DecoderLimits());
+  EXPECT_TRUE(reader.ok());
+  if (!reader.ok()) return count;
+  std::vector<uint8_t> payload;
+  for (size_t g = 0; g < reader.value()->groupCount(); ++g) {
+    EXPECT_TRUE(reader.value()->beginGroup(g).ok());
+    auto got = reader.value()->nextFrame(payload);
+    EXPECT_TRUE(got.ok() && got.value() && !payload.empty());
+    if (got.ok() && got.value() && !payload.empty()) ++count[payload[0]];
+  }
+  return count;
+}
+
+EncoderOptions options(const std::string& codec, const std::string& flag, double value, uint32_t interval) {
+  EncoderOptions o;
+  o.codec = codec;
+  o.set(flag, value);
+  o.iframe_interval = interval;
+  return o;
+}
+
+double cubeSide(const std::vector<float>& xyz) {
+  float lo[3] = {xyz[0], xyz[1], xyz[2]}, hi[3] = {xyz[0], xyz[1], xyz[2]};
+  for (size_t i = 0; i < xyz.size(); ++i) {
+    lo[i % 3] = std::min(lo[i % 3], xyz[i]);
+    hi[i % 3] = std::max(hi[i % 3], xyz[i]);
+  }
+  return std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
+}
+
+// With groups of one to three frames the candidates trade places.
+TEST(AutoCodec, MixedGroupsDecodeToTheReconstructionsAndTakeTheSmallest) {
+  const MemorySequence seq = gridSequence(12, 10, 24, 1.0, 1.0);
+  for (uint32_t interval : {1u, 2u, 6u}) {
+    const Coded coded = encode(seq, options("auto", "max-error", 0.01, interval));
+    EXPECT_EQ(decodeAll(coded.bytes), coded.reconstructions) << "interval " << interval;
+    // Never more than the smaller candidate alone, plus the candidate byte of each frame and
+    // the candidates' parameters in the header.
+    const size_t trajectory = encode(seq, options("trajectory", "max-error", 0.01, interval)).bytes.size();
+    const size_t octree = encode(seq, options("affine-octree", "max-error", 0.01, interval)).bytes.size();
+    EXPECT_LE(coded.bytes.size(), std::min(trajectory, octree) + seq.frames().size() + 64) << "interval " << interval;
+    // Every vertex within each frame's bound: the affine-octree codec's cube is the previous
+    // decoded frame's, the trajectory codec's the frame's own; allow the larger.
+    for (size_t f = 0; f < seq.frames().size(); ++f) {
+      const std::vector<float>& original = seq.frames()[f];
+      const double side = std::max(cubeSide(original), f > 0 ? cubeSide(coded.reconstructions[f - 1]) : 0.0);
+      for (size_t v = 0; v < original.size(); v += 3) {
+        const double d = std::hypot(coded.reconstructions[f][v] - original[v], coded.reconstructions[f][v + 1] -
+                                    original[v + 1], coded.reconstructions[f][v + 2] - original[v + 2]);
+        ASSERT_LE(d, 0.01 * side * (1 + 1e-5)) << "frame " << f << " interval " << interval;
+      }
+    }
+  }
+  // One-frame groups go to the affine-octree codec (candidate 1), three-frame groups to the
+  // trajectory codec (0), and two-frame groups mix them.
+  EXPECT_EQ(groupsByCandidate(encode(seq, options("auto", "max-error", 0.01, 1)).bytes), (std::map<int, int>{{1, 24}}));
+  EXPECT_EQ(groupsByCandidate(encode(seq, options("auto", "max-error", 0.01, 3)).bytes), (std::map<int, int>{{0, 8}}));
+  EXPECT_EQ(groupsByCandidate(encode(seq, options("auto", "max-error", 0.01, 2)).bytes).size(), 2u);
+}
+
+TEST(AutoCodec, TargetKgHoldsAndTheFileNamesItsCandidates) {
+  const MemorySequence seq = gridSequence(12, 10, 30, 1.0, 1.0);
+  const Coded coded = encode(seq, options("auto", "target-kg", 0.5, 10));
+  const auto decoded = decodeAll(coded.bytes);
+  EXPECT_EQ(decoded, coded.reconstructions);
+  MetricsAccumulator metrics(seq.topology().vertex_count);
+  for (size_t f = 0; f < decoded.size(); ++f) metrics.addFrame(seq.frames()[f].data(), decoded[f].data());
+  EXPECT_LE(metrics.finish().kg_error, 0.5);
+  auto decoder = Decoder::openMemory(coded.bytes.data(), coded.bytes.size());
+  ASSERT_TRUE(decoder.ok());
+  EXPECT_EQ(decoder.value().info().codec, "auto");
+  EXPECT_NE(decoder.value().info().settings_text.find("trajectory or wavelet"), std::string::npos)
+      << decoder.value().info().settings_text;
+}
+
+TEST(AutoCodec, OptionsAreChecked) {
+  EXPECT_TRUE(options("auto", "max-error", 0.01, 0).validate().ok());
+  EXPECT_FALSE(options("auto", "max-error", 0.01, 0).set("target-kg", 0.3).validate().ok());
+  EXPECT_FALSE(options("auto", "step", 0.01, 0).validate().ok());
+  EXPECT_FALSE(options("auto", "max-error", 0.9, 0).validate().ok());
+}
+
+TEST(AutoCodec, DamagedStreamsAreRefusedOrDecodedSafely) {
+  const MemorySequence seq = gridSequence(6, 5, 6, 1.0, 1.0);
+  const Coded coded = encode(seq, options("auto", "max-error", 0.01, 2));
+  for (size_t cut = 0; cut < coded.bytes.size(); ++cut) {
+    auto decoder = Decoder::openMemory(coded.bytes.data(), cut);
+    EXPECT_TRUE(!decoder.ok() || !decoder.value().verify().ok()) << "cut at " << cut;
+  }
+  for (size_t i = 0; i < coded.bytes.size(); ++i) {
+    std::vector<uint8_t> bytes = coded.bytes;
+    bytes[i] ^= 0x5A;
+    auto decoder = Decoder::openMemory(bytes.data(), bytes.size());
+    if (decoder.ok()) (void)decoder.value().verify();
+  }
+}
+
+}  // namespace
+}  // namespace animc
