@@ -78,11 +78,19 @@ std::string codecUsage() {
   return text;
 }
 
+// Without --codec: auto, or affine-octree when a flag only it takes is given, so that every
+// command line of animc 1.x (whose default it was) still means the same codec.
+std::string defaultCodec(const Args& args) {
+  for (const char* flag : {"profile", "bits", "max-depth"})
+    if (args.has(flag)) return "affine-octree";
+  return "auto";
+}
+
 // The command line as the library's EncoderOptions, which it checks (an option of a codec not
 // chosen is refused there).
 Result<EncodeSettings> encodeSettingsFrom(const Args& args) {
   EncoderOptions options;
-  options.codec = args.get("codec", options.codec);
+  options.codec = args.get("codec", defaultCodec(args));
   for (bool switches : {false, true})
     for (const std::string& name : flagsOfEveryCodec(switches))
       if (args.has(name)) options.set(name, args.get(name));

@@ -31,6 +31,8 @@ std::string usage() {
   for (const animc::CodecEntry* codec : animc::allCodecs()) codecs += (codecs.empty() ? "" : "|") + std::string(codec->name);
   return "usage: animc <command> ...   (animc --version prints the release)\n"
          "  encode IN -o OUT.ams [--mesh M] [--codec " + codecs + "] [--iframe-interval K]\n" +
+         "         (the codec is auto by default, affine-octree when --profile, --bits or\n"
+         "         --max-depth is given)\n" +
          animc::cli::codecUsage() + kUsageAfterEncode;
 }
 

@@ -7,7 +7,8 @@ namespace animc::meshlab {
 namespace {
 
 // Enum order is the script value: append, never reorder.
-const QStringList kCodecs = {"Affine-Octree", "Wavelet", "Trajectory"};
+const QStringList kCodecs = {"Affine-Octree", "Wavelet", "Trajectory", "Auto"};
+constexpr int kAutoCodec = 3;  // the default
 const QStringList kProfiles = {"predictive", "paper"};
 // How wavelet detail frames refer to the frame before them (animc encode: default,
 // --progressive-p-frames, --i-frames-only).
@@ -19,12 +20,14 @@ void addEncodeParameters(RichParameterList& par) {
   const EncodeSettings defaults;
   const AffineOctreeOptions octree_defaults;
   const WaveletOptions wavelet_defaults;
-  par.addParam(RichEnum("Codec", 0, kCodecs, "Codec",
+  par.addParam(RichEnum("Codec", kAutoCodec, kCodecs, "Codec",
                         "Affine-Octree: per-frame octree of affine motions, every vertex within the max error "
                         "(docs/affine_octree.md). Wavelet: progressive wavelet coding on a mesh hierarchy, "
                         "error set by the step or the bits per vertex (docs/wavelet.md). Trajectory: each group of frames "
                         "as principal trajectories, the smallest files at a KG error; its groups are the I-frame "
-                        "interval, or up to 512 frames (docs/trajectory.md)."));
+                        "interval, or up to 512 frames (docs/trajectory.md). Auto (the default): per group, the smaller "
+                        "of Trajectory and Affine-Octree within the max error, or of Trajectory and Wavelet at the "
+                        "target KG error when it is set (docs/auto.md)."));
   par.addParam(RichEnum("Profile", 0, kProfiles, "Profile (Affine-Octree)",
                         "predictive (the default): our predictive octree, smaller files; paper: the method exactly as published."));
   par.addParam(RichFloat("MaxErrorPercent", float(100 * octree_defaults.max_error), "Max error (%) (Affine-Octree)",
@@ -99,6 +102,20 @@ Status readTrajectoryParameters(const RichParameterList& par, TrajectoryOptions&
   return Status();
 }
 
+// Auto takes the max error, or the target KG error when it is set.
+Status readAutoParameters(const RichParameterList& par, AutoOptions& o) {
+  const double target = typedValue(par, "WaveletTargetKG");
+  if (target > 0) {
+    o.rate = TrajectoryRate::kTargetKg;
+    o.rate_value = target;
+  } else {
+    o.rate = TrajectoryRate::kMaxError;
+    o.rate_value = typedValue(par, "MaxErrorPercent") / 100;
+  }
+  o = withCandidates(o);
+  return Status();
+}
+
 }  // namespace
 
 Result<EncodeSettings> encodeSettingsFrom(const RichParameterList& par) {
@@ -109,6 +126,8 @@ Result<EncodeSettings> encodeSettingsFrom(const RichParameterList& par) {
     ANIMC_RETURN_IF_ERROR(readWaveletParameters(par, s.wavelet()));
   } else if (codec == 2) {
     ANIMC_RETURN_IF_ERROR(readTrajectoryParameters(par, s.trajectory()));
+  } else if (codec == kAutoCodec) {
+    ANIMC_RETURN_IF_ERROR(readAutoParameters(par, s.automatic()));
   } else {
     ANIMC_RETURN_IF_ERROR(readOctreeParameters(par, s.octree()));
   }

@@ -23,6 +23,11 @@ TrajectoryOptions& EncodeSettings::trajectory() {
   return std::get<TrajectoryOptions>(options);
 }
 
+AutoOptions& EncodeSettings::automatic() {
+  if (!std::holds_alternative<AutoOptions>(options)) options = withCandidates(AutoOptions());
+  return std::get<AutoOptions>(options);
+}
+
 Result<EncodeSummary> encodeSequence(FrameSource& source, const EncodeSettings& settings,
                                      const std::string& out_path, const ProgressFn& progress,
                                      const FrameObserver& observer) {

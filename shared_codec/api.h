@@ -28,6 +28,7 @@ struct EncodeSettings {
   AffineOctreeOptions& octree();
   WaveletOptions& wavelet();
   TrajectoryOptions& trajectory();
+  AutoOptions& automatic();
   const AffineOctreeOptions& octree() const { return std::get<AffineOctreeOptions>(options); }
   const WaveletOptions& wavelet() const { return std::get<WaveletOptions>(options); }
 

@@ -101,7 +101,11 @@ same_kg "$TMP/bench.out" "$TMP/encode.out"
 # Given the .ams itself, bench decodes that file only.
 run bench_ams "$ANIMC" bench "$AMS" --runs 2 --json
 json_check 'd["decode_mvps"] > 0 and d["runs"] == 2 and d["frames"] == 50 and "encode_mvps" not in d' "$TMP/bench_ams.out"
-json_check 'd["file_bytes"] == e["file_bytes"] and d["profile"] == e["profile"]' "$TMP/bench_ams.out" "$TMP/encode.out"
+json_check 'd["file_bytes"] == e["file_bytes"] and d["codec"] == e["codec"] == "auto" and d["rate_mode"] == "max error"' \
+  "$TMP/bench_ams.out" "$TMP/encode.out"
+# Without --codec: auto, or affine-octree (the 1.x default) when one of its own flags is given.
+run default_paper "$ANIMC" encode "$PC2" --mesh "$MESH" -o "$TMP/paper.ams" --profile paper --json
+json_check 'd["codec"] == "affine-octree" and d["profile"] == "paper"' "$TMP/default_paper.out"
 
 # --- decode to every format; each holds the same frames as the .ams ------------------------
 run decode_pc2 "$ANIMC" decode "$AMS" -o "$TMP/full.pc2"
