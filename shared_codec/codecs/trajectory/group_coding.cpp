@@ -162,9 +162,10 @@ Status readTrajectoryGroup(ByteReader payload, const CodingOrder& order, Traject
     return corrupt("trajectory group: a step is not a positive finite number");
 
   const size_t row = size_t(3) * frames;
-  g.mean.assign(row, 0);
-  g.basis.assign(components * row, 0);
-  g.coefficients.assign(n * components, 0);
+  // Every value is decoded below (a failed decode leaves the group unusable anyway).
+  g.mean.resize(row);
+  g.basis.resize(components * row);
+  g.coefficients.resize(n * components);
   auto models = std::make_unique<GroupModels>();
   RangeDecoder rc(payload.cursor(), payload.remaining());
   RawBitReader raw(payload.cursor(), payload.remaining());
@@ -199,7 +200,9 @@ void GroupFrames::reset(const TrajectoryGroup& g, const CodingOrder& order, Simd
   basis_.resize(components_ * row);
   for (uint32_t k = 0; k < components_; ++k)
     for (size_t i = 0; i < row; ++i) basis_[k * row + i] = float(g.basis[k * row + i]) * g.basis_step[k];
-  coefficients_.assign(size_t(components_) * padded_, 0.0f);
+  coefficients_.resize(size_t(components_) * padded_);
+  for (uint32_t k = 0; k < components_; ++k)  // the padding lanes: zeros, never output
+    std::fill_n(coefficients_.data() + size_t(k) * padded_ + vertices_, padded_ - vertices_, 0.0f);
   for (uint32_t p = 0; p < vertices_; ++p)
     for (uint32_t k = 0; k < components_; ++k)
       coefficients_[size_t(k) * padded_ + order.vertex[p]] =
