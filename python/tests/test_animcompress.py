@@ -68,7 +68,7 @@ def cli_flags(codec, options):
 
 def test_version_and_codecs():
     assert animcompress.__version__.count('.') == 2
-    assert {'affine-octree', 'wavelet', 'trajectory'} <= set(animcompress.codecs())
+    assert {'affine-octree', 'wavelet', 'trajectory', 'auto'} <= set(animcompress.codecs())
 
 
 def test_affine_octree_round_trip_stays_within_the_bound(sequence):
@@ -125,6 +125,9 @@ def test_trajectory_target_kg_bounds_the_sequence_error(sequence):
     ('wavelet', {'step': 0.001, 'i_frames_only': True}),
     ('trajectory', {'target_kg': 0.5}),
     ('trajectory', {'step': 0.001, 'group_frames': 30, 'iframe_interval': 50}),
+    ('trajectory', {'max_error': 0.01}),
+    ('auto', {'max_error': 0.01, 'iframe_interval': 2}),
+    ('auto', {'target_kg': 0.5}),
 ])
 def test_bytes_and_frames_equal_the_command_line(sequence, cli, tmp_path, codec, options):
     ams, pc2_out = tmp_path / 'out.ams', tmp_path / 'out.pc2'

@@ -6,8 +6,8 @@
 // error) is a bug, reported by abort().
 //
 // Input = 4 control bytes, then coordinates:
-//   [0] bit 0: codec (0: affine-octree, or trajectory when bit 2 is set; 1: wavelet);
-//       bits 1-2: profile, detail-frame kind or trajectory group length;
+//   [0] bit 0: codec (0: affine-octree, or with bit 2 set trajectory (bit 1 clear) or auto
+//       (bit 1 set); 1: wavelet); bits 1-2: profile or detail-frame kind;
 //       bits 3-7: I-frame interval
 //   [1] grid width - 2 (mod 7)   [2] grid height - 2 (mod 7)   [3] quality (max error, step)
 //   then int16 coordinates (scaled by 1/256), x y z per vertex per frame, until they run out
@@ -45,10 +45,13 @@ animc::EncoderOptions options(const uint8_t* control) {
   animc::EncoderOptions o;
   const int kind = (control[0] >> 1) & 3;
   o.iframe_interval = control[0] >> 3;
-  if ((control[0] & 1) == 0 && (kind & 2)) {
+  if ((control[0] & 1) == 0 && kind == 2) {
     o.codec = "trajectory";
     o.set("target-kg", 0.05 + 5.0 * control[3] / 255.0);
-    if (kind & 1) o.set("group-frames", 4.0);
+  } else if ((control[0] & 1) == 0 && kind == 3) {
+    o.codec = "auto";  // mixes trajectory and affine-octree groups; short groups as well
+    o.set("max-error", 0.0005 + 0.2 * control[3] / 255.0);
+    o.set("group-frames", 3.0);
   } else if ((control[0] & 1) == 0) {
     o.codec = "affine-octree";
     o.set("profile", kind & 1 ? "paper" : "predictive");
