@@ -149,22 +149,36 @@ case_io_roundtrip() {
     check_failed "io_save: saved.ams is not the $N frames within 1 %: $out"
 }
 
-case_wavelet() {
-  # The filter with Codec = Wavelet writes what animc encode --codec wavelet writes, its
-  # reconstructed layers are what animc decodes, and the IO plugin opens the file.
-  derive_script compress_error.mlx wavelet.mlx Codec=1 WaveletStepPercent=0.03
+# filter_matches_animc NAME LOG SCRIPT_ARG... -- ANIMC_ARG...: compress_error.mlx with the
+# script's values changed writes what `animc encode` with these arguments writes and logs LOG,
+# its reconstructed layers (which come a group at a time for group codecs) are what animc
+# decodes, and the IO plugin opens the file to the same frames.
+filter_matches_animc() {
+  local name=$1 log=$2 script_args=()
+  shift 2
+  while [[ $1 != -- ]]; do
+    script_args+=("$1")
+    shift
+  done
+  shift
+  derive_script compress_error.mlx "$name.mlx" "${script_args[@]}"
   layer_exports "$N" "$N" recon
-  server wavelet -i "${FRAMES[@]}" -s "$TMP/wavelet.mlx" "${EXPORTS[@]}"
-  expect_ok wavelet
-  expect_log wavelet "codec: wavelet, no rate limit, step 0.0003 of the diagonal"
-  "$ANIMC" encode "$SRC/samples/sydney/frames" -o cli_wavelet.ams --codec wavelet --step 3e-4 >/dev/null
-  cmp -s sydney_24.ams cli_wavelet.ams || check_failed "the filter's wavelet sydney_24.ams differs from animc encode's"
-  "$ANIMC" decode sydney_24.ams -o decoded --format ply >/dev/null
-  expect_same_frames wavelet recon.txt decoded "$N"
+  server "$name" -i "${FRAMES[@]}" -s "$TMP/$name.mlx" "${EXPORTS[@]}"
+  expect_ok "$name"
+  expect_log "$name" "$log"
+  "$ANIMC" encode "$SRC/samples/sydney/frames" -o "cli_$name.ams" "$@" >/dev/null
+  cmp -s sydney_24.ams "cli_$name.ams" || check_failed "the filter's $name sydney_24.ams differs from animc encode's"
+  "$ANIMC" decode sydney_24.ams -o "decoded_$name" --format ply >/dev/null
+  expect_same_frames "$name" recon.txt "decoded_$name" "$N"
   layer_exports 0 "$N" opened
-  server wavelet_open -i "$TMP/sydney_24.ams" "${EXPORTS[@]}"
-  expect_ok wavelet_open
-  expect_same_frames wavelet_open opened.txt decoded "$N"
+  server "${name}_open" -i "$TMP/sydney_24.ams" "${EXPORTS[@]}"
+  expect_ok "${name}_open"
+  expect_same_frames "${name}_open" opened.txt "decoded_$name" "$N"
+}
+
+case_wavelet() {
+  filter_matches_animc wavelet "codec: wavelet, no rate limit, step 0.0003 of the diagonal" \
+    Codec=1 WaveletStepPercent=0.03 -- --codec wavelet --step 3e-4
 
   # WaveletFrames 1 and 2 are animc's --progressive-p-frames and --i-frames-only.
   local frames flag
@@ -181,23 +195,14 @@ case_wavelet() {
 }
 
 case_trajectory() {
-  # The filter with Codec = Trajectory writes what animc encode --codec trajectory writes, its
-  # reconstructed layers (which come a group at a time) are what animc decodes, and the IO
-  # plugin opens the file.
-  derive_script compress_error.mlx trajectory.mlx Codec=2 WaveletTargetKG=0.5 IFrameInterval=10
-  layer_exports "$N" "$N" recon
-  server trajectory -i "${FRAMES[@]}" -s "$TMP/trajectory.mlx" "${EXPORTS[@]}"
-  expect_ok trajectory
-  expect_log trajectory "codec: trajectory, target KG 0.5 %, groups of up to 512 frames"
-  "$ANIMC" encode "$SRC/samples/sydney/frames" -o cli_trajectory.ams --codec trajectory --target-kg 0.5 \
-    --iframe-interval 10 >/dev/null
-  cmp -s sydney_24.ams cli_trajectory.ams || check_failed "the filter's trajectory sydney_24.ams differs from animc encode's"
-  "$ANIMC" decode sydney_24.ams -o decoded --format ply >/dev/null
-  expect_same_frames trajectory recon.txt decoded "$N"
-  layer_exports 0 "$N" opened
-  server trajectory_open -i "$TMP/sydney_24.ams" "${EXPORTS[@]}"
-  expect_ok trajectory_open
-  expect_same_frames trajectory_open opened.txt decoded "$N"
+  # Trajectory takes the wavelet's target KG and the I-frame interval (docs/meshlab.md).
+  filter_matches_animc trajectory "codec: trajectory, target KG 0.5 %, groups of up to 512 frames" \
+    Codec=2 WaveletTargetKG=0.5 IFrameInterval=10 -- --codec trajectory --target-kg 0.5 --iframe-interval 10
+  # Auto, the default codec: the max error, or the target KG when it is set.
+  filter_matches_animc auto "codec: auto, max error 0.02 of the cube's side, per group trajectory or affine-octree" \
+    Codec=3 MaxErrorPercent=2 IFrameInterval=2 -- --max-error 0.02 --iframe-interval 2
+  filter_matches_animc auto_kg "codec: auto, target KG 0.4 %, per group trajectory or wavelet" \
+    Codec=3 WaveletTargetKG=0.4 -- --target-kg 0.4
 }
 
 # bad_case NAME EXPECTED_TEXT FRAME_FILES...: compress.mlx on these layers fails cleanly.

@@ -11,55 +11,21 @@
 #include "animc/animc.h"
 #include "container/container_reader.h"
 #include "io/byte_source.h"
+#include "group_codec_support.h"
 #include "test_sequences.h"
 
 namespace animc {
 namespace {
 
+using testing_support::Coded;
+using testing_support::cubeSide;
+using testing_support::DecodeOrder;
 using testing_support::gridSequence;
-
-struct Coded {
-  std::vector<uint8_t> bytes;
-  std::vector<std::vector<float>> reconstructions;
-};
-
-Coded encode(const MemorySequence& seq, const EncoderOptions& options) {
-  Coded out;
-  std::vector<uint32_t> triangles;
-  for (const Triangle& t : seq.topology().triangles) triangles.insert(triangles.end(), t.begin(), t.end());
-  auto encoder = Encoder::create(options, seq.topology().vertex_count, triangles.data(), triangles.size() / 3,
-                                 memorySink(&out.bytes));
-  EXPECT_TRUE(encoder.ok()) << encoder.status().message();
-  if (!encoder.ok()) return out;
-  Encoder& e = encoder.value();
-  auto collect = [&] {
-    for (int64_t k = int64_t(out.reconstructions.size()); k < e.reconstructedFrames(); ++k) {
-      const float* r = e.reconstruction(k);
-      out.reconstructions.emplace_back(r, r + 3 * size_t(seq.topology().vertex_count));
-    }
-  };
-  for (const std::vector<float>& frame : seq.frames()) {
-    EXPECT_TRUE(e.addFrame(frame.data()).ok());
-    collect();
-  }
-  EXPECT_TRUE(e.finish().ok());
-  collect();
-  return out;
-}
-
+using testing_support::kgError;
+const auto encode = testing_support::encodeCollecting;
+// Backwards: every group is entered by random access.
 std::vector<std::vector<float>> decodeAll(const std::vector<uint8_t>& bytes) {
-  auto decoder = Decoder::openMemory(bytes.data(), bytes.size());
-  EXPECT_TRUE(decoder.ok()) << decoder.status().message();
-  std::vector<std::vector<float>> frames;
-  if (!decoder.ok()) return frames;
-  std::vector<float> xyz(3 * size_t(decoder.value().info().vertices));
-  // Backwards: every group is entered by random access.
-  frames.resize(size_t(decoder.value().info().frames));
-  for (int64_t k = decoder.value().info().frames - 1; k >= 0; --k) {
-    EXPECT_TRUE(decoder.value().frame(k, xyz.data()).ok());
-    frames[size_t(k)] = xyz;
-  }
-  return frames;
+  return testing_support::decodeAll(bytes, DecodeOrder::kBackward);
 }
 
 // How many groups each candidate (its index in the file) coded: the first byte of each
@@ -85,15 +51,6 @@ EncoderOptions options(const std::string& codec, const std::string& flag, double
   o.set(flag, value);
   o.iframe_interval = interval;
   return o;
-}
-
-double cubeSide(const std::vector<float>& xyz) {
-  float lo[3] = {xyz[0], xyz[1], xyz[2]}, hi[3] = {xyz[0], xyz[1], xyz[2]};
-  for (size_t i = 0; i < xyz.size(); ++i) {
-    lo[i % 3] = std::min(lo[i % 3], xyz[i]);
-    hi[i % 3] = std::max(hi[i % 3], xyz[i]);
-  }
-  return std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
 }
 
 // With groups of one to three frames the candidates trade places.
@@ -131,9 +88,7 @@ TEST(AutoCodec, TargetKgHoldsAndTheFileNamesItsCandidates) {
   const Coded coded = encode(seq, options("auto", "target-kg", 0.5, 10));
   const auto decoded = decodeAll(coded.bytes);
   EXPECT_EQ(decoded, coded.reconstructions);
-  MetricsAccumulator metrics(seq.topology().vertex_count);
-  for (size_t f = 0; f < decoded.size(); ++f) metrics.addFrame(seq.frames()[f].data(), decoded[f].data());
-  EXPECT_LE(metrics.finish().kg_error, 0.5);
+  EXPECT_LE(kgError(seq, decoded), 0.5);
   auto decoder = Decoder::openMemory(coded.bytes.data(), coded.bytes.size());
   ASSERT_TRUE(decoder.ok());
   EXPECT_EQ(decoder.value().info().codec, "auto");

@@ -8,63 +8,18 @@
 #include <cmath>
 
 #include "animc/animc.h"
+#include "group_codec_support.h"
 #include "test_sequences.h"
 
 namespace animc {
 namespace {
 
+using testing_support::Coded;
+using testing_support::cubeSide;
+using testing_support::decodeAll;
 using testing_support::gridSequence;
-
-struct Coded {
-  std::vector<uint8_t> bytes;
-  std::vector<std::vector<float>> reconstructions;  // from the encoder, frame by frame
-  std::vector<int64_t> known_after_each_frame;     // reconstructedFrames() after each addFrame
-};
-
-Coded encode(const MemorySequence& seq, const EncoderOptions& options) {
-  Coded out;
-  std::vector<uint32_t> triangles;
-  for (const Triangle& t : seq.topology().triangles) triangles.insert(triangles.end(), t.begin(), t.end());
-  auto encoder = Encoder::create(options, seq.topology().vertex_count, triangles.data(), triangles.size() / 3,
-                                 memorySink(&out.bytes));
-  EXPECT_TRUE(encoder.ok()) << encoder.status().message();
-  if (!encoder.ok()) return out;
-  Encoder& e = encoder.value();
-  auto collect = [&] {
-    for (int64_t k = int64_t(out.reconstructions.size()); k < e.reconstructedFrames(); ++k) {
-      const float* r = e.reconstruction(k);
-      EXPECT_NE(r, nullptr) << "frame " << k;
-      if (r != nullptr) out.reconstructions.emplace_back(r, r + 3 * size_t(seq.topology().vertex_count));
-    }
-  };
-  for (const std::vector<float>& frame : seq.frames()) {
-    EXPECT_TRUE(e.addFrame(frame.data()).ok());
-    out.known_after_each_frame.push_back(e.reconstructedFrames());
-    collect();
-  }
-  EXPECT_TRUE(e.finish().ok());
-  collect();
-  return out;
-}
-
-double kgError(const MemorySequence& seq, const std::vector<std::vector<float>>& decoded) {
-  MetricsAccumulator metrics(seq.topology().vertex_count);
-  for (size_t f = 0; f < decoded.size(); ++f) metrics.addFrame(seq.frames()[f].data(), decoded[f].data());
-  return metrics.finish().kg_error;
-}
-
-std::vector<std::vector<float>> decodeAll(const std::vector<uint8_t>& bytes) {
-  auto decoder = Decoder::openMemory(bytes.data(), bytes.size());
-  EXPECT_TRUE(decoder.ok()) << decoder.status().message();
-  std::vector<std::vector<float>> frames;
-  if (!decoder.ok()) return frames;
-  std::vector<float> xyz(3 * size_t(decoder.value().info().vertices));
-  for (int64_t k = 0; k < decoder.value().info().frames; ++k) {
-    EXPECT_TRUE(decoder.value().frame(k, xyz.data()).ok());
-    frames.push_back(xyz);
-  }
-  return frames;
-}
+using testing_support::kgError;
+const auto encode = testing_support::encodeCollecting;
 
 EncoderOptions trajectory(double target_kg) {
   EncoderOptions o;
@@ -132,16 +87,6 @@ TEST(Trajectory, AFixedStepBoundsTheErrorBySize) {
   const Coded a = encode(seq, fine), b = encode(seq, coarse);
   EXPECT_LT(kgError(seq, decodeAll(a.bytes)), kgError(seq, decodeAll(b.bytes)));
   EXPECT_GT(a.bytes.size(), b.bytes.size());
-}
-
-// The largest side of a frame's bounding box (the affine-octree codec's cube).
-double cubeSide(const std::vector<float>& xyz) {
-  float lo[3] = {xyz[0], xyz[1], xyz[2]}, hi[3] = {xyz[0], xyz[1], xyz[2]};
-  for (size_t i = 0; i < xyz.size(); ++i) {
-    lo[i % 3] = std::min(lo[i % 3], xyz[i]);
-    hi[i % 3] = std::max(hi[i % 3], xyz[i]);
-  }
-  return std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
 }
 
 TEST(Trajectory, MaxErrorBoundsEveryVertexOfEveryFrame) {
