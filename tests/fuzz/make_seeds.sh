@@ -4,7 +4,7 @@
 # after their harnesses), from which the in-tree corpus tests/fuzz/corpus grew.
 #   usage: tests/fuzz/make_seeds.sh path/to/animc OUT
 # Sources: a 20-vertex grid made here and the first 3 frames of samples/sydney, encoded by the
-# project's own animc with several settings of both codecs and decoded back to every format.
+# project's own animc with several settings of every codec and decoded back to every format.
 set -euo pipefail
 ANIMC=$(realpath "$1")
 OUT=$(realpath -m "$2")
@@ -63,8 +63,8 @@ encode() {  # name, cuttable, input, mesh, options...
 }
 G=("$WORK/grid.pc2" "$WORK/grid.ply")
 S=("$WORK/sydney3.pc2" "$ROOT/samples/sydney/sydney_md2.ply")
-encode grid_octree 0 "${G[@]}" --max-error 0.02
-encode grid_octree_i3 0 "${G[@]}" --max-error 0.02 --iframe-interval 3
+encode grid_octree 0 "${G[@]}" --codec affine-octree --max-error 0.02
+encode grid_octree_i3 0 "${G[@]}" --codec affine-octree --max-error 0.02 --iframe-interval 3
 encode grid_octree_paper 0 "${G[@]}" --max-error 0.02 --profile paper --iframe-interval 4
 encode grid_octree_bits10 0 "${G[@]}" --max-error 0.05 --bits 10 --max-depth 4
 encode grid_wavelet 0 "${G[@]}" --codec wavelet --step 1e-2
@@ -72,8 +72,13 @@ encode grid_wavelet_pp 1 "${G[@]}" --codec wavelet --step 1e-2 --iframe-interval
 encode grid_wavelet_ionly 1 "${G[@]}" --codec wavelet --step 1e-2 --i-frames-only
 encode grid_wavelet_bpv 1 "${G[@]}" --codec wavelet --bpv 8 --progressive-p-frames
 encode grid_wavelet_kg 0 "${G[@]}" --codec wavelet --target-kg 1 --parametric-bits 10
-encode sydney_octree 0 "${S[@]}" --max-error 0.02
+encode sydney_octree 0 "${S[@]}" --codec affine-octree --max-error 0.02
 encode sydney_wavelet_pp 1 "${S[@]}" --codec wavelet --step 1e-2 --progressive-p-frames
+encode grid_trajectory 0 "${G[@]}" --codec trajectory --target-kg 1
+encode grid_trajectory_i3 0 "${G[@]}" --codec trajectory --max-error 0.02 --iframe-interval 3
+encode grid_auto_i2 0 "${G[@]}" --codec auto --max-error 0.02 --iframe-interval 2
+encode sydney_trajectory 0 "${S[@]}" --codec trajectory --bpvf 4
+encode sydney_auto 0 "${S[@]}" --codec auto --target-kg 0.5
 
 # Sequence readers: control byte 0 picks .ply .off .pc2 .mdd .pc2.xz .mdd.xz, byte 1 is the
 # point caches' vertex count - 1 (the grid has 20 vertices).
