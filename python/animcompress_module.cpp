@@ -3,6 +3,7 @@
 // the reading side (Decoder, open, info, decode) in decoder_binding.cpp. Everything goes
 // through the public API, animc/animc.h, so Python writes the bytes `animc encode` writes.
 #include <limits>
+#include <memory>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -151,14 +152,20 @@ py::dict compare(py::handle original, py::handle reconstructed, py::handle faces
     throw py::value_error("original and reconstructed differ in shape");
   const uint32_t vertex_count = uint32_t(a.shape(1));
   const size_t stride = 3 * size_t(vertex_count);
+  // Faces are checked before any work; both figures come from one pass over the frames.
+  std::unique_ptr<StedAccumulator> sted;
+  if (!faces.is_none()) {
+    const std::vector<uint32_t> triangles = triangleIndices(faces);
+    sted = std::make_unique<StedAccumulator>(vertex_count, triangles.data(), triangles.size() / 3);
+  }
   MetricsAccumulator metrics(vertex_count, PerFrameErrors::kKeep);
-  for (py::ssize_t f = 0; f < a.shape(0); ++f) metrics.addFrame(a.data() + f * stride, b.data() + f * stride);
+  for (py::ssize_t f = 0; f < a.shape(0); ++f) {
+    metrics.addFrame(a.data() + f * stride, b.data() + f * stride);
+    if (sted) sted->addFrame(a.data() + f * stride, b.data() + f * stride);
+  }
   py::dict figures = metricsDict(metrics.finish());
-  if (faces.is_none()) return figures;
-  const std::vector<uint32_t> triangles = triangleIndices(faces);
-  StedAccumulator sted(vertex_count, triangles.data(), triangles.size() / 3);
-  for (py::ssize_t f = 0; f < a.shape(0); ++f) sted.addFrame(a.data() + f * stride, b.data() + f * stride);
-  const StedFigures s = sted.finish();
+  if (!sted) return figures;
+  const StedFigures s = sted->finish();
   figures["sted"] = s.sted;
   figures["sted_spatial"] = s.spatial;
   figures["sted_temporal"] = s.temporal;

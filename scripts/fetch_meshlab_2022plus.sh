@@ -17,10 +17,10 @@ set -euo pipefail
 
 version=${1:?usage: fetch_meshlab_2022plus.sh VERSION SCALAR [CACHE_DIR]}
 scalar=${2:?usage: fetch_meshlab_2022plus.sh VERSION SCALAR [CACHE_DIR]}
-gui=1
+gui_target=meshlab  # empty with --no-gui
 places=()
 for arg in "${@:3}"; do
-  case "$arg" in --no-gui) gui=0 ;; *) places+=("$arg") ;; esac
+  case "$arg" in --no-gui) gui_target= ;; *) places+=("$arg") ;; esac
 done
 cache=${places[0]:-${ANIMC_CACHE_DIR:-/var/cache/animcompress}}
 sdk="$cache/meshlab-$version-$scalar"
@@ -39,7 +39,7 @@ case "$scalar" in
   float) double=OFF ;; double) double=ON ;; *) die "scalar must be float or double" ;;
 esac
 
-if [ -f "$sdk/.complete" ] && { [ $gui = 0 ] || [ -e "$sdk/distrib/meshlab" ]; }; then
+if [ -f "$sdk/.complete" ] && { [ -z "$gui_target" ] || [ -e "$sdk/distrib/meshlab" ]; }; then
   say "SDK present in $sdk"
   exit 0
 fi
@@ -103,8 +103,6 @@ cmake -S "$project" -B "$sdk/build" -DCMAKE_BUILD_TYPE=Release -DVCG_ALLOW_BUNDL
 # Every core by default (a fresh CI machine waits on this build); ANIMC_MESHLAB_JOBS=1 leaves
 # room for other work.
 jobs=${ANIMC_MESHLAB_JOBS:-$(nproc)}
-gui_target=meshlab
-[ $gui = 1 ] || gui_target=
 for targets in meshlab-common "${gui_target:+$gui_target }io_base"; do
   say "building $targets (-j$jobs)"
   start=$SECONDS

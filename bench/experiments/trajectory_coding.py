@@ -155,7 +155,7 @@ def basis_cost(basis, singular, q, used, segments):
     return bits, quantised
 
 
-def code(frames, groups, kind, predictor, order, q):
+def code(groups, kind, predictor, order, q):
     """(bits, squared error) of the whole sequence at step q."""
     bits, sq = 0.0, 0.0
     for group, (mean, basis, coefficients, fixed) in groups:
@@ -185,7 +185,7 @@ def at_target(frames, groups, kind, predictor, order, target):
     best = None
     for _ in range(20):
         mid = (lo + hi) / 2
-        bits, sq = code(frames, groups, kind, predictor, order, 2 ** mid)
+        bits, sq = code(groups, kind, predictor, order, 2 ** mid)
         kg = 100 * math.sqrt(sq / denominator)
         if kg <= target:
             best, lo = (bits, kg), mid
