@@ -70,8 +70,9 @@ def sequence_rows(animc, seq, runs, work):
         log(f'{seq["name"]}: decode speeds at KG {kg} %')
         t_speed, _ = decode_speed(animc, seq, os.path.join(work, 't.ams'),
                                   ['--codec', 'trajectory', '--target-kg', repr(kg)], decode_runs)
-        o_speed, o_kg = (decode_speed(animc, seq, os.path.join(work, 'o.ams'),
-                                      ['--max-error', repr(max_error)], decode_runs) if max_error else (None, None))
+        octree_args = ['--codec', 'affine-octree', '--max-error', repr(max_error)] if max_error else None
+        o_speed, o_kg = (decode_speed(animc, seq, os.path.join(work, 'o.ams'), octree_args, decode_runs)
+                         if octree_args else (None, None))
         failures += t_speed is None
         speed_rows.append([f'{kg:g}', num(t_speed), f'{max_error:.4g}' if max_error else 'n/a', num(o_kg, 3),
                            num(o_speed), num(t_speed / o_speed, 2) + '×' if t_speed and o_speed else 'n/a'])

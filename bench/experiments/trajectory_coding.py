@@ -201,7 +201,7 @@ def our_codecs(animc, pc2_path, ply_path, targets):
         out = os.path.join(tmp, 'x.ams')
         for me in (0.0015, 0.002, 0.003, 0.004, 0.006, 0.008, 0.011, 0.016, 0.022, 0.03, 0.045):
             r = json.loads(subprocess.run([animc, 'encode', pc2_path, '--mesh', ply_path, '-o', out,
-                                           '--max-error', str(me), '--json'],
+                                           '--codec', 'affine-octree', '--max-error', str(me), '--json'],
                                           check=True, capture_output=True, text=True).stdout)
             points.append((r['kg_error'], r['bpvf']))
             static = r['static_bytes']

@@ -50,6 +50,6 @@ constexpr double kMinTrajectoryMaxError = 1e-6;
 constexpr double kMaxTrajectoryMaxError = 0.5;
 constexpr double kMaxTrajectoryBpvf = 1024;
 constexpr uint32_t kMaxTrajectoryGroupFrames = 1024;
-constexpr uint64_t kMaxTrajectoryCoefficients = uint64_t(1) << 26;
+constexpr uint64_t kMaxTrajectoryCoefficients = uint64_t(1) << 25;
 
 }  // namespace animc

@@ -15,8 +15,11 @@ namespace {
 
 using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
-// The trajectories of one group held in double: at most this many values (256 MB).
+// The trajectories of one group held in double: at most this many values (256 MB). Since
+// the components are at most 3 x frames, the coefficients then stay within the decoders'
+// kMaxTrajectoryCoefficients too.
 constexpr uint64_t kMaxGroupValues = uint64_t(1) << 25;
+static_assert(kMaxGroupValues <= kMaxTrajectoryCoefficients, "a group's coefficients must fit the format's limit");
 // Integers of the payload stay below 2^30 in magnitude (their differences below 2^31).
 constexpr double kMaxQuantised = double(1 << 29);
 
