@@ -7,7 +7,11 @@ Each group of G frames is coded on its own (random access stays). Per group, eve
 trajectory (its G positions) goes through an orthonormal temporal transform:
   dct     the DCT-II of each coordinate's G values (fixed basis, nothing to send);
   pca     the principal components of the 3G-long trajectories (CoDDyaC's trajectory space);
-  pca-xyz one G-long basis shared by x, y and z (3V series).
+  pca-xyz one G-long basis shared by x, y and z (3V series);
+  pca-mcC pca after motion compensation of C clusters of vertices (k-means of their
+          trajectories): per cluster and frame, the affine map of its first-frame positions
+          that fits best is subtracted and its 12 parameters sent, quantised and coded along
+          time (affine_motion, motion_cost).
 For the pca kinds the mean trajectory (32-bit floats) and the basis vectors that carry a
 non-zero coefficient are sent, each vector quantised with a step matched to its importance and
 coded as differences along time (basis_cost).
@@ -120,6 +124,60 @@ def residual_bits(residuals):
     return bits
 
 
+def clusters_of(group, count, iterations=12):
+    """k-means of the vertices' trajectories over the group (vertices moving together), seeded
+    by farthest-point sampling: a cluster index per vertex."""
+    rows = group.transpose(1, 2, 0).reshape(group.shape[1], -1)
+    centres = [rows[0]]
+    distance = ((rows - centres[0]) ** 2).sum(axis=1)
+    for _ in range(1, count):
+        centres.append(rows[int(distance.argmax())])
+        distance = np.minimum(distance, ((rows - centres[-1]) ** 2).sum(axis=1))
+    centres = np.array(centres)
+    for _ in range(iterations):
+        labels = (-2 * rows @ centres.T + (centres ** 2).sum(axis=1)).argmin(axis=1)
+        for c in range(count):
+            if (labels == c).any():
+                centres[c] = rows[labels == c].mean(axis=0)
+    return labels
+
+
+def affine_motion(group, count):
+    """Motion compensation of near-rigid parts: per cluster of vertices and per frame, the
+    affine map (3 x 4) from the cluster's centred first-frame positions that best fits its
+    vertices. (prediction (g, v, 3), [(values (g, 12), weight of each of the 12 parameters)]):
+    an error d in parameter j of a cluster moves its vertices by d times their coordinate j,
+    weight_j^2 d^2 in total."""
+    g, v, _ = group.shape
+    labels = clusters_of(group, count)
+    prediction = np.zeros_like(group)
+    params = []
+    for c in range(count):
+        index = np.flatnonzero(labels == c)
+        if len(index) == 0:
+            continue
+        rest = group[0, index] - group[0, index].mean(axis=0)
+        design = np.hstack([rest, np.ones((len(index), 1))])  # (m, 4)
+        targets = group[:, index, :].transpose(1, 0, 2).reshape(len(index), 3 * g)
+        affine = np.linalg.lstsq(design, targets, rcond=None)[0].reshape(4, g, 3)
+        prediction[:, index, :] = np.einsum('mj,jtd->tmd', design, affine)
+        weights = np.sqrt((design ** 2).sum(axis=0))
+        params.append((affine.transpose(1, 0, 2).reshape(g, 12), np.repeat(weights, 3)))
+    return prediction, params
+
+
+def motion_cost(params, q):
+    """(bits, squared error) of the affine parameters at step q / weight (each then costs the
+    error of one coefficient's step), coded as differences along time."""
+    bits, sq = 0.0, 0.0
+    for values, weights in params:
+        steps = q / np.maximum(weights, 1e-300)
+        ints = np.rint(values / steps).astype(np.int64)
+        sq += float((((values - ints * steps) * weights) ** 2).sum())
+        bits += 16 * len(weights) + residual_bits(np.diff(ints, axis=0, prepend=0))
+    return bits, sq
+
+
 def transform(group, kind):
     """(mean, basis (components, length), coefficients (rows, components), whether the basis is
     fixed): rows are vertex-coordinates (dct, pca-xyz: length G) or vertices (pca: length 3G)."""
@@ -128,7 +186,7 @@ def transform(group, kind):
         rows = group.transpose(1, 2, 0).reshape(3 * v, g)
         basis = dct_matrix(g)
         return np.zeros(g), basis, rows @ basis.T, True
-    if kind == 'pca':
+    if kind == 'pca' or kind.startswith('pca-mc'):
         rows = group.transpose(1, 2, 0).reshape(v, 3 * g)
     elif kind == 'pca-xyz':
         rows = group.transpose(1, 2, 0).reshape(3 * v, g)
@@ -158,14 +216,17 @@ def basis_cost(basis, singular, q, used, segments):
 def code(groups, kind, predictor, order, q):
     """(bits, squared error) of the whole sequence at step q."""
     bits, sq = 0.0, 0.0
-    for group, (mean, basis, coefficients, fixed) in groups:
+    for group, (mean, basis, coefficients, fixed), params in groups:
         g, v, _ = group.shape
+        if params:
+            b, e = motion_cost(params, q)
+            bits, sq = bits + b, sq + e
         cq = np.rint(coefficients / q).astype(np.int64)
         used = np.flatnonzero(np.abs(cq).sum(axis=0) > 0)
         quantised = basis
         if not fixed:
             b, quantised = basis_cost(basis, np.linalg.norm(coefficients, axis=0), q, used,
-                                      3 if kind == 'pca' else 1)
+                                      1 if kind == 'pca-xyz' else 3)
             bits += b + 32 * mean.size
         rows = mean + (cq * q) @ quantised
         original = group.transpose(1, 2, 0).reshape(rows.shape)
@@ -238,7 +299,13 @@ def main():
             for kind in args.kinds.split(','):
                 for g in map(int, args.groups.split(',')):
                     parts = [frames[s:s + g] for s in range(0, f, g)]
-                    groups = [(p, transform(p, kind)) for p in parts]
+                    groups = []
+                    for p in parts:
+                        params = None
+                        if kind.startswith('pca-mc'):  # PCA of what the affine motion leaves
+                            prediction, params = affine_motion(p, int(kind[len('pca-mc'):]))
+                            p = p - prediction
+                        groups.append((p, transform(p, kind), params))
                     bits, _ = at_target(frames, groups, kind, predictor, order, target)
                     cells.append((bits + 8 * static) / (v * f))
             print(f'| {name} | {target} | {octree:.3f} | {wavelet:.3f} | ' +
