@@ -22,6 +22,7 @@ using testing_support::cubeSide;
 using testing_support::DecodeOrder;
 using testing_support::gridSequence;
 using testing_support::kgError;
+using testing_support::largestVertexError;
 const auto encode = testing_support::encodeCollecting;
 // Backwards: every group is entered by random access.
 std::vector<std::vector<float>> decodeAll(const std::vector<uint8_t>& bytes) {
@@ -69,11 +70,8 @@ TEST(AutoCodec, MixedGroupsDecodeToTheReconstructionsAndTakeTheSmallest) {
     for (size_t f = 0; f < seq.frames().size(); ++f) {
       const std::vector<float>& original = seq.frames()[f];
       const double side = std::max(cubeSide(original), f > 0 ? cubeSide(coded.reconstructions[f - 1]) : 0.0);
-      for (size_t v = 0; v < original.size(); v += 3) {
-        const double d = std::hypot(coded.reconstructions[f][v] - original[v], coded.reconstructions[f][v + 1] -
-                                    original[v + 1], coded.reconstructions[f][v + 2] - original[v + 2]);
-        ASSERT_LE(d, 0.01 * side * (1 + 1e-5)) << "frame " << f << " interval " << interval;
-      }
+      ASSERT_LE(largestVertexError(coded.reconstructions[f], original), 0.01 * side * (1 + 1e-5))
+          << "frame " << f << " interval " << interval;
     }
   }
   // One-frame groups go to the affine-octree codec (candidate 1), three-frame groups to the

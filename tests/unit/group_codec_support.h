@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include "animc/animc.h"
@@ -79,6 +80,14 @@ inline double cubeSide(const std::vector<float>& xyz) {
     hi[i % 3] = std::max(hi[i % 3], xyz[i]);
   }
   return std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
+}
+
+// The largest distance between a vertex of `a` and the same vertex of `b`.
+inline double largestVertexError(const std::vector<float>& a, const std::vector<float>& b) {
+  double worst = 0;
+  for (size_t v = 0; v + 2 < a.size(); v += 3)
+    worst = std::max(worst, std::hypot(double(a[v]) - b[v], double(a[v + 1]) - b[v + 1], double(a[v + 2]) - b[v + 2]));
+  return worst;
 }
 
 }  // namespace animc::testing_support

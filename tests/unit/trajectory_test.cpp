@@ -19,6 +19,7 @@ using testing_support::cubeSide;
 using testing_support::decodeAll;
 using testing_support::gridSequence;
 using testing_support::kgError;
+using testing_support::largestVertexError;
 const auto encode = testing_support::encodeCollecting;
 
 EncoderOptions trajectory(double target_kg) {
@@ -102,11 +103,7 @@ TEST(Trajectory, MaxErrorBoundsEveryVertexOfEveryFrame) {
     double worst = 0;  // the largest error, in units of its frame's bound
     for (size_t f = 0; f < decoded.size(); ++f) {
       const std::vector<float>& original = seq.frames()[f];
-      for (size_t v = 0; v < original.size(); v += 3) {
-        const double d = std::hypot(decoded[f][v] - original[v], decoded[f][v + 1] - original[v + 1],
-                                    decoded[f][v + 2] - original[v + 2]);
-        worst = std::max(worst, d / (bound * cubeSide(original)));
-      }
+      worst = std::max(worst, largestVertexError(decoded[f], original) / (bound * cubeSide(original)));
     }
     EXPECT_LE(worst, 1.0) << "max error " << bound;
     EXPECT_GT(worst, 0.25) << "a much finer step than the bound needs, max error " << bound;

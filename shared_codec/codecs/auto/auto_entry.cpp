@@ -25,10 +25,7 @@ Result<CodecOptions> fromFlags(const OptionValues& values) {
   } else {
     ANIMC_ASSIGN_OR_RETURN(o.rate_value, values.number("max-error", o.rate_value));
   }
-  ANIMC_ASSIGN_OR_RETURN(long long frames, values.integer("group-frames", o.group_frames));
-  if (frames < 1 || frames > kMaxTrajectoryGroupFrames)
-    return invalidArgument("--group-frames must be in [1, " + std::to_string(kMaxTrajectoryGroupFrames) + "]");
-  o.group_frames = uint32_t(frames);
+  ANIMC_ASSIGN_OR_RETURN(o.group_frames, groupFramesFlag(values, o.group_frames));
   return CodecOptions(withCandidates(o));
 }
 

@@ -67,4 +67,11 @@ Result<TrajectoryOptions> TrajectoryOptions::read(ByteReader& r) {
   return o;
 }
 
+Result<uint32_t> groupFramesFlag(const OptionValues& values, uint32_t fallback) {
+  ANIMC_ASSIGN_OR_RETURN(long long frames, values.integer("group-frames", fallback));
+  if (frames < 1 || frames > kMaxTrajectoryGroupFrames)
+    return invalidArgument("--group-frames must be in [1, " + std::to_string(kMaxTrajectoryGroupFrames) + "]");
+  return uint32_t(frames);
+}
+
 }  // namespace animc

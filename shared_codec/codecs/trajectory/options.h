@@ -5,6 +5,7 @@
 #pragma once
 #include <cstdint>
 
+#include "codecs/option_values.h"
 #include "core/status.h"
 #include "io/byte_reader.h"
 #include "io/byte_writer.h"
@@ -39,6 +40,9 @@ struct TrajectoryOptions {
 
 // "target KG", "step", "max error", "bpvf".
 const char* rateName(TrajectoryRate rate);
+
+// --group-frames of the trajectory and auto codecs, `fallback` when not given.
+Result<uint32_t> groupFramesFlag(const OptionValues& values, uint32_t fallback);
 
 // Ranges accepted by validate(), by the decoder and, for the group limits, by the payload
 // reader: a group holds at most kMaxTrajectoryGroupFrames frames, and its coefficients

@@ -4,6 +4,7 @@
 // will produce.
 #include <Eigen/Dense>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 
@@ -91,6 +92,9 @@ class TrajectoryEncoder final : public GroupEncoder {
   void encodeGroup(const float* frames, uint32_t frame_count, std::vector<std::vector<uint8_t>>& payloads) override {
     original_ = frames;
     frame_count_ = frame_count;
+    cube_sides_.clear();  // measure() compares with them at every step the bisection tries
+    if (options_.rate == TrajectoryRate::kMaxError)
+      for (uint32_t t = 0; t < frame_count; ++t) cube_sides_.push_back(cubeSide(t));
     const Components pc = principalComponents(trajectories(), kMaxTrajectoryCoefficients / vertices_);
     const TrajectoryGroup group = quantised(pc, chooseStep(pc));
     payloads.assign(frame_count, std::vector<uint8_t>{kTrajectoryNextFrame});
@@ -114,15 +118,27 @@ class TrajectoryEncoder final : public GroupEncoder {
     return x;
   }
 
-  double firstFrameDiagonal() const {
+  // The sides of frame t's bounding box.
+  std::array<double, 3> boxSides(uint32_t t) const {
     double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
     for (uint32_t v = 0; v < vertices_; ++v)
       for (int c = 0; c < 3; ++c) {
-        lo[c] = std::min(lo[c], double(vertexOf(0, v)[c]));
-        hi[c] = std::max(hi[c], double(vertexOf(0, v)[c]));
+        lo[c] = std::min(lo[c], double(vertexOf(t, v)[c]));
+        hi[c] = std::max(hi[c], double(vertexOf(t, v)[c]));
       }
-    return std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
-                     (hi[2] - lo[2]) * (hi[2] - lo[2]));
+    return {hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]};
+  }
+
+  double firstFrameDiagonal() const {
+    const std::array<double, 3> s = boxSides(0);
+    return std::sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
+  }
+
+  // The largest side of frame t's bounding box, 1 for a point (the affine-octree's cube).
+  double cubeSide(uint32_t t) const {
+    const std::array<double, 3> s = boxSides(t);
+    const double side = std::max({s[0], s[1], s[2]});
+    return side > 0 ? side : 1;
   }
 
   // Sum over the group's frames of |x - centroid of its frame|^2: the KG error's denominator.
@@ -281,23 +297,11 @@ class TrajectoryEncoder final : public GroupEncoder {
         worst = std::max(worst, sq);
       }
       if (options_.rate == TrajectoryRate::kMaxError) {
-        const double bound = options_.rate_value * cubeSide(t);
+        const double bound = options_.rate_value * cube_sides_[t];
         e.within_max_error &= worst <= bound * bound;
       }
     }
     return e;
-  }
-
-  // The largest side of frame t's bounding box, 1 for a point (the affine-octree's cube).
-  double cubeSide(uint32_t t) const {
-    double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
-    for (uint32_t v = 0; v < vertices_; ++v)
-      for (int c = 0; c < 3; ++c) {
-        lo[c] = std::min(lo[c], double(vertexOf(t, v)[c]));
-        hi[c] = std::max(hi[c], double(vertexOf(t, v)[c]));
-      }
-    const double side = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
-    return side > 0 ? side : 1;
   }
 
   TrajectoryOptions options_;
@@ -306,6 +310,7 @@ class TrajectoryEncoder final : public GroupEncoder {
   SimdPath path_;
   const float* original_ = nullptr;  // the group being coded
   uint32_t frame_count_ = 0;
+  std::vector<double> cube_sides_;    // of the group's frames (kMaxError)
   GroupFrames frames_;                // the last group as decoded
 };
 
