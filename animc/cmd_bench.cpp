@@ -30,18 +30,22 @@ double median(std::vector<double> v) {
   return v.empty() ? 0 : (v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]));
 }
 
-// Seconds to open a stream and decode all its frames in order, through the public Decoder.
-Result<double> timeDecode(const std::function<Result<Decoder>()>& open) {
+// Seconds to open a stream and decode all its frames through the public Decoder: in order, or
+// from the last to the first (every frame then a random access from the start of its group).
+Result<double> timeDecode(const std::function<Result<Decoder>()>& open, bool backwards = false) {
   const auto t0 = Clock::now();
   ANIMC_ASSIGN_OR_RETURN(Decoder decoder, open());
   std::vector<float> xyz(3 * size_t(decoder.info().vertices));
-  for (int64_t k = 0; k < decoder.info().frames; ++k) ANIMC_RETURN_IF_ERROR(decoder.frame(k, xyz.data()));
+  const int64_t frames = decoder.info().frames;
+  for (int64_t i = 0; i < frames; ++i)
+    ANIMC_RETURN_IF_ERROR(decoder.frame(backwards ? frames - 1 - i : i, xyz.data()));
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
 // Decoding of an existing .ams, R times from the file and R times from memory, alternating:
-// what a decoder change is measured with.
+// what a decoder change is measured with. --backwards times random access.
 int runDecodeBench(const Args& args, long long runs) {
+  const bool backwards = args.has("backwards");
   const std::string& path = args.positional()[0];
   auto bytes = readWholeFile(path);
   if (!bytes.ok()) return fail(bytes.status());
@@ -50,10 +54,10 @@ int runDecodeBench(const Args& args, long long runs) {
   ProgressFn progress = progressLine("bench", args.has("progress"));
   for (long long r = 0; r < runs; ++r) {
     if (progress) progress(int(100 * r / runs), "decoding");
-    auto d = timeDecode([&] { return Decoder::openFile(path); });
+    auto d = timeDecode([&] { return Decoder::openFile(path); }, backwards);
     if (!d.ok()) return fail(d.status());
     decode_s.push_back(d.value());
-    d = timeDecode([&] { return Decoder::openMemory(stream.data(), stream.size(), {}, path); });
+    d = timeDecode([&] { return Decoder::openMemory(stream.data(), stream.size(), {}, path); }, backwards);
     if (!d.ok()) return fail(d.status());
     memory_s.push_back(d.value());
   }
@@ -74,6 +78,7 @@ int runDecodeBench(const Args& args, long long runs) {
     o.add("vertices", vertices);
     o.add("frames", frames);
     o.add("runs", runs);
+    o.add("order", backwards ? "backwards" : "forwards");
     o.add("decode_seconds_median", median(decode_s));
     o.add("decode_mvps", decode_mvps);
     o.add("decode_memory_seconds_median", median(memory_s));
@@ -81,8 +86,8 @@ int runDecodeBench(const Args& args, long long runs) {
     std::printf("%s\n", o.str().c_str());
     return 0;
   }
-  std::printf("%s: %u vertices x %lld frames, %lld runs, decoding only\n", path.c_str(), vertices,
-              (long long)frames, runs);
+  std::printf("%s: %u vertices x %lld frames, %lld runs, decoding only%s\n", path.c_str(), vertices,
+              (long long)frames, runs, backwards ? ", last frame first" : "");
   std::printf("decode: %.2f M vertices/s (median %.4f s) from the file, %.2f M vertices/s (median %.4f s) from memory\n",
               decode_mvps, median(decode_s), memory_mvps, median(memory_s));
   return 0;
@@ -95,20 +100,21 @@ int runBench(const std::vector<std::string>& argv) {
   std::set<std::string> options = encodeOptions();
   options.insert({"mesh", "runs", "output"});
   std::set<std::string> switches = encodeSwitches();
-  switches.insert({"progress", "json"});
+  switches.insert({"progress", "json", "backwards"});
   Status s = args.parse(argv, options, switches);
   if (!s.ok()) return fail(s);
   if (args.positional().size() != 1)
-    return fail(invalidArgument("usage: animc bench IN [--mesh M] [options] [--runs R] | animc bench IN.ams [--runs R]"));
+    return fail(invalidArgument("usage: animc bench IN [--mesh M] [options] [--runs R] | animc bench IN.ams [--runs R] [--backwards]"));
   auto runs = args.integer("runs", 5);
   if (!runs.ok() || runs.value() < 1 || runs.value() > 1000) return fail(invalidArgument("--runs must be in [1, 1000]"));
   if (isAmsPath(args.positional()[0])) {
     for (const std::set<std::string>* names : {&options, &switches})
       for (const std::string& name : *names)
-        if (name != "runs" && name != "json" && name != "progress" && args.has(name))
+        if (name != "runs" && name != "json" && name != "progress" && name != "backwards" && args.has(name))
           return fail(invalidArgument("bench of an .ams file decodes it only: --" + name + " does not apply"));
     return runDecodeBench(args, runs.value());
   }
+  if (args.has("backwards")) return fail(invalidArgument("--backwards applies to the bench of an .ams file"));
   auto input = openEncodeInput(args);
   if (!input.ok()) return fail(input.status());
   const EncodeSettings& settings = input.value().settings;

@@ -103,6 +103,12 @@ run bench_ams "$ANIMC" bench "$AMS" --runs 2 --json
 json_check 'd["decode_mvps"] > 0 and d["runs"] == 2 and d["frames"] == 50 and "encode_mvps" not in d' "$TMP/bench_ams.out"
 json_check 'd["file_bytes"] == e["file_bytes"] and d["codec"] == e["codec"] == "auto" and d["rate_mode"] == "max error"' \
   "$TMP/bench_ams.out" "$TMP/encode.out"
+# --backwards decodes the last frame first: every frame a random access into its group.
+run bench_backwards "$ANIMC" bench "$AMS" --runs 1 --backwards --json
+json_check 'd["order"] == "backwards" and d["decode_mvps"] > 0 and d["frames"] == 50' "$TMP/bench_backwards.out"
+json_check 'd["order"] == "forwards"' "$TMP/bench_ams.out"
+"$ANIMC" bench "$PC2" --mesh "$MESH" --runs 1 --backwards >/dev/null 2>&1 &&
+  check_failed "bench --backwards of frames (not an .ams) was accepted"
 # Without --codec: auto, or affine-octree (the 1.x default) when one of its own flags is given.
 run default_paper "$ANIMC" encode "$PC2" --mesh "$MESH" -o "$TMP/paper.ams" --profile paper --json
 json_check 'd["codec"] == "affine-octree" and d["profile"] == "paper"' "$TMP/default_paper.out"

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "core/simd_math.h"
 
@@ -53,6 +54,25 @@ WaveletFrameModel::WaveletFrameModel(const WaveletOptions& options, const Topolo
     : options_(options), topology_(topology), path_(path) {}
 
 void WaveletFrameModel::setParametric(const std::vector<double>& parametric_xyz) {
+  // The hierarchy is a function of the parametric mesh alone. A decoder that goes back into
+  // a frame group (random access backwards) meets the same mesh again and keeps it; the
+  // comparison is of the bits, since -0 and +0 may lead to different hierarchies.
+  const bool same = transform_ && hierarchy_mesh_.size() == parametric_xyz.size() &&
+                    std::memcmp(hierarchy_mesh_.data(), parametric_xyz.data(), parametric_xyz.size() * sizeof(double)) == 0;
+  if (!same) buildHierarchy(parametric_xyz);
+  context_.reset(coefficientCount());
+  const double diagonal = boxDiagonal(parametric_xyz);
+  step_ = options_.step * (diagonal > 0 ? diagonal : 1.0);
+  transform_->forward(parametric_xyz.data(), previous_);
+  intra_reference_.assign(previous_.size(), 0.0);
+  for (uint32_t v : transform_->hierarchy().base)
+    for (int a = 0; a < 3; ++a) intra_reference_[3 * size_t(v) + a] = previous_[3 * size_t(v) + a];
+  reconstruction_ = parametric_xyz;
+  history_ = 1;
+}
+
+void WaveletFrameModel::buildHierarchy(const std::vector<double>& parametric_xyz) {
+  hierarchy_mesh_.clear();  // until the hierarchy is whole
   transform_ = std::make_unique<WaveletTransform>(path_, topology_, parametric_xyz, options_.local_frames);
   const ProgressiveMesh& pm = transform_->hierarchy();
   order_ = pm.base;
@@ -77,15 +97,7 @@ void WaveletFrameModel::setParametric(const std::vector<double>& parametric_xyz)
     quad_stops_ = {position[pm.vertex_count - 1], uint32_t(order_.size() - 1)};
     std::sort(quad_stops_.begin(), quad_stops_.end());
   }
-  context_.reset(coefficientCount());
-  const double diagonal = boxDiagonal(parametric_xyz);
-  step_ = options_.step * (diagonal > 0 ? diagonal : 1.0);
-  transform_->forward(parametric_xyz.data(), previous_);
-  intra_reference_.assign(previous_.size(), 0.0);
-  for (uint32_t v : pm.base)
-    for (int a = 0; a < 3; ++a) intra_reference_[3 * size_t(v) + a] = previous_[3 * size_t(v) + a];
-  reconstruction_ = parametric_xyz;
-  history_ = 1;
+  hierarchy_mesh_ = parametric_xyz;
 }
 
 bool WaveletFrameModel::canPredict(const Prediction& prediction) const {

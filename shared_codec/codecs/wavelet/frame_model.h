@@ -45,8 +45,8 @@ class WaveletFrameModel {
   WaveletFrameModel(const WaveletOptions& options, const Topology& topology, SimdPath path);
   SimdPath simdPath() const { return path_; }
 
-  // Rebuilds the hierarchy on a new parametric mesh (a decoded parametric frame), which is
-  // also the reconstruction of that frame.
+  // Starts a frame group on a parametric mesh (a decoded parametric frame), which is also the
+  // reconstruction of that frame; the hierarchy is rebuilt unless it was built on this mesh.
   void setParametric(const std::vector<double>& parametric_xyz);
   bool ready() const { return transform_ != nullptr; }
   // Whether the references a prediction needs exist (selectors above 0 need two
@@ -87,6 +87,8 @@ class WaveletFrameModel {
  private:
   // run(begin, end, references, predictor) for each run of coding positions that share a
   // selector; predictor: a PredictorTag (frame_model.cpp), the selector's kind of prediction.
+  // The transform and the coding order, classes, parents and runs that follow from it.
+  void buildHierarchy(const std::vector<double>& parametric_xyz);
   template <class Run>
   void forEachRun(const Prediction& prediction, Run run) const;
   void addResidual(const std::vector<double>& decoded_residual, const Prediction& prediction,
@@ -96,6 +98,7 @@ class WaveletFrameModel {
   const Topology& topology_;
   SimdPath path_;
   std::unique_ptr<WaveletTransform> transform_;
+  std::vector<double> hierarchy_mesh_;  // the parametric mesh transform_ was built on
   std::vector<uint32_t> order_;     // vertices in coding order: base, then coarse to fine
   std::vector<uint8_t> classes_;    // significance class of each vertex, in coding order
   std::vector<uint32_t> parents_;   // coding position of the vertex it collapses onto
