@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 // Helpers of the tests of codecs that code whole groups (trajectory, auto): a sequence
 // through the public Encoder with every reconstruction collected as its group closes, whole
-// decodes (in order, or backwards so that every group is entered by random access), the KG
-// error, and a frame's cube side.
+// decodes (in order, or backwards so that every group is entered by random access), a frame's
+// cube side and the largest vertex error.
 #pragma once
 #include <gtest/gtest.h>
 
@@ -64,12 +64,6 @@ inline std::vector<std::vector<float>> decodeAll(const std::vector<uint8_t>& byt
     frames[size_t(k)] = xyz;
   }
   return frames;
-}
-
-inline double kgError(const MemorySequence& seq, const std::vector<std::vector<float>>& decoded) {
-  MetricsAccumulator metrics(seq.topology().vertex_count);
-  for (size_t f = 0; f < decoded.size(); ++f) metrics.addFrame(seq.frames()[f].data(), decoded[f].data());
-  return metrics.finish().kg_error;
 }
 
 // The largest side of a frame's bounding box (the affine-octree codec's cube).

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/memory_sequence.h"
+#include "metrics/sequence_metrics.h"
 #include "seqio/sequence_io.h"
 
 namespace animc::testing_support {
@@ -51,6 +52,21 @@ inline MemorySequence gridSequence(int nx, int ny, int frames, double deform, do
   std::vector<std::vector<float>> all;
   for (int f = 0; f < frames; ++f) all.push_back(gridFrame(nx, ny, f, deform, rigid));
   return MemorySequence(gridTopology(nx, ny), std::move(all), 25.0, "grid");
+}
+
+// The metrics library's figures of decoded against the original's frames; decoded must hold
+// as many frames as the original.
+inline SequenceMetrics decodedMetrics(const MemorySequence& original, const std::vector<std::vector<float>>& decoded) {
+  EXPECT_EQ(decoded.size(), original.frames().size());
+  MetricsAccumulator m(original.topology().vertex_count);
+  for (size_t f = 0; f < decoded.size() && f < original.frames().size(); ++f)
+    m.addFrame(original.frames()[f].data(), decoded[f].data());
+  return m.finish();
+}
+
+// The KG error, percent.
+inline double kgError(const MemorySequence& original, const std::vector<std::vector<float>>& decoded) {
+  return decodedMetrics(original, decoded).kg_error;
 }
 
 // The folders searched for real sequences, in order: $ANIMC_DATA_DIR when set, the

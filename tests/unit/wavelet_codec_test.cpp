@@ -11,6 +11,7 @@
 #include "codecs/common/static_position_coder.h"
 #include "codecs/wavelet/progressive_mesh.h"
 #include "codecs/wavelet/wavelet_codec.h"
+#include "group_codec_support.h"
 #include "test_sequences.h"
 #include "wavelet_test_support.h"
 
@@ -213,6 +214,24 @@ TEST(WaveletCodec, TargetKgBoundsTheSequenceErrorAndLooserTargetsCostLess) {
     EXPECT_GT(kg, 0.5 * target) << target;  // the search does not overshoot wildly either
     EXPECT_LT(totalBytes(coded), previous_bytes) << target;
     previous_bytes = totalBytes(coded);
+  }
+}
+
+// Backwards, every frame is a random access that goes back into the group the decoder is in,
+// where it keeps the group's hierarchy (WaveletFrameModel::setParametric): the frames must
+// still be the encoder's reconstructions. In the still sequence every group has the same
+// parametric mesh, so the hierarchy is kept from group to group as well.
+TEST(WaveletCodec, BackwardsRandomAccessDecodesTheEncodersFrames) {
+  for (double motion : {1.0, 0.0}) {
+    const MemorySequence seq = gridSequence(12, 10, 20, motion, motion);
+    EncoderOptions options;
+    options.codec = "wavelet";
+    options.iframe_interval = 8;
+    const testing_support::Coded coded = testing_support::encodeCollecting(seq, options);
+    ASSERT_EQ(coded.reconstructions.size(), 20u);
+    EXPECT_EQ(testing_support::decodeAll(coded.bytes), coded.reconstructions) << "motion " << motion;
+    EXPECT_EQ(testing_support::decodeAll(coded.bytes, testing_support::DecodeOrder::kBackward), coded.reconstructions)
+        << "motion " << motion;
   }
 }
 

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "core/memory_sequence.h"
-#include "metrics/sequence_metrics.h"
+#include "test_sequences.h"  // decodedMetrics, kgError
 
 namespace animc::testing_support {
 
@@ -19,21 +19,6 @@ double rmsError(const A& original, const B& decoded) {
   double sum = 0;
   for (size_t i = 0; i < original.size(); ++i) sum += (double(original[i]) - double(decoded[i])) * (double(original[i]) - double(decoded[i]));
   return std::sqrt(sum / double(original.size() / 3));
-}
-
-// The metrics library's figures of decoded against the original's frames; decoded must hold
-// as many frames as the original.
-inline SequenceMetrics decodedMetrics(const MemorySequence& original, const std::vector<std::vector<float>>& decoded) {
-  EXPECT_EQ(decoded.size(), original.frames().size());
-  MetricsAccumulator m(original.topology().vertex_count);
-  for (size_t f = 0; f < decoded.size() && f < original.frames().size(); ++f)
-    m.addFrame(original.frames()[f].data(), decoded[f].data());
-  return m.finish();
-}
-
-// The KG error, percent.
-inline double kgError(const MemorySequence& original, const std::vector<std::vector<float>>& decoded) {
-  return decodedMetrics(original, decoded).kg_error;
 }
 
 inline double bboxDiagonal(const std::vector<float>& xyz) {
