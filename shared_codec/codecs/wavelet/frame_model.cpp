@@ -58,7 +58,8 @@ void WaveletFrameModel::setParametric(const std::vector<double>& parametric_xyz)
   // a frame group (random access backwards) meets the same mesh again and keeps it; the
   // comparison is of the bits, since -0 and +0 may lead to different hierarchies.
   const bool same = transform_ && hierarchy_mesh_.size() == parametric_xyz.size() &&
-                    std::memcmp(hierarchy_mesh_.data(), parametric_xyz.data(), parametric_xyz.size() * sizeof(double)) == 0;
+                    (parametric_xyz.empty() || std::memcmp(hierarchy_mesh_.data(), parametric_xyz.data(),
+                                                           parametric_xyz.size() * sizeof(double)) == 0);
   if (!same) buildHierarchy(parametric_xyz);
   context_.reset(coefficientCount());
   const double diagonal = boxDiagonal(parametric_xyz);
