@@ -85,10 +85,10 @@ class WaveletFrameModel {
                              std::vector<double>& xyz);
 
  private:
-  // run(begin, end, references, predictor) for each run of coding positions that share a
-  // selector; predictor: a PredictorTag (frame_model.cpp), the selector's kind of prediction.
   // The transform and the coding order, classes, parents and runs that follow from it.
   void buildHierarchy(const std::vector<double>& parametric_xyz);
+  // run(begin, end, references, predictor) for each run of coding positions that share a
+  // selector; predictor: a PredictorTag (frame_model.cpp), the selector's kind of prediction.
   template <class Run>
   void forEachRun(const Prediction& prediction, Run run) const;
   void addResidual(const std::vector<double>& decoded_residual, const Prediction& prediction,
