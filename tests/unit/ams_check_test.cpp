@@ -70,8 +70,9 @@ TEST_F(AmsCheckTest, RefusesEveryTruncation) {
   for (const std::string& name : goldenAmsFiles()) {
     const Bytes golden = readBytes(kGoldenDir + name);
     ASSERT_FALSE(golden.empty()) << name;
-    for (size_t n = 0; n < golden.size(); ++n) {
-      writeBytes(path_, Bytes(golden.begin(), golden.begin() + n));
+    writeBytes(path_, golden);
+    for (size_t n = golden.size(); n-- > 0;) {
+      fs::resize_file(path_, n);  // cuts the file in place: far cheaper than writing each prefix
       auto check = checkAmsFile(path_);
       ASSERT_FALSE(check.ok()) << name << " cut to " << n << " bytes passes";
       ASSERT_EQ(check.status().code(), StatusCode::kTruncated)
