@@ -98,6 +98,29 @@ xz --check=crc32 -c "$WORK/grid_out.pc2" > "$WORK/grid.pc2.xz"
 xz --check=none -c "$WORK/grid_out.mdd" > "$WORK/grid.mdd.xz"
 seq_seed grid.pc2.xz 4 "$WORK/grid.pc2.xz"
 seq_seed grid.mdd.xz 5 "$WORK/grid.mdd.xz"
+# Several files, joined by the harness's separator: frame folders, .txt lists and point caches
+# with a mesh (control byte 0 = format + 6 * layout, see fuzz_sequence_readers.cpp).
+files_seed() {  # name, control byte, files...
+  local name=$1 control=$2 first=1
+  shift 2
+  { printf "\\x$(printf %02x "$control")\\x00"
+    for file in "$@"; do
+      [ $first = 1 ] || printf '#next#'
+      first=0
+      cat "$file"
+    done; } > "$OUT/sequence_readers/$name"
+}
+"$ANIMC" decode "$WORK/grid_octree.ams" -o "$WORK/grid_ply2" --format ply --frames 0:2 >/dev/null
+"$ANIMC" decode "$WORK/grid_octree.ams" -o "$WORK/grid_off2" --format off --frames 0:2 >/dev/null
+printf 'f0.ply\n# a comment\n\nf1.ply\n' > "$WORK/list.txt"
+PLY2=("$WORK/grid_ply2/frame_00000.ply" "$WORK/grid_ply2/frame_00001.ply")
+files_seed folder.ply 6 "${PLY2[@]}"
+files_seed folder.off 7 "$WORK/grid_off2/frame_00000.off" "$WORK/grid_off2/frame_00001.off"
+files_seed list.ply 12 "$WORK/list.txt" "${PLY2[@]}"
+files_seed mesh_folder.ply 18 "$WORK/grid.ply" "${PLY2[@]}"
+files_seed mesh.pc2 8 "$WORK/grid.ply" "$WORK/grid_out.pc2"
+files_seed mesh_off.mdd 15 "$WORK/grid_off/frame_00000.off" "$WORK/grid_out.mdd"
+files_seed mesh.pc2.xz 22 "$WORK/grid.ply" "$WORK/grid.pc2.xz"
 # PLY in ASCII and big-endian, with extra properties and a quad, written by hand.
 { printf '\x00\x00'
   printf 'ply\nformat ascii 1.0\ncomment fuzz seed\nelement vertex 5\nproperty float x\nproperty float y\n'
