@@ -1,24 +1,35 @@
 // SPDX-License-Identifier: Apache-2.0
-// libFuzzer harness: arbitrary frames of a small grid mesh encoded to memory by the public
-// Encoder with settings taken from the input, then decoded by the public Decoder. A refusal is
-// fine; a crash, a sanitizer report, or a decoded frame that differs from what the encoder
-// said the decoder would produce (or, for the affine-octree codec, a vertex beyond the max
-// error) is a bug, reported by abort().
+// libFuzzer harness: arbitrary frames of a small mesh encoded to memory by the public Encoder
+// with settings taken from the input, decoded by the public Decoder, and written by a sequence
+// writer and read back. A refusal by the encoder is fine; a crash, a sanitizer report, a decoded
+// frame that differs from what the encoder said the decoder would produce, a vertex beyond the
+// max error (affine-octree, trajectory and auto within a max error), or a written frame that
+// does not read back the same is a bug, reported by abort().
 //
 // Input = 4 control bytes, then coordinates:
 //   [0] bit 0: codec (0: affine-octree, or with bit 2 set trajectory (bit 1 clear) or auto
 //       (bit 1 set); 1: wavelet); bits 1-2: profile or detail-frame kind;
 //       bits 3-7: I-frame interval
-//   [1] grid width - 2 (mod 7)   [2] grid height - 2 (mod 7)   [3] quality (max error, step)
+//   [1] bits 0-6: grid width - 2 (mod 7); bit 7: random triangles over the grid's vertices
+//       (as many as the grid has) instead of the grid's
+//   [2] bits 0-4: grid height - 2 (mod 7); bits 5-7: the decoded frames are written as
+//       4 PLY frames, 5 OFF frames, 6 PC2, 7 MDD (0-3: not written)
+//   [3] quality (max error, step, KG target); trajectory: bit 0 set, a max error instead of a
+//       KG target
 //   then int16 coordinates (scaled by 1/256), x y z per vertex per frame, until they run out
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <vector>
 
 #include "animc/animc.h"
+#include "fuzz_support.h"
+#include "seqio/mdd_format.h"
+#include "seqio/pc2_format.h"
+#include "seqio/sequence_io.h"
 
 namespace {
 
@@ -41,13 +52,26 @@ Mesh grid(uint32_t width, uint32_t height) {
   return m;
 }
 
+// The grid's vertices with as many triangles, their corners drawn from a generator seeded by
+// the control bytes: non-manifold edges, repeated corners and unused vertices included.
+Mesh randomTriangles(uint32_t width, uint32_t height, const uint8_t* control) {
+  Mesh m = grid(width, height);
+  uint32_t state = 0x9E3779B9u ^ (uint32_t(control[1]) << 16 | uint32_t(control[2]) << 8 | control[3]);
+  for (uint32_t& corner : m.triangles) {
+    state ^= state << 13, state ^= state >> 17, state ^= state << 5;  // xorshift32
+    corner = state % m.vertices;
+  }
+  return m;
+}
+
 animc::EncoderOptions options(const uint8_t* control) {
   animc::EncoderOptions o;
   const int kind = (control[0] >> 1) & 3;
   o.iframe_interval = control[0] >> 3;
   if ((control[0] & 1) == 0 && kind == 2) {
     o.codec = "trajectory";
-    o.set("target-kg", 0.05 + 5.0 * control[3] / 255.0);
+    if (control[3] & 1) o.set("max-error", 0.0005 + 0.2 * control[3] / 255.0);
+    else o.set("target-kg", 0.05 + 5.0 * control[3] / 255.0);
   } else if ((control[0] & 1) == 0 && kind == 3) {
     o.codec = "auto";  // mixes trajectory and affine-octree groups; short groups as well
     o.set("max-error", 0.0005 + 0.2 * control[3] / 255.0);
@@ -95,11 +119,85 @@ std::vector<bool> intraFrames(const std::vector<uint8_t>& stream, uint32_t verti
   return intra;
 }
 
+// The side of the cube the max error is a fraction of. docs/affine_octree.md: the bounding cube
+// of the reconstructed previous frame, of the frame itself for an intra frame; docs/trajectory.md:
+// the frame's own box; docs/auto.md: that of the codec of the group, so the larger of the two.
+// Each codec takes 1 for the box of a point.
+double cubeSide(const std::string& codec, const std::vector<float>& original, const std::vector<float>* previous) {
+  auto side = [](const std::vector<float>& xyz) {
+    const double s = largestSide(xyz);
+    return s == 0 ? 1.0 : s;
+  };
+  if (codec == "affine-octree" && previous) return side(*previous);
+  if (codec == "auto" && previous) return std::fmax(side(original), side(*previous));
+  return side(original);
+}
+
+void checkMaxError(const std::string& codec, double max_error, const std::vector<float>& original,
+                   const std::vector<float>* previous, const std::vector<float>& xyz, int64_t frame) {
+  const double side = cubeSide(codec, original, previous);
+  double largest = 0;
+  for (float v : original) largest = std::fmax(largest, std::fabs(v));
+  // The trajectory codec's frames are sums of up to 3G float products, whose rounding can exceed
+  // a tiny bound, which then holds only up to that rounding (docs/trajectory.md): checked where
+  // the bound is well above it.
+  if (codec != "affine-octree" && max_error * side < 0x1p-8 * largest) return;
+  const double trajectory_rounding = codec == "affine-octree" ? 0 : 0x1p-12 * largest;
+  for (size_t v = 0; v < xyz.size(); v += 3) {
+    const double dx = xyz[v] - original[v], dy = xyz[v + 1] - original[v + 1], dz = xyz[v + 2] - original[v + 2];
+    // Decoders output floats: rounding adds up to half a float step of each coordinate, more
+    // than E * S when the cube is tiny next to the coordinates.
+    const double rounding = 0x1p-24 * (std::fabs(xyz[v]) + std::fabs(xyz[v + 1]) + std::fabs(xyz[v + 2]));
+    const double error = std::sqrt(dx * dx + dy * dy + dz * dz);
+    const double bound = max_error * side * (1 + 1e-5) + rounding + trajectory_rounding;
+    if (error > bound) bug("error above the bound", frame, error, bound);
+  }
+}
+
+// The decoded frames through a sequence writer (4 PLY, 5 OFF, 6 PC2, 7 MDD) and back through
+// its reader: the same frames, bit for bit (OFF is text with 9 significant digits, enough for
+// any float), and for PLY and OFF the same faces.
+void writeAndReadBack(const Mesh& mesh, const std::vector<std::vector<float>>& frames, int writer) {
+  using animc::SequenceFormat;
+  const SequenceFormat format = writer == 4   ? SequenceFormat::kPly
+                                : writer == 5 ? SequenceFormat::kOff
+                                : writer == 6 ? SequenceFormat::kPc2
+                                              : SequenceFormat::kMdd;
+  animc::Topology topology;
+  topology.vertex_count = mesh.vertices;
+  for (size_t i = 0; i < mesh.triangles.size(); i += 3)
+    topology.triangles.push_back({mesh.triangles[i], mesh.triangles[i + 1], mesh.triangles[i + 2]});
+  const bool folder = writer <= 5;
+  const std::string path = animc::fuzz::scratchPath(folder ? "_frames" : writer == 6 ? ".pc2" : ".mdd");
+  auto sink = animc::createSequenceSink(path, format, topology, 25.0, int64_t(frames.size()),
+                                        animc::ExistingOutput::kReplace);
+  if (!sink.ok()) bug("no sequence writer", 0);
+  for (const std::vector<float>& frame : frames)
+    if (!sink.value()->write(frame.data()).ok()) bug("a decoded frame was not written", 0);
+  if (!sink.value()->finish().ok()) bug("the sequence writer did not finish", int64_t(frames.size()));
+  auto source = folder ? animc::openSequence(path, "")
+                : writer == 6 ? animc::openPc2(path, topology, "the mesh")
+                              : animc::openMdd(path, topology, "the mesh");
+  if (!source.ok()) bug("the written frames do not open", 0);
+  if (folder && (source.value()->topology().vertex_count != topology.vertex_count ||
+                 source.value()->topology().triangles != topology.triangles))
+    bug("the written faces read back otherwise", 0);
+  std::vector<float> xyz;
+  for (size_t f = 0; f < frames.size(); ++f) {
+    auto more = source.value()->next(xyz);
+    if (!more.ok() || !more.value()) bug("a written frame does not read back", int64_t(f));
+    if (xyz != frames[f]) bug("a written frame reads back otherwise", int64_t(f));
+  }
+  auto more = source.value()->next(xyz);
+  if (!more.ok() || more.value()) bug("more frames read back than written", int64_t(frames.size()));
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (size < kControlBytes) return 0;
-  const Mesh mesh = grid(2 + data[1] % 7, 2 + data[2] % 7);
+  const uint32_t width = 2 + (data[1] & 0x7f) % 7, height = 2 + (data[2] & 0x1f) % 7;
+  const Mesh mesh = data[1] & 0x80 ? randomTriangles(width, height, data) : grid(width, height);
   const size_t frame_bytes = size_t(mesh.vertices) * 3 * 2;
   const int frames = int(std::min<size_t>(kMaxFrames, (size - kControlBytes) / frame_bytes));
   if (frames == 0) return 0;
@@ -136,7 +234,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   auto decoder = animc::Decoder::openMemory(stream.data(), stream.size());
   if (!decoder.ok()) bug("the encoder's stream does not open", 0);
   if (decoder.value().info().frames != frames) bug("frame count", frames);
-  const double max_error = o.codec == "affine-octree" ? std::strtod(o.values.at("max-error").c_str(), nullptr) : 0;
+  const auto max_error_value = o.values.find("max-error");
+  const double max_error = max_error_value == o.values.end() ? 0 : std::strtod(max_error_value->second.c_str(), nullptr);
   const std::vector<bool> intra = intraFrames(stream, mesh.vertices, frames);
   std::vector<float> xyz(3 * size_t(mesh.vertices));
   // Backwards, so that every frame but the last is reached by random access.
@@ -145,21 +244,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     if (xyz != expected[f]) bug("the decoder and the encoder disagree", f);
     if ((f == 0 || (o.iframe_interval > 0 && f % o.iframe_interval == 0)) && !intra[f])
       bug("a frame of the I-frame interval is not an intra frame", f);
-    if (max_error == 0) continue;
-    // docs/affine_octree.md, error bound: E times the side of the root cube, the bounding cube of
-    // the reconstructed previous frame (of the frame itself for an intra frame; 1 if a point).
-    double side = largestSide(intra[f] ? originals[f] : expected[f - 1]);
-    if (side == 0) side = 1;
-    for (size_t v = 0; v < xyz.size(); v += 3) {
-      const double dx = xyz[v] - originals[f][v], dy = xyz[v + 1] - originals[f][v + 1],
-                   dz = xyz[v + 2] - originals[f][v + 2];
-      // Decoders output floats: rounding adds up to half a float step of each coordinate, more
-      // than E * S when the cube is tiny next to the coordinates.
-      const double rounding = 0x1p-24 * (std::fabs(xyz[v]) + std::fabs(xyz[v + 1]) + std::fabs(xyz[v + 2]));
-      const double error = std::sqrt(dx * dx + dy * dy + dz * dz);
-      const double bound = max_error * side * (1 + 1e-5) + rounding;
-      if (error > bound) bug("error above the bound", f, error, bound);
-    }
+    if (max_error > 0) checkMaxError(o.codec, max_error, originals[f], intra[f] ? nullptr : &expected[f - 1], xyz, f);
   }
+  const int writer = data[2] >> 5;
+  if (writer >= 4) writeAndReadBack(mesh, expected, writer);
   return 0;
 }
