@@ -45,3 +45,5 @@ cmake -S . -B build-fuzz -DCMAKE_CXX_COMPILER=clang++ -DANIMC_BUILD_FUZZERS=ON -
   -DANIMC_BUILD_PLUGINS=OFF -DANIMC_BUILD_PYTHON=OFF >/dev/null
 cmake --build build-fuzz -j"$(nproc)"
 bash tests/fuzz/campaign.sh build-fuzz 60 build-fuzz/campaign --parallel
+# The same on the portable kernels, which CPUs without AVX2 run (core/simd_math.h).
+ANIMC_SIMD=portable bash tests/fuzz/campaign.sh build-fuzz 20 build-fuzz/campaign-portable --parallel

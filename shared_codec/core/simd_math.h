@@ -11,6 +11,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
+#include <string_view>
 #include <vector>
 
 namespace animc {
@@ -117,10 +119,19 @@ namespace animc {
 // build: they must give the same bytes and frames.
 enum class SimdPath : uint8_t { kPortable, kAvx2 };
 
-// kAvx2 when this build has the AVX2 versions and this CPU has AVX2 and BMI2.
+// ANIMC_SIMD=portable in the environment runs the portable versions on any CPU: what CPUs
+// without AVX2 run, for the fuzzers (CI fuzzes both), or to rule the AVX2 versions out when a
+// result looks wrong. Read once, at load time, like kCpuHasAvx2.
+inline const bool kPortableForced = [] {
+  const char* value = std::getenv("ANIMC_SIMD");
+  return value != nullptr && std::string_view(value) == "portable";
+}();
+
+// kAvx2 when this build has the AVX2 versions, this CPU has AVX2 and BMI2, and ANIMC_SIMD does
+// not ask for the portable ones.
 inline SimdPath bestSimdPath() {
 #if ANIMC_AVX2_PATH
-  if (kCpuHasAvx2) return SimdPath::kAvx2;
+  if (kCpuHasAvx2 && !kPortableForced) return SimdPath::kAvx2;
 #endif
   return SimdPath::kPortable;
 }

@@ -3,6 +3,9 @@
 // options, and its parameters survive being written and read back.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
+#include <string>
+
 #include "api.h"
 #include "codecs/codec_registry.h"
 #include "report/report.h"
@@ -81,6 +84,21 @@ TEST(CodecRegistry, EverySimdPathWritesAndDecodesTheSameBytes) {
     EXPECT_EQ(payloads[0], payloads[1]);
     EXPECT_EQ(frames[0], frames[1]);
   }
+}
+
+// ctest runs this a second time with ANIMC_SIMD=portable (simd_portable_forced in
+// tests/CMakeLists.txt): the fuzzers' way to reach the portable kernels in an AVX2 build.
+TEST(SimdPathChoice, AnimcSimdPortableSelectsThePortableKernels) {
+  const char* forced = std::getenv("ANIMC_SIMD");
+  if (forced != nullptr && std::string(forced) == "portable") {
+    EXPECT_EQ(bestSimdPath(), SimdPath::kPortable);
+    return;
+  }
+#if ANIMC_AVX2_PATH
+  EXPECT_EQ(bestSimdPath() == SimdPath::kAvx2, kCpuHasAvx2);
+#else
+  EXPECT_EQ(bestSimdPath(), SimdPath::kPortable);
+#endif
 }
 
 }  // namespace
