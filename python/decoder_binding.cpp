@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // Reading .ams streams: animcompress.Decoder (random access to frames), open(), info() and
 // decode(). Frames are decoded straight into NumPy arrays without the GIL.
+#include <algorithm>
 #include <mutex>
 #include <string>
 #include <vector>
@@ -63,18 +64,34 @@ py::dict streamInfo(py::handle path_or_bytes) {
 }
 
 // The frames decode() is asked for: None = all, a slice, or any iterable of indices (range,
-// list, NumPy array), each checked by Python's rules.
-std::vector<int64_t> frameIndices(py::handle frames, int64_t count) {
+// list, NumPy array), each checked by Python's rules. The array holds as many vertices as
+// the selection's frames times the vertex count, at least what decoding them costs: a
+// selection above max_vertex_frames is refused before any list or array is made (repeated and
+// strided selections included, which Decoder::checkDecodeWork does not see).
+std::vector<int64_t> frameIndices(py::handle frames, const StreamInfo& info, uint64_t max_vertex_frames) {
+  const uint64_t max_frames = max_vertex_frames / std::max<uint64_t>(info.vertices, 1);
+  auto checkCount = [&](uint64_t count) {
+    if (count <= max_frames) return;
+    throwIfError(Status(StatusCode::kLimitExceeded,
+                        "decode: " + std::to_string(count) + " frames of " + std::to_string(info.vertices) +
+                            " vertices or more are above the limit of " + std::to_string(max_vertex_frames) +
+                            " vertex-frames; select fewer frames or raise max_vertex_frames"));
+  };
   std::vector<int64_t> indices;
   if (frames.is_none()) {
-    for (int64_t k = 0; k < count; ++k) indices.push_back(k);
+    checkCount(uint64_t(info.frames));
+    for (int64_t k = 0; k < info.frames; ++k) indices.push_back(k);
   } else if (py::isinstance<py::slice>(frames)) {
     py::ssize_t start = 0, stop = 0, step = 0, length = 0;
-    if (!py::reinterpret_borrow<py::slice>(frames).compute(py::ssize_t(count), &start, &stop, &step, &length))
+    if (!py::reinterpret_borrow<py::slice>(frames).compute(py::ssize_t(info.frames), &start, &stop, &step, &length))
       throw py::error_already_set();
+    checkCount(uint64_t(length));
     for (py::ssize_t i = 0; i < length; ++i) indices.push_back(int64_t(start + i * step));
   } else {
-    for (py::handle item : py::iter(frames)) indices.push_back(frameIndex(integerValue(item), count));
+    for (py::handle item : py::iter(frames)) {
+      checkCount(indices.size() + 1);
+      indices.push_back(frameIndex(integerValue(item), info.frames));
+    }
   }
   return indices;
 }
@@ -101,7 +118,7 @@ py::tuple decode(py::handle data, py::object frames, py::object max_vertex_frame
   Decoder decoder = openDecoder(data, options, buffer);
   // Refused before the index list is made: a stream may announce billions of frames.
   if (frames.is_none() && decoder.info().frames > 0) throwIfError(decoder.checkDecodeWork(0, decoder.info().frames));
-  const std::vector<int64_t> indices = frameIndices(frames, decoder.info().frames);
+  const std::vector<int64_t> indices = frameIndices(frames, decoder.info(), options.limits.max_vertex_frames);
   // A run is refused before any work when over the limits; other selections frame by frame.
   if (isAscendingRun(indices)) throwIfError(decoder.checkDecodeWork(indices.front(), indices.back() + 1));
   py::array_t<float> xyz({py::ssize_t(indices.size()), py::ssize_t(decoder.info().vertices), py::ssize_t(3)});

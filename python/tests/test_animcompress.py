@@ -268,6 +268,17 @@ def test_decoder_limits(grouped):
     raises_status('invalid argument', animcompress.decode, grouped, max_bitplanes=2)  # not a wavelet stream
 
 
+def test_every_selection_is_bounded_by_the_work_limit(grouped):
+    # The array of a repeated or strided selection holds len(frames) x N vertices, which the
+    # decoder's own check (runs of frames) does not see: refused before it is made.
+    vertices = animcompress.info(grouped)['vertices']
+    assert animcompress.decode(grouped, frames=[0] * 10, max_vertex_frames=10 * vertices)[0].shape[0] == 10
+    raises_status('limit exceeded', animcompress.decode, grouped, frames=[0] * 11, max_vertex_frames=10 * vertices)
+    assert len(animcompress.decode(grouped, frames=slice(None, 20, 2), max_vertex_frames=10 * vertices)[0]) == 10
+    raises_status('limit exceeded', animcompress.decode, grouped, frames=slice(None, 22, 2),
+                  max_vertex_frames=10 * vertices)
+
+
 def test_progressive_decoding_is_coarser(sequence):
     # Cuts need frames that do not code against the previous frame's contexts.
     data = animcompress.encode(sequence['frames'][:30], sequence['faces'], codec='wavelet', i_frames_only=True)
