@@ -27,7 +27,7 @@ void IoAnimStreamPlugin::GetExportMaskCapability(QString&, int& capability, int&
 
 void IoAnimStreamPlugin::initPreOpenParameter(const QString&, const QString&, RichParameterList& par) {
   addFrameRangeParameters(par);
-  addMemoryLimitParameter(par);
+  addLimitParameters(par);
 }
 
 void IoAnimStreamPlugin::initSaveParameter(const QString&, MeshModel&, RichParameterList& par) {

@@ -141,7 +141,9 @@ struct AmsRange {
 
 Result<AmsRange> openAmsRange(const std::string& path, const AmsImport& range) {
   AmsRange r;
-  ANIMC_ASSIGN_OR_RETURN(r.source, AmsSource::open(path));
+  DecoderLimits limits;
+  limits.max_vertex_frames = range.max_vertex_frames;
+  ANIMC_ASSIGN_OR_RETURN(r.source, AmsSource::open(path, limits));
   const int64_t frames = r.source->frameCount();
   r.first = range.first_frame;
   r.last = range.last_frame < 0 ? frames - 1 : range.last_frame;
@@ -150,7 +152,11 @@ Result<AmsRange> openAmsRange(const std::string& path, const AmsImport& range) {
                            " asked for, but " + path + " has frames 0 to " + std::to_string(frames - 1));
   ANIMC_RETURN_IF_ERROR(
       checkLayerMemory(path, r.source->topology(), r.first, r.last, range.max_layer_megabytes));
-  ANIMC_RETURN_IF_ERROR(r.source->checkDecodeWork(r.first, r.last + 1));
+  const Status work = r.source->checkDecodeWork(r.first, r.last + 1);
+  if (!work.ok())  // the library names its own knobs; MeshLab users have these
+    return Status(work.code(), work.message() +
+                                   "; in MeshLab: Decode work limit (million vertex-frames) when opening, or "
+                                   "ANIMC_MAX_VERTEX_FRAMES");
   ANIMC_RETURN_IF_ERROR(r.source->seek(r.first));
   return r;
 }

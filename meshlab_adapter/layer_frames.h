@@ -56,14 +56,16 @@ void fillMesh(MeshModel& layer, const Topology& topology, const float* xyz);
 // (which must be empty; null: a new layer), the others into new layers added to md (which may
 // be null only when first_layer is the one layer needed). Layers
 // are labelled frame_00000, frame_00001, ... by frame number. last < 0 means the last frame.
-// A range whose layers would take more than max_layer_megabytes is refused before any layer
-// is made (a small file can describe millions of vertices over thousands of frames).
+// A range whose layers would take more than max_layer_megabytes, or whose decoding would cost
+// more than max_vertex_frames (DecoderLimits), is refused before any layer is made (a small
+// file can describe millions of vertices over thousands of frames).
 // On failure, running out of memory included, every layer this call added is removed again
 // and first_layer is left empty.
 struct AmsImport {
   int64_t first_frame = 0;
   int64_t last_frame = -1;
   int64_t max_layer_megabytes = 4096;
+  uint64_t max_vertex_frames = DecoderLimits().max_vertex_frames;
 };
 
 // What one layer of `topology` takes in MeshLab's memory, about (vertices, faces and the

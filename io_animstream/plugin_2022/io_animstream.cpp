@@ -53,7 +53,7 @@ void IoAnimStreamPlugin::exportMaskCapability(const QString&, int& capability, i
 RichParameterList IoAnimStreamPlugin::initPreOpenParameter(const QString&) const {
   RichParameterList par;
   addFrameRangeParameters(par);
-  addMemoryLimitParameter(par);
+  addLimitParameters(par);
   return par;
 }
 

@@ -328,6 +328,12 @@ EOF
   server import_big_one -s "$TMP/import_big_one.mlx" -o "$TMP/big_one.ply"
   expect_ok import_big_one
   [[ -s big_one.ply ]] || check_failed "import_big_one: frame 999 was not saved"
+  # So is the decoding work: frame 999 costs the frames from the start of its group, 80 000
+  # vertices each, above a limit lowered to a million vertex-frames.
+  ANIMC_MAX_VERTEX_FRAMES=1000000 server import_big_one_work -s "$TMP/import_big_one.mlx"
+  ((RC != 0)) || check_failed "import_big_one_work: meshlabserver reported success"
+  expect_log import_big_one_work "above the limit of 1000000; decode fewer frames"
+  expect_log import_big_one_work "in MeshLab: Decode work limit (million vertex-frames) when opening"
 }
 
 "case_$CASE"
