@@ -60,9 +60,13 @@ RichParameterList IoAnimStreamPlugin::initPreOpenParameter(const QString&) const
 unsigned int IoAnimStreamPlugin::numberMeshesContainedInFile(const QString&, const QString& fileName,
                                                              const RichParameterList& par) const {
   // A bad file or range is refused here, before MeshLab makes any layer.
-  const auto frames = amsFrameCount(fileName.toStdString(), frameRangeFrom(par));
-  if (!frames.ok()) fail("open", fileName, frames.status().message());
-  return unsigned(frames.value());
+  unsigned count = 0;
+  guarded("open", fileName, [&] {
+    const auto frames = amsFrameCount(fileName.toStdString(), frameRangeFrom(par));
+    if (!frames.ok()) fail("open", fileName, frames.status().message());
+    count = unsigned(frames.value());
+  });
+  return count;
 }
 
 void IoAnimStreamPlugin::open(const QString&, const QString& fileName, const std::list<MeshModel*>& layers,
