@@ -184,9 +184,11 @@ Status ContainerReader::measureFirstFrame() {
 }
 
 size_t ContainerReader::groupOf(uint64_t frame) const {
-  size_t g = 0;
-  while (g + 1 < groups_.size() && groups_[g + 1].first_frame <= frame) ++g;
-  return g;
+  // The last group starting at or before `frame` (first frames rise strictly from 0): a binary
+  // search, as every Decoder::frame() call asks and a file may hold a group per frame.
+  const auto after = std::upper_bound(groups_.begin(), groups_.end(), frame,
+                                      [](uint64_t f, const Group& group) { return f < group.first_frame; });
+  return after == groups_.begin() ? 0 : size_t(after - groups_.begin()) - 1;
 }
 
 }  // namespace animc
