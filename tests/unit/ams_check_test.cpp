@@ -82,8 +82,9 @@ TEST_F(AmsCheckTest, RefusesEveryTruncation) {
 }
 
 // Flips one bit of every stride-th byte (bit (i / stride) % 8 of byte i, so every bit position
-// is hit). Every section is under a CRC-32, which detects any single-bit error, so a sample
-// is enough for CI; ANIMC_FLIP_STRIDE=1 flips a bit of every byte.
+// is hit). Within the bytes a section's CRC-32 covers, the CRC detects any single-bit error,
+// whichever the bit, so a sample is enough for CI; ANIMC_FLIP_STRIDE=1 flips a bit of every
+// byte (tests/fuzz/README.md records that sweep).
 size_t flipStride() {
   const char* env = std::getenv("ANIMC_FLIP_STRIDE");
   const long stride = env ? std::atol(env) : 0;
