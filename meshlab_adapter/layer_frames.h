@@ -11,6 +11,7 @@
 
 #include "api.h"
 #include "core/sequence.h"
+#include "layer_checks.h"
 #include "meshlab_compat.h"
 
 namespace animc::meshlab {
@@ -26,7 +27,7 @@ std::string layerName(const MeshDocument* md, const MeshModel& layer);
 
 // A layer's live vertex positions (x y z per vertex, in vector order), its topology unchecked:
 // for layers a LayerFrameSource already went through.
-void layerPositions(const MeshModel& layer, std::vector<float>& xyz);
+inline void layerPositions(const MeshModel& layer, std::vector<float>& xyz) { livePositions(layer.cm, xyz); }
 
 // The layers as a sequence of frames. Every layer must have the first one's vertex count and
 // triangle list; next() fails with a message naming the first layer that does not.
@@ -54,31 +55,17 @@ void fillMesh(MeshModel& layer, const Topology& topology, const float* xyz);
 
 // Reads frames [first, last] of an .ams file as layers: the first one into `first_layer`
 // (which must be empty; null: a new layer), the others into new layers added to md (which may
-// be null only when first_layer is the one layer needed). Layers
-// are labelled frame_00000, frame_00001, ... by frame number. last < 0 means the last frame.
-// A range whose layers would take more than max_layer_megabytes, or whose decoding would cost
-// more than max_vertex_frames (DecoderLimits), is refused before any layer is made (a small
-// file can describe millions of vertices over thousands of frames).
-// On failure, running out of memory included, every layer this call added is removed again
-// and first_layer is left empty.
-struct AmsImport {
-  int64_t first_frame = 0;
-  int64_t last_frame = -1;
-  int64_t max_layer_megabytes = 4096;
-  uint64_t max_vertex_frames = DecoderLimits().max_vertex_frames;
-};
-
-// What one layer of `topology` takes in MeshLab's memory, about (vertices, faces and the
-// per-element attributes MeshLab keeps).
-uint64_t layerBytes(const Topology& topology);
+// be null only when first_layer is the one layer needed). Layers are labelled frame_00000,
+// frame_00001, ... by frame number. The range is checked first (planAmsImport: memory and
+// decoding work). On failure, running out of memory included, every layer this call added is
+// removed again and first_layer is left empty.
 Result<QList<MeshModel*>> importAms(const std::string& path, const AmsImport& range,
                                     MeshDocument* md, MeshModel* first_layer,
                                     const ProgressFn& progress);
 
 // MeshLab 2022+ makes the layers of a multi-layer open itself, before the plugin sees the file:
-// how many frames of `path` the range covers (checking the range, the memory limit and the
-// decoding work first, as importAms does), and the decoding of that range into exactly those layers. On failure the layers are
-// left empty.
+// how many frames of `path` the range covers (checked as importAms checks it), and the decoding
+// of that range into exactly those layers. On failure the layers are left empty.
 Result<int64_t> amsFrameCount(const std::string& path, const AmsImport& range);
 Status importAmsInto(const std::string& path, const AmsImport& range, const QList<MeshModel*>& layers,
                      const ProgressFn& progress);

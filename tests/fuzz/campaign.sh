@@ -15,8 +15,8 @@ seconds=$2
 work=$(realpath -m "${3:-/tmp/animc_fuzz_campaign}")
 parallel=${4:-}
 corpus=$(cd "$(dirname "$0")" && pwd)/corpus
-harnesses=(ams_decode sequence_readers round_trip)
-declare -A max_len=([ams_decode]=8192 [sequence_readers]=8192 [round_trip]=4096)
+harnesses=(ams_decode sequence_readers round_trip layer_checks)
+declare -A max_len=([ams_decode]=8192 [sequence_readers]=8192 [round_trip]=4096 [layer_checks]=8192)
 mkdir -p "$work/artifacts"
 
 # run HARNESS: one libFuzzer run; its log in WORK/HARNESS.log.

@@ -1,17 +1,19 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: Apache-2.0
-# Writes the seed corpora of the fuzz harnesses, OUT/ams_decode and OUT/sequence_readers (named
-# after their harnesses), from which the in-tree corpus tests/fuzz/corpus grew.
+# Writes the seed corpora of the fuzz harnesses, OUT/ams_decode, OUT/sequence_readers and
+# OUT/layer_checks (named after their harnesses), from which the in-tree corpus tests/fuzz/corpus
+# grew.
 #   usage: tests/fuzz/make_seeds.sh path/to/animc OUT
 # Sources: a 20-vertex grid made here and the first 3 frames of samples/sydney, encoded by the
-# project's own animc with several settings of every codec and decoded back to every format.
+# project's own animc with several settings of every codec and decoded back to every format;
+# for layer_checks, layers written here and the smaller golden files of tests/golden.
 set -euo pipefail
 ANIMC=$(realpath "$1")
 OUT=$(realpath -m "$2")
 ROOT=$(cd "$(dirname "$0")/../.." && pwd)
 WORK=$(mktemp -d)
 trap 'rm -rf "$WORK"' EXIT
-mkdir -p "$OUT/ams_decode" "$OUT/sequence_readers"
+mkdir -p "$OUT/ams_decode" "$OUT/sequence_readers" "$OUT/layer_checks"
 
 # The grid (binary PLY + PC2) and sydney cut to 3 frames (PC2).
 /usr/bin/python3 - "$WORK" "$ROOT/samples/sydney/sydney_50.pc2.xz" <<'PY'
@@ -137,5 +139,21 @@ PY
 { printf '\x01\x00'
   printf 'OFF\n# comment\n4 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n'
 } > "$OUT/sequence_readers/square.off"
+# Layer checks: four layers (slot 1 deleted, a deleted face; the first again; again with a
+# deleted vertex appended; another mesh), then a golden file with the whole range, a range
+# above the memory limit and one above the work limit (control bytes: fuzz_layer_checks.cpp).
+/usr/bin/python3 - "$OUT/layer_checks" "$ROOT/tests/golden" <<'PY'
+import os, sys
+out, golden = sys.argv[1], sys.argv[2]
+first = bytes([5, 2, 0]) + bytes(range(6)) + bytes([3, 0, 2, 3, 0x80, 1, 2, 2, 3, 4])
+layers = first + bytes([0]) + bytes(6) + bytes([2]) + bytes(6) + bytes([1, 3, 0, 0, 1, 2, 3, 4, 1, 0, 1, 2])
+ranges = {'all': (0, 255, 255, 7, 18), 'memory': (1, 2, 0, 7, 18), 'work': (0, 255, 255, 7, 0)}
+for name in ('affine_octree_default.v1', 'wavelet.v1', 'trajectory.v1.target_kg', 'trajectory.v1.max_error',
+             'affine_octree_paper.v1'):
+    stream = open(os.path.join(golden, name + '.ams'), 'rb').read()
+    for kind, (first_frame, last_frame, megabytes, element, work) in ranges.items():
+        control = bytes([3, first_frame, last_frame, megabytes, element, work, 0, len(layers)])
+        open(os.path.join(out, name + '.' + kind), 'wb').write(control + layers + stream)
+PY
 echo "seeds: $(ls "$OUT/ams_decode" | wc -l) in $OUT/ams_decode ($(du -sh "$OUT/ams_decode" | cut -f1)),"\
-  "$(ls "$OUT/sequence_readers" | wc -l) in $OUT/sequence_readers"
+  "$(ls "$OUT/sequence_readers" | wc -l) in $OUT/sequence_readers, $(ls "$OUT/layer_checks" | wc -l) in $OUT/layer_checks"
