@@ -22,7 +22,7 @@ int runInfo(const std::vector<std::string>& argv) {
   if (args.has("json")) {
     JsonObject o = newReport();
     // What opening the file checked: not the groups after the first (animc test does).
-    o.add("checked", "header");
+    o.add("checked", "header, index and first group");
     o.add("format_version", info.format_version);
     addSettings(o, source.value()->settings());
     o.add("vertices", h.vertex_count);

@@ -46,6 +46,8 @@ int copySpool(std::FILE* spool, int fd) {
   return std::ferror(spool) ? EIO : 0;
 }
 
+std::atomic<bool> unnamed_temporaries{true};
+
 // Linux's own limit on links followed in one path (MAXSYMLINKS).
 constexpr int kMaxLinkHops = 40;
 
@@ -75,6 +77,8 @@ std::string temporaryPathBeside(const std::string& path) {
   return (std::filesystem::path(named).parent_path() / name).string();
 }
 
+void setUnnamedTemporaries(bool enabled) { unnamed_temporaries = enabled; }
+
 AtomicFile::~AtomicFile() { abandon(); }
 
 Status AtomicFile::open(const std::string& path) {
@@ -92,6 +96,29 @@ Status AtomicFile::open(const std::string& path) {
 
 Status AtomicFile::createTemporary() {
   mode_ = Mode::kReplace;
+  temp_path_.clear();
+  if (openUnnamed()) return Status();
+  return createNamedTemporary();
+}
+
+// An unnamed file in the target's folder (O_TMPFILE): a process killed before commit() leaves
+// nothing behind, not even after SIGKILL. False where the file system or kernel lacks it, or
+// the folder is not there (createNamedTemporary() then says why).
+bool AtomicFile::openUnnamed() {
+#ifdef O_TMPFILE
+  if (!unnamed_temporaries) return false;
+  std::string folder = std::filesystem::path(target_).parent_path().string();
+  if (folder.empty()) folder = ".";
+  const int fd = ::open(folder.c_str(), O_TMPFILE | O_RDWR | O_CLOEXEC, 0666);
+  if (fd < 0) return false;
+  file_ = fdopen(fd, "w+b");
+  if (file_) return true;
+  ::close(fd);
+#endif
+  return false;
+}
+
+Status AtomicFile::createNamedTemporary() {
   // "x": never truncate a file already there (a leftover of an earlier process that had the
   // same id); take the next name instead.
   // Registered before it is created, so that a signal arriving in between still finds it.
@@ -109,8 +136,35 @@ Status AtomicFile::createTemporary() {
   return Status();
 }
 
+// The unnamed file gets a temporary name beside the target, to be renamed over it: a link to
+// it where /proc is mounted, else a named copy.
+Status AtomicFile::nameUnnamed() {
+  if (std::fflush(file_) != 0) return fail("write");
+  const std::string open_file = "/proc/self/fd/" + std::to_string(fileno(file_));
+  for (int attempt = 0; attempt < 100; ++attempt) {
+    temp_path_ = temporaryPathBeside(target_);
+    temp_slot_ = registerTemporary(temp_path_, TemporaryKind::kFile);
+    if (linkat(AT_FDCWD, open_file.c_str(), AT_FDCWD, temp_path_.c_str(), AT_SYMLINK_FOLLOW) == 0)
+      return Status();
+    const int error = errno;
+    unregisterTemporary(temp_slot_);
+    temp_slot_ = -1;
+    if (error != EEXIST) break;
+  }
+  std::FILE* unnamed = file_;
+  file_ = nullptr;
+  temp_path_.clear();
+  Status s = createNamedTemporary();
+  if (s.ok()) {
+    errno = copySpool(unnamed, fileno(file_));
+    if (errno != 0) s = fail("copying the unnamed temporary");
+  }
+  std::fclose(unnamed);
+  return s;
+}
+
 void AtomicFile::removeTemporary() {
-  std::remove(temp_path_.c_str());
+  if (!temp_path_.empty()) std::remove(temp_path_.c_str());
   unregisterTemporary(temp_slot_);
   temp_slot_ = -1;
 }
@@ -180,6 +234,13 @@ Status AtomicFile::commit(Sync sync) {
   if (failed_) {
     abandon();
     return ioError(path_ + ": not committed because an earlier write failed");
+  }
+  if (mode_ == Mode::kReplace && temp_path_.empty()) {
+    const Status named = nameUnnamed();
+    if (!named.ok()) {
+      abandon();
+      return named;
+    }
   }
   const int error = closeAll(sync);
   if (error != 0) {

@@ -1,10 +1,13 @@
 // SPDX-License-Identifier: Apache-2.0
 // Writes a file so that readers only ever see the old content or the complete new content:
 // data goes to a temporary file in the target's folder and commit() renames it over the target.
-// A file that is never committed (error, early return) is removed by the destructor, and
-// while it exists the temporary is registered (core/temp_registry.h) for a signal handler.
+// Where the file system has O_TMPFILE (Linux: ext4, xfs, btrfs, tmpfs, ...) the temporary has
+// no name until commit() links it in, so a process killed while writing, SIGKILL included,
+// leaves nothing behind. A named temporary (elsewhere, and during commit()) that is never
+// committed (error, early return) is removed by the destructor, and while it exists it is
+// registered (core/temp_registry.h) for a signal handler.
 //
-// Temporary names: every temporary file or folder animcompress creates is named
+// Temporary names: every named temporary file or folder animcompress creates is named
 // ".animc-<pid>-<n>.tmp" (<pid> the process id, <n> a counter), in the folder of the file it
 // stands for, so that a leftover of a killed run matches the fixed pattern ".animc-*.tmp".
 // The name does not grow with the target's, so every valid target name works (a suffix on the
@@ -35,6 +38,10 @@ std::string temporaryPathBeside(const std::string& path);
 // The path a write to `path` replaces: `path`, or for a symbolic link what it points to,
 // through every link (relative links resolved against their own folder); an error for a loop.
 Result<std::string> replacedPath(const std::string& path);
+
+// Whether AtomicFile makes unnamed temporaries where it can (the default) or always named ones,
+// as on a file system without O_TMPFILE: for tests of that path. Process-wide.
+void setUnnamedTemporaries(bool enabled);
 
 class AtomicFile {
  public:
@@ -67,6 +74,9 @@ class AtomicFile {
   enum class Mode { kReplace, kInPlace, kSpooled };
 
   Status createTemporary();
+  bool openUnnamed();
+  Status createNamedTemporary();
+  Status nameUnnamed();
   Status openInPlace(bool is_directory);
   int closeAll(Sync sync);
   void removeTemporary();
@@ -77,7 +87,7 @@ class AtomicFile {
   int in_place_fd_ = -1;
   std::string path_;
   std::string target_;  // path_, or the file its symbolic links lead to
-  std::string temp_path_;
+  std::string temp_path_;  // empty while the temporary has no name (O_TMPFILE)
   int temp_slot_ = -1;  // in the registry of temporaries
   // Counted here rather than asked of the stream: a device such as /dev/null reports 0.
   uint64_t position_ = 0;

@@ -3,8 +3,9 @@
 // with settings taken from the input, decoded by the public Decoder, and written by a sequence
 // writer and read back. A refusal by the encoder is fine; a crash, a sanitizer report, a decoded
 // frame that differs from what the encoder said the decoder would produce, a vertex beyond the
-// max error (affine-octree, trajectory and auto within a max error), or a written frame that
-// does not read back the same is a bug, reported by abort().
+// max error (affine-octree, trajectory and auto within a max error), a sequence above its KG
+// target (trajectory and auto), or a written frame that does not read back the same is a bug,
+// reported by abort().
 //
 // Input = 4 control bytes, then coordinates:
 //   [0] bit 0: codec (0: affine-octree, or with bit 2 set trajectory (bit 1 clear) or auto
@@ -14,8 +15,8 @@
 //       (as many as the grid has) instead of the grid's
 //   [2] bits 0-4: grid height - 2 (mod 7); bits 5-7: the decoded frames are written as
 //       4 PLY frames, 5 OFF frames, 6 PC2, 7 MDD (0-3: not written)
-//   [3] quality (max error, step, KG target); trajectory: bit 0 set, a max error instead of a
-//       KG target
+//   [3] quality (max error, step, KG target); trajectory and auto: bit 0 set, a max error, else
+//       a KG target
 //   then int16 coordinates (scaled by 1/256), x y z per vertex per frame, until they run out
 #include <cmath>
 #include <cstdint>
@@ -73,8 +74,11 @@ animc::EncoderOptions options(const uint8_t* control) {
     if (control[3] & 1) o.set("max-error", 0.0005 + 0.2 * control[3] / 255.0);
     else o.set("target-kg", 0.05 + 5.0 * control[3] / 255.0);
   } else if ((control[0] & 1) == 0 && kind == 3) {
-    o.codec = "auto";  // mixes trajectory and affine-octree groups; short groups as well
-    o.set("max-error", 0.0005 + 0.2 * control[3] / 255.0);
+    // Mixes trajectory and affine-octree groups within a max error, trajectory and wavelet
+    // groups at a KG target; short groups as well.
+    o.codec = "auto";
+    if (control[3] & 1) o.set("max-error", 0.0005 + 0.2 * control[3] / 255.0);
+    else o.set("target-kg", 0.05 + 5.0 * control[3] / 255.0);
     o.set("group-frames", 3.0);
   } else if ((control[0] & 1) == 0) {
     o.codec = "affine-octree";
@@ -152,6 +156,33 @@ void checkMaxError(const std::string& codec, double max_error, const std::vector
     const double bound = max_error * side * (1 + 1e-5) + rounding + trajectory_rounding;
     if (error > bound) bug("error above the bound", frame, error, bound);
   }
+}
+
+// A KG target X (docs/trajectory.md, docs/auto.md) bounds each group's squared error by
+// (X/100)^2 times its spread (the squared distances to each frame's centroid), so the whole
+// sequence's by the sum. Like the max error, it holds up to the float rounding of the
+// trajectory codec's sums: checked where the bound is well above it.
+void checkKgTarget(double target_percent, const std::vector<std::vector<float>>& originals,
+                   const std::vector<std::vector<float>>& decoded) {
+  double spread = 0, squared_error = 0, largest = 0;
+  size_t coordinates = 0;
+  for (size_t f = 0; f < originals.size(); ++f) {
+    const std::vector<float>& x = originals[f];
+    double centroid[3] = {0, 0, 0};
+    for (size_t i = 0; i < x.size(); ++i) centroid[i % 3] += x[i];
+    for (double& c : centroid) c /= double(x.size() / 3);
+    for (size_t i = 0; i < x.size(); ++i) {
+      spread += (x[i] - centroid[i % 3]) * (x[i] - centroid[i % 3]);
+      squared_error += (double(x[i]) - decoded[f][i]) * (double(x[i]) - decoded[f][i]);
+      largest = std::fmax(largest, std::fabs(x[i]));
+    }
+    coordinates += x.size();
+  }
+  const double allowed = (target_percent / 100) * (target_percent / 100) * spread;
+  const double rounding = 0x1p-12 * largest;
+  if (allowed < double(coordinates) * (0x1p-8 * largest) * (0x1p-8 * largest)) return;
+  const double bound = allowed * (1 + 1e-5) + double(coordinates) * rounding * rounding;
+  if (squared_error > bound) bug("KG error above the target", int64_t(originals.size()), squared_error, bound);
 }
 
 // The decoded frames through a sequence writer (4 PLY, 5 OFF, 6 PC2, 7 MDD) and back through
@@ -246,6 +277,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       bug("a frame of the I-frame interval is not an intra frame", f);
     if (max_error > 0) checkMaxError(o.codec, max_error, originals[f], intra[f] ? nullptr : &expected[f - 1], xyz, f);
   }
+  const auto target_kg = o.values.find("target-kg");
+  if (target_kg != o.values.end()) checkKgTarget(std::strtod(target_kg->second.c_str(), nullptr), originals, expected);
   const int writer = data[2] >> 5;
   if (writer >= 4) writeAndReadBack(mesh, expected, writer);
   return 0;

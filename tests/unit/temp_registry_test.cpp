@@ -77,13 +77,17 @@ TEST_F(TempRegistryTest, AFullTableOrALongPathIsRefused) {
   unregisterTemporary(again);
 }
 
-// What a signal handler finds in the middle of a write: the AtomicFile's temporary, and the
-// frame-folder sink's folder with its frames. Once committed or destroyed, nothing is left
-// registered (the removal then touches nothing).
+// What a signal handler finds in the middle of a write: the AtomicFile's named temporary (an
+// unnamed one leaves nothing to find; named ones are what file systems without O_TMPFILE get),
+// and the frame-folder sink's folder with its frames. Once committed or destroyed, nothing is
+// left registered (the removal then touches nothing).
 TEST_F(TempRegistryTest, WritersRegisterTheirTemporariesWhileTheyExist) {
   {
+    setUnnamedTemporaries(false);
     AtomicFile file;
-    ASSERT_TRUE(file.open(path("out.ams")).ok());
+    const Status opened = file.open(path("out.ams"));
+    setUnnamedTemporaries(true);
+    ASSERT_TRUE(opened.ok());
     ASSERT_TRUE(file.write("x", 1).ok());
     ASSERT_EQ(entries(dir_.string()), 1u);
     removeRegisteredTemporaries();
