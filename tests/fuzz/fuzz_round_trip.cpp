@@ -165,17 +165,6 @@ void checkMaxError(const std::string& codec, double max_error, const std::vector
   }
 }
 
-// Whether some frame is a point, or tiny next to the largest frame: the box of one frame
-// (the parametric frame of a wavelet group) smaller than 2^-10 of the largest box's side.
-bool hasTinyFrame(const std::vector<std::vector<float>>& frames) {
-  double smallest = INFINITY, largest = 0;
-  for (const std::vector<float>& xyz : frames) {
-    smallest = std::fmin(smallest, largestSide(xyz));
-    largest = std::fmax(largest, largestSide(xyz));
-  }
-  return smallest < 0x1p-10 * largest || largest == 0;
-}
-
 // A KG target X (docs/trajectory.md, docs/auto.md) bounds each group's squared error by
 // (X/100)^2 times its spread (the squared distances to each frame's centroid), so the whole
 // sequence's by the sum. Like the max error, it holds up to the float rounding of the
@@ -295,13 +284,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       bug("a frame of the I-frame interval is not an intra frame", f);
     if (max_error > 0) checkMaxError(o.codec, max_error, originals[f], intra[f] ? nullptr : &expected[f - 1], xyz, f);
   }
-  // Known and open (tests/fuzz/README.md, "Open findings"): the wavelet encoder clamps
-  // coefficients at 2^31 - 1 steps, which a fine step reaches when a group's parametric (first)
-  // frame is a point or tiny next to the frames after it, and auto at a KG target may pick
-  // such a group. Until the codec is fixed, such sequences are not held to their target.
   const auto target_kg = o.values.find("target-kg");
-  const bool known_wavelet_loss = o.codec != "trajectory" && hasTinyFrame(originals);
-  if (target_kg != o.values.end() && !known_wavelet_loss)
+  if (target_kg != o.values.end())
     checkKgTarget(std::strtod(target_kg->second.c_str(), nullptr), originals, expected);
   const int writer = data[2] >> 5;
   if (writer >= 4) writeAndReadBack(mesh, expected, writer);

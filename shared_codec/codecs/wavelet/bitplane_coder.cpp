@@ -137,6 +137,13 @@ struct WorkspaceRef {
 
 }  // namespace
 
+bool fitsBitplanes(const std::vector<double>& values, double step) {
+  const double limit = double((1u << kMaxBitplanes) - 1) * step;
+  for (double v : values)
+    if (!(std::fabs(v) < limit)) return false;
+  return true;
+}
+
 void encodeBitplanes(const double* values, const BitplaneLayout& layout,
                      const BitplaneEncodeSettings& settings, std::vector<uint8_t>& out,
                      std::vector<double>& decoded, BitplaneHistory* history,

@@ -29,7 +29,7 @@
 namespace animc {
 
 constexpr int kBitplaneClasses = 16;
-constexpr int kMaxBitplanes = 31;  // magnitudes are clamped below 2^31 steps
+constexpr int kMaxBitplanes = 31;  // magnitudes below 2^31 steps (encoders check fitsBitplanes)
 constexpr size_t kBlockVertices = 16;
 constexpr uint32_t kNoParent = UINT32_MAX;
 
@@ -61,6 +61,10 @@ struct BitplaneWorkspaceDeleter {
 };
 using BitplaneWorkspacePtr = std::unique_ptr<BitplaneWorkspace, BitplaneWorkspaceDeleter>;
 BitplaneWorkspacePtr makeBitplaneWorkspace();
+
+// Whether every value is below 2^31 - 1 steps, the largest magnitude the planes carry. An
+// encoder must not code values that do not fit: the coder would clamp them without a word.
+bool fitsBitplanes(const std::vector<double>& values, double step);
 
 struct BitplaneEncodeSettings {
   double step = 1;              // quantisation step of plane 0 (> 0)

@@ -43,13 +43,17 @@ class WaveletEncoder final : public FrameEncoder {
     if (intra || !model_.ready()) return encodeParametric(out, stats);
     model_.transform().forward(x_.data(), coefficients_);
     const Prediction prediction = model_.choosePrediction(coefficients_, options_.temporal_prediction);
+    model_.residual(coefficients_, prediction, residual_);
+    // The group's step (a fraction of its parametric frame's diagonal) is too fine for this
+    // frame when the frame is far larger than that one, e.g. after a frame collapsed to a
+    // point: a new parametric frame starts a new group with a step of its own size.
+    if (!fitsBitplanes(residual_, model_.step())) return encodeParametric(out, stats);
     if (prediction.isIntra()) {
       out.push_back(uint8_t(WaveletFrameType::kDetailIntra));
     } else {
       out.push_back(uint8_t(WaveletFrameType::kDetailPredicted));
       out.push_back(packSelectors(prediction));
     }
-    model_.residual(coefficients_, prediction, residual_);
     BitplaneEncodeSettings settings;
     settings.path = model_.simdPath();
     settings.step = model_.step();
