@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <system_error>
 
+#include "core/stale_temporaries.h"
 #include "core/temp_registry.h"
 
 namespace animc {
@@ -97,6 +98,10 @@ Status AtomicFile::open(const std::string& path) {
 Status AtomicFile::createTemporary() {
   mode_ = Mode::kReplace;
   temp_path_.clear();
+  // Not inside a temporary folder of ours (the frames of a decode to a folder): its parent
+  // was cleaned when the folder was made, and a scan per frame would cost frames^2.
+  const std::filesystem::path folder = std::filesystem::path(target_).parent_path();
+  if (!isTemporaryName(folder.filename().string(), nullptr)) removeStaleTemporaries(folder.string());
   if (openUnnamed()) return Status();
   return createNamedTemporary();
 }

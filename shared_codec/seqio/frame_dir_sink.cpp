@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/atomic_file.h"
+#include "core/stale_temporaries.h"
 #include "core/temp_registry.h"
 #include "seqio/off_format.h"
 #include "seqio/ply_writer.h"
@@ -43,9 +44,10 @@ Status swapIntoPlace(const std::string& temp, const std::string& dir) {
   }
   std::string old = temp;
   if (renameat2(AT_FDCWD, temp.c_str(), AT_FDCWD, dir.c_str(), RENAME_EXCHANGE) != 0) {
-    // Not registered for signal handlers (core/temp_registry.h): a run killed between these
-    // renames leaves the old frames under a temporary name rather than deleting them.
-    old = temporaryPathBeside(dir);
+    // Not registered for signal handlers (core/temp_registry.h), and named so that no later
+    // run removes it as stale (core/stale_temporaries.h): a run killed between these renames
+    // leaves the old frames under this name rather than deleting them.
+    old = temporaryPathBeside(dir) + ".old";
     if (std::rename(dir.c_str(), old.c_str()) != 0)
       return ioError(dir + ": cannot move the old frames aside: " + std::strerror(errno));
     if (std::rename(temp.c_str(), dir.c_str()) != 0) {
@@ -79,6 +81,7 @@ class FrameDirSink : public FrameSink {
     // A link to a folder stays a link: the folder it leads to is the one replaced.
     ANIMC_ASSIGN_OR_RETURN(target_, replacedPath(dir_));
     temp_ = temporaryPathBeside(target_);
+    removeStaleTemporaries(fs::path(temp_).parent_path().string());
     std::error_code ec;
     if (fs::exists(dir_, ec) && !fs::is_directory(dir_, ec))
       return ioError(dir_ + ": exists and is not a directory");
