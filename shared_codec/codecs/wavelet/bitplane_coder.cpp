@@ -138,7 +138,7 @@ struct WorkspaceRef {
 }  // namespace
 
 bool fitsBitplanes(const std::vector<double>& values, double step) {
-  const double limit = double((1u << kMaxBitplanes) - 1) * step;
+  const double limit = double(kMaxBitplaneMagnitude) * step;
   for (double v : values)
     if (!(std::fabs(v) < limit)) return false;
   return true;

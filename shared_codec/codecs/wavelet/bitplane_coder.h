@@ -29,7 +29,9 @@
 namespace animc {
 
 constexpr int kBitplaneClasses = 16;
-constexpr int kMaxBitplanes = 31;  // magnitudes below 2^31 steps (encoders check fitsBitplanes)
+constexpr int kMaxBitplanes = 31;
+// The largest magnitude in steps the planes carry (encoders check fitsBitplanes).
+constexpr uint32_t kMaxBitplaneMagnitude = (1u << kMaxBitplanes) - 1;
 constexpr size_t kBlockVertices = 16;
 constexpr uint32_t kNoParent = UINT32_MAX;
 

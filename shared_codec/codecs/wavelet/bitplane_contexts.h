@@ -92,13 +92,12 @@ class BitplaneState {
   // Encoder only: magnitudes in steps (floor: a dead zone of twice the step) and signs.
   void quantise(const double* values, double step) {
     const size_t count = 3 * vertices_;
-    constexpr uint32_t kMaxMagnitude = (1u << kMaxBitplanes) - 1;
     magnitude_.resize(count);
     input_negative_.resize(count);
     bits_.resize(count);
     for (size_t j = 0; j < count; ++j) {
       const double q = std::floor(std::fabs(values[j]) / step);
-      magnitude_[j] = q < double(kMaxMagnitude) ? uint32_t(q) : kMaxMagnitude;  // NaN -> 0
+      magnitude_[j] = q < double(kMaxBitplaneMagnitude) ? uint32_t(q) : kMaxBitplaneMagnitude;  // NaN -> 0
       input_negative_[j] = values[j] < 0;
       bits_[j] = uint8_t(bitLength(magnitude_[j]));
     }
