@@ -105,6 +105,9 @@ Result<DecoderLimits> decoderLimitsFrom(const Args& args) {
   ANIMC_ASSIGN_OR_RETURN(long long work, args.integer("max-vertex-frames", (long long)limits.max_vertex_frames));
   if (work < 1) return invalidArgument("--max-vertex-frames must be at least 1");
   limits.max_vertex_frames = uint64_t(work);
+  ANIMC_ASSIGN_OR_RETURN(long long output, args.integer("max-output-bytes", (long long)limits.max_output_bytes));
+  if (output < 0) return invalidArgument("--max-output-bytes must be at least 1 (0 = no limit)");
+  limits.max_output_bytes = output == 0 ? UINT64_MAX : uint64_t(output);
   return limits;
 }
 

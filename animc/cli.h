@@ -46,10 +46,9 @@ struct EncodeInput {
 };
 Result<EncodeInput> openEncodeInput(const Args& args);
 
-// The decoder's limits with --max-vertex-frames V applied (DecoderLimits::max_vertex_frames).
+// The decoder's limits with --max-vertex-frames V and --max-output-bytes B (0 = no limit)
+// applied (DecoderLimits::max_vertex_frames, max_output_bytes).
 Result<DecoderLimits> decoderLimitsFrom(const Args& args);
-// What animc decode writes at most unless --max-output-bytes says otherwise (0 = no limit).
-constexpr long long kDefaultMaxOutputBytes = 1ll << 34;
 
 // Progress on stderr, at most ten updates a second, only when stderr is a terminal or
 // --progress was given.

@@ -64,8 +64,6 @@ int runDecode(const std::vector<std::string>& argv) {
   if (!(s = refuseOutputOverInput(out, {args.positional()[0]})).ok()) return fail(s);
   auto limits = decoderLimitsFrom(args);
   if (!limits.ok()) return fail(limits.status());
-  auto max_output = args.integer("max-output-bytes", kDefaultMaxOutputBytes);
-  if (!max_output.ok()) return fail(max_output.status());
   auto source = AmsSource::open(args.positional()[0], limits.value(), control.value());
   if (!source.ok()) return fail(source.status());
   AmsSource& ams = *source.value();
@@ -76,12 +74,8 @@ int runDecode(const std::vector<std::string>& argv) {
     s = invalidArgument("--frames: expected A:B");
   }
   if (!s.ok()) return fail(s);
-  if (!(s = ams.checkDecodeWork(first, last)).ok()) return fail(s);
   const uint64_t output_bytes = sequenceOutputBytes(fmt.value(), ams.topology(), last - first);
-  if (max_output.value() > 0 && output_bytes > uint64_t(max_output.value()))
-    return fail(limitExceeded(out + ": the " + format + " output would take about " + std::to_string(output_bytes) +
-                              " bytes, above the limit of " + std::to_string(max_output.value()) +
-                              "; decode fewer frames, to pc2, or raise it with --max-output-bytes"));
+  if (!(s = ams.checkDecodeWork(first, last, output_bytes)).ok()) return fail(s);
   if (!(s = ams.seek(first)).ok()) return fail(s);
   auto sink = createSequenceSink(out, fmt.value(), ams.topology(), ams.frameRate(), last - first,
                                  args.has("replace") ? ExistingOutput::kReplace : ExistingOutput::kRefuse);

@@ -1,31 +1,23 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "layer_checks.h"
 
+#include <algorithm>
+#include <cstdint>
+
 namespace animc::meshlab {
-namespace {
-
-Status checkLayerMemory(const std::string& path, const Topology& topology, const FrameRange& r,
-                        int64_t max_megabytes, const LayerElementBytes& element) {
-  const double megabytes = double(r.count()) * double(layerBytes(topology, element)) / (1 << 20);
-  if (megabytes <= double(max_megabytes)) return Status();
-  // Built as a string: a fixed buffer would cut the message at a long path.
-  return limitExceeded("frames " + std::to_string(r.first) + " to " + std::to_string(r.last) + " of " + path +
-                       " would take about " + std::to_string(int64_t(megabytes + 0.5)) + " MB as layers (" +
-                       std::to_string(topology.vertex_count) + " vertices and " +
-                       std::to_string(topology.triangles.size()) + " triangles each), above the memory limit of " +
-                       std::to_string(max_megabytes) +
-                       " MB: load fewer frames (First frame, Last frame) or raise the limit (Memory limit (MB) "
-                       "when opening, or ANIMC_MEMORY_LIMIT_MB)");
-}
-
-}  // namespace
-
 uint64_t layerBytes(const Topology& topology, const LayerElementBytes& element) {
   // The optional attributes MeshLab enables on loaded layers (colour, quality, adjacency) take
   // about as much again as the fixed part of each element.
   constexpr uint64_t kLayerOverhead = 64 << 10;
   return 2 * (uint64_t(topology.vertex_count) * element.vertex + uint64_t(topology.triangles.size()) * element.face) +
          kLayerOverhead;
+}
+
+DecoderLimits AmsImport::decoderLimits() const {
+  DecoderLimits limits;
+  limits.max_output_bytes = uint64_t(std::max<int64_t>(max_layer_megabytes, 0)) << 20;
+  limits.max_vertex_frames = max_vertex_frames;
+  return limits;
 }
 
 Result<FrameRange> planAmsImport(const std::string& path, AmsSource& source, const AmsImport& range,
@@ -37,12 +29,16 @@ Result<FrameRange> planAmsImport(const std::string& path, AmsSource& source, con
   if (r.first < 0 || r.first > r.last || r.last >= frames)
     return invalidArgument("frames " + std::to_string(r.first) + " to " + std::to_string(r.last) +
                            " asked for, but " + path + " has frames 0 to " + std::to_string(frames - 1));
-  ANIMC_RETURN_IF_ERROR(checkLayerMemory(path, source.topology(), r, range.max_layer_megabytes, element));
-  const Status work = source.checkDecodeWork(r.first, r.last + 1);
-  if (!work.ok())  // the library names its own knobs; MeshLab users have these
-    return Status(work.code(), work.message() +
-                                   "; in MeshLab: Decode work limit (million vertex-frames) when opening, or "
-                                   "ANIMC_MAX_VERTEX_FRAMES");
+  const uint64_t layers = uint64_t(r.count()), layer = layerBytes(source.topology(), element);
+  const uint64_t output = layer > UINT64_MAX / layers ? UINT64_MAX : layers * layer;
+  const Status s = source.checkDecodeWork(r.first, r.last + 1, output);
+  if (!s.ok()) {  // the library names its own knobs; MeshLab users have these
+    const bool memory = s.message().find("max_output_bytes") != std::string::npos;
+    return Status(s.code(), s.message() + (memory ? "; in MeshLab: Memory limit (MB) when opening, or "
+                                                    "ANIMC_MEMORY_LIMIT_MB"
+                                                  : "; in MeshLab: Decode work limit (million vertex-frames) "
+                                                    "when opening, or ANIMC_MAX_VERTEX_FRAMES"));
+  }
   ANIMC_RETURN_IF_ERROR(source.seek(r.first));
   return r;
 }

@@ -52,6 +52,10 @@ struct AmsImport {
   int64_t last_frame = -1;  // < 0: the last frame of the file
   int64_t max_layer_megabytes = 4096;
   uint64_t max_vertex_frames = DecoderLimits().max_vertex_frames;
+
+  // The limits to open the file with: the memory limit is the library's output limit, counted
+  // in layer bytes (planAmsImport).
+  DecoderLimits decoderLimits() const;
 };
 
 // What one vertex and one face take in a layer (sizeof CVertexO and CFaceO).
@@ -73,7 +77,8 @@ struct FrameRange {
 
 // The range `range` asks of the open file `source` (named `path` in messages), once it lies in
 // the file, its layers fit the memory limit and decoding it fits the work limit, with `source`
-// positioned at its first frame. Nothing is allocated per frame before these checks: a small
+// positioned at its first frame. The limits are the source's: open it with
+// range.decoderLimits(). Nothing is allocated per frame before these checks: a small
 // file can describe millions of vertices over thousands of frames.
 Result<FrameRange> planAmsImport(const std::string& path, AmsSource& source, const AmsImport& range,
                                  const LayerElementBytes& element);

@@ -78,9 +78,7 @@ struct AmsRange {
 
 Result<AmsRange> openAmsRange(const std::string& path, const AmsImport& range) {
   AmsRange r;
-  DecoderLimits limits;
-  limits.max_vertex_frames = range.max_vertex_frames;
-  ANIMC_ASSIGN_OR_RETURN(r.source, AmsSource::open(path, limits));
+  ANIMC_ASSIGN_OR_RETURN(r.source, AmsSource::open(path, range.decoderLimits()));
   ANIMC_ASSIGN_OR_RETURN(r.frames, planAmsImport(path, *r.source, range, kElementBytes));
   return r;
 }

@@ -50,9 +50,10 @@ class PyDecoder {
   std::mutex mutex_;
 };
 
-std::unique_ptr<PyDecoder> openStream(py::handle path_or_bytes, py::object max_vertex_frames, int64_t max_bitplanes,
-                                      int64_t max_payload_bytes) {
-  const DecoderOptions options = decoderOptions(std::move(max_vertex_frames), max_bitplanes, max_payload_bytes);
+std::unique_ptr<PyDecoder> openStream(py::handle path_or_bytes, py::object max_vertex_frames,
+                                      py::object max_output_bytes, int64_t max_bitplanes, int64_t max_payload_bytes) {
+  const DecoderOptions options =
+      decoderOptions(std::move(max_vertex_frames), std::move(max_output_bytes), max_bitplanes, max_payload_bytes);
   std::unique_ptr<HeldBuffer> buffer;
   Decoder decoder = openDecoder(path_or_bytes, options, buffer);
   return std::make_unique<PyDecoder>(std::move(buffer), std::move(decoder));
@@ -64,18 +65,24 @@ py::dict streamInfo(py::handle path_or_bytes) {
 }
 
 // The frames decode() is asked for: None = all, a slice, or any iterable of indices (range,
-// list, NumPy array), each checked by Python's rules. The array holds as many vertices as
-// the selection's frames times the vertex count, at least what decoding them costs: a
-// selection above max_vertex_frames is refused before any list or array is made (repeated and
-// strided selections included, which Decoder::checkDecodeWork does not see).
-std::vector<int64_t> frameIndices(py::handle frames, const StreamInfo& info, uint64_t max_vertex_frames) {
-  const uint64_t max_frames = max_vertex_frames / std::max<uint64_t>(info.vertices, 1);
+// list, NumPy array), each checked by Python's rules. The array holds the selection's frames
+// times the vertex count, at least what decoding them costs: a selection above
+// max_vertex_frames, or whose array is above max_output_bytes, is refused before any list or
+// array is made (repeated and strided selections included, which Decoder::checkDecodeWork does
+// not see).
+std::vector<int64_t> frameIndices(py::handle frames, const StreamInfo& info, const DecoderLimits& limits) {
+  const uint64_t vertices = std::max<uint64_t>(info.vertices, 1);
   auto checkCount = [&](uint64_t count) {
-    if (count <= max_frames) return;
-    throwIfError(Status(StatusCode::kLimitExceeded,
-                        "decode: " + std::to_string(count) + " frames of " + std::to_string(info.vertices) +
-                            " vertices or more are above the limit of " + std::to_string(max_vertex_frames) +
-                            " vertex-frames; select fewer frames or raise max_vertex_frames"));
+    if (count > limits.max_vertex_frames / vertices)
+      throwIfError(Status(StatusCode::kLimitExceeded, "decode: " + std::to_string(count) + " frames of " + std::to_string(info.vertices) +
+                                 " vertices or more are above the limit of " +
+                                 std::to_string(limits.max_vertex_frames) +
+                                 " vertex-frames; select fewer frames or raise max_vertex_frames"));
+    if (count > limits.max_output_bytes / (12 * vertices))
+      throwIfError(Status(StatusCode::kLimitExceeded, "decode: " + std::to_string(count) + " frames of " + std::to_string(info.vertices) +
+                                 " vertices or more take more than the limit of " +
+                                 std::to_string(limits.max_output_bytes) +
+                                 " bytes as float32; select fewer frames or raise max_output_bytes"));
   };
   std::vector<int64_t> indices;
   if (frames.is_none()) {
@@ -111,14 +118,15 @@ Status decodeInto(Decoder& decoder, const std::vector<int64_t>& indices, float* 
   return Status();
 }
 
-py::tuple decode(py::handle data, py::object frames, py::object max_vertex_frames, int64_t max_bitplanes,
-                 int64_t max_payload_bytes) {
-  const DecoderOptions options = decoderOptions(std::move(max_vertex_frames), max_bitplanes, max_payload_bytes);
+py::tuple decode(py::handle data, py::object frames, py::object max_vertex_frames, py::object max_output_bytes,
+                 int64_t max_bitplanes, int64_t max_payload_bytes) {
+  const DecoderOptions options =
+      decoderOptions(std::move(max_vertex_frames), std::move(max_output_bytes), max_bitplanes, max_payload_bytes);
   std::unique_ptr<HeldBuffer> buffer;
   Decoder decoder = openDecoder(data, options, buffer);
   // Refused before the index list is made: a stream may announce billions of frames.
   if (frames.is_none() && decoder.info().frames > 0) throwIfError(decoder.checkDecodeWork(0, decoder.info().frames));
-  const std::vector<int64_t> indices = frameIndices(frames, decoder.info(), options.limits.max_vertex_frames);
+  const std::vector<int64_t> indices = frameIndices(frames, decoder.info(), options.limits);
   // A run is refused before any work when over the limits; other selections frame by frame.
   if (isAscendingRun(indices)) throwIfError(decoder.checkDecodeWork(indices.front(), indices.back() + 1));
   py::array_t<float> xyz({py::ssize_t(indices.size()), py::ssize_t(decoder.info().vertices), py::ssize_t(3)});
@@ -146,11 +154,12 @@ void bindDecoder(py::module_& module) {
            "Checks every frame group and decodes every frame; raises Error if one is bad.");
 
   module.def("open", &openStream, py::arg("path_or_bytes"), py::arg("max_vertex_frames") = py::none(),
-             py::arg("max_bitplanes") = 0, py::arg("max_payload_bytes") = 0,
+             py::arg("max_output_bytes") = py::none(), py::arg("max_bitplanes") = 0, py::arg("max_payload_bytes") = 0,
              "A Decoder over an .ams file (str or path-like) or bytes (kept referenced while it lives).");
   module.def("info", &streamInfo, py::arg("path_or_bytes"), "The header of an .ams file or bytes, as Decoder.info().");
   module.def("decode", &decode, py::arg("data"), py::arg("frames") = py::none(), py::kw_only(),
-             py::arg("max_vertex_frames") = py::none(), py::arg("max_bitplanes") = 0, py::arg("max_payload_bytes") = 0,
+             py::arg("max_vertex_frames") = py::none(), py::arg("max_output_bytes") = py::none(),
+             py::arg("max_bitplanes") = 0, py::arg("max_payload_bytes") = 0,
              "(frames (F, N, 3) float32, faces (T, 3) uint32) of an .ams stream; `frames` selects frames by "
              "index, slice or range (all when None).");
 }

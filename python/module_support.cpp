@@ -69,10 +69,13 @@ int64_t integerValue(py::handle item) {
   return value;
 }
 
-DecoderOptions decoderOptions(py::object max_vertex_frames, int64_t max_bitplanes, int64_t max_payload_bytes) {
+DecoderOptions decoderOptions(py::object max_vertex_frames, py::object max_output_bytes, int64_t max_bitplanes,
+                              int64_t max_payload_bytes) {
   DecoderOptions options;
   if (!max_vertex_frames.is_none())
     options.limits.max_vertex_frames = nonNegative(integerValue(max_vertex_frames), "max_vertex_frames");
+  if (!max_output_bytes.is_none())
+    options.limits.max_output_bytes = nonNegative(integerValue(max_output_bytes), "max_output_bytes");
   if (max_bitplanes > std::numeric_limits<int>::max()) throw py::value_error("max_bitplanes is too large");
   options.progressive.max_bitplanes = int(nonNegative(max_bitplanes, "max_bitplanes"));
   options.progressive.max_payload_bytes = nonNegative(max_payload_bytes, "max_payload_bytes");

@@ -52,7 +52,8 @@ std::string pathText(py::handle object);
 int64_t integerValue(py::handle item);
 
 // DecoderOptions from the keyword arguments of open() and decode(); None keeps the default.
-DecoderOptions decoderOptions(py::object max_vertex_frames, int64_t max_bitplanes, int64_t max_payload_bytes);
+DecoderOptions decoderOptions(py::object max_vertex_frames, py::object max_output_bytes, int64_t max_bitplanes,
+                              int64_t max_payload_bytes);
 
 // A decoder over a file or over a buffer that `buffer` holds (left empty for a file).
 Decoder openDecoder(py::handle path_or_bytes, const DecoderOptions& options, std::unique_ptr<HeldBuffer>& buffer);

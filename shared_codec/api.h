@@ -80,7 +80,9 @@ class AmsSource final : public FrameSource {
 
   // The frame next() gives next.
   Status seek(int64_t frame);
-  Status checkDecodeWork(int64_t first, int64_t last) const { return decoder_.checkDecodeWork(first, last); }
+  Status checkDecodeWork(int64_t first, int64_t last, uint64_t output_bytes = 0) const {
+    return decoder_.checkDecodeWork(first, last, output_bytes);
+  }
   const ContainerInfo& info() const { return containerInfo(decoder_); }
   const EncodeSettings& settings() const { return streamSettings(decoder_); }
   Decoder& decoder() { return decoder_; }

@@ -3,6 +3,7 @@
 // frame decoder, and the cursor that turns frame(k) into "seek to k's group, decode forward".
 #include "api.h"
 
+#include <cstdint>
 #include <cstring>
 
 namespace animc {
@@ -55,6 +56,9 @@ struct Decoder::Impl {
   std::string where() const { return name + " frame " + std::to_string(next_frame); }
   Status enterGroupOf(int64_t frame);
   Status decodeNext();
+  // The two halves of Decoder::checkDecodeWork, for a range inside the stream.
+  Status checkWork(int64_t first, int64_t last) const;
+  Status checkOutput(int64_t first, int64_t last, uint64_t output_bytes) const;
 };
 
 Status Decoder::Impl::enterGroupOf(int64_t frame) {
@@ -137,8 +141,9 @@ Status Decoder::frame(int64_t k, float* xyz) {
     return invalidArgument(d.name + ": frame " + std::to_string(k) + " outside [0, " +
                            std::to_string(d.info.frames) + ")");
   if (xyz == nullptr) return invalidArgument("no frame buffer");
+  ANIMC_RETURN_IF_ERROR(d.checkOutput(k, k + 1, 0));
   if (!d.positioned || k < d.next_frame || d.reader->groupOf(uint64_t(k)) != d.group) {
-    ANIMC_RETURN_IF_ERROR(checkDecodeWork(k, k + 1));
+    ANIMC_RETURN_IF_ERROR(d.checkWork(k, k + 1));
     ANIMC_RETURN_IF_ERROR(d.enterGroupOf(k));
   }
   d.positioned = false;  // a failure below leaves the cursor undefined: re-enter next time
@@ -148,23 +153,50 @@ Status Decoder::frame(int64_t k, float* xyz) {
   return Status();
 }
 
-Status Decoder::checkDecodeWork(int64_t first, int64_t last) const {
-  const Impl& d = *impl_;
-  if (first < 0 || last <= first || first >= d.info.frames) return Status();
-  const uint64_t start = d.reader->groupFirstFrame(d.reader->groupOf(uint64_t(first)));
-  const uint64_t work = (uint64_t(last) - start) * d.info.vertices;
-  if (work <= d.limits.max_vertex_frames) return Status();
-  return limitExceeded(d.name + ": decoding frames " + std::to_string(first) + " to " + std::to_string(last - 1) +
-                       " costs " + std::to_string(work) + " vertex-frames (" + std::to_string(d.info.vertices) +
+Status Decoder::Impl::checkWork(int64_t first, int64_t last) const {
+  const uint64_t start = reader->groupFirstFrame(reader->groupOf(uint64_t(first)));
+  const uint64_t work = (uint64_t(last) - start) * info.vertices;
+  if (work <= limits.max_vertex_frames) return Status();
+  return limitExceeded(name + ": decoding frames " + std::to_string(first) + " to " + std::to_string(last - 1) +
+                       " costs " + std::to_string(work) + " vertex-frames (" + std::to_string(info.vertices) +
                        " vertices, from the start of their frame group), above the limit of " +
-                       std::to_string(d.limits.max_vertex_frames) +
+                       std::to_string(limits.max_vertex_frames) +
                        "; decode fewer frames or raise the limit (DecoderLimits::max_vertex_frames, "
                        "animc --max-vertex-frames)");
 }
 
+namespace {
+// "7168 MB (7516192768 bytes)": MB as MeshLab's memory limit counts them, 2^20 bytes.
+std::string bytesText(uint64_t bytes) {
+  return std::to_string((bytes + (1 << 19)) >> 20) + " MB (" + std::to_string(bytes) + " bytes)";
+}
+}  // namespace
+
+Status Decoder::Impl::checkOutput(int64_t first, int64_t last, uint64_t output_bytes) const {
+  if (output_bytes == 0) {
+    const uint64_t vertex_frames = uint64_t(last - first) * info.vertices;
+    // Above 2^62 floats no limit could pass: saturate rather than wrap.
+    output_bytes = vertex_frames > (UINT64_MAX / 12) ? UINT64_MAX : 12 * vertex_frames;
+  }
+  if (output_bytes <= limits.max_output_bytes) return Status();
+  return limitExceeded(name + ": frames " + std::to_string(first) + " to " + std::to_string(last - 1) + " (" +
+                       std::to_string(info.vertices) + " vertices each) would take about " +
+                       bytesText(output_bytes) + ", above the limit of " + bytesText(limits.max_output_bytes) +
+                       "; decode fewer frames or raise the limit (DecoderLimits::max_output_bytes, "
+                       "animc --max-output-bytes)");
+}
+
+Status Decoder::checkDecodeWork(int64_t first, int64_t last, uint64_t output_bytes) const {
+  const Impl& d = *impl_;
+  if (first < 0 || last <= first || first >= d.info.frames) return Status();
+  ANIMC_RETURN_IF_ERROR(d.checkOutput(first, last, output_bytes));
+  return d.checkWork(first, last);
+}
+
 Status Decoder::verify(const ProgressFn& progress) {
   Impl& d = *impl_;
-  ANIMC_RETURN_IF_ERROR(checkDecodeWork(0, d.info.frames));
+  // Nothing is kept, so only the work is bounded, not the output.
+  if (d.info.frames > 0) ANIMC_RETURN_IF_ERROR(d.checkWork(0, d.info.frames));
   ANIMC_RETURN_IF_ERROR(d.enterGroupOf(0));
   d.positioned = false;
   // decodeNext() enters each group in turn, checking its CRC and its numbers.

@@ -199,6 +199,9 @@ struct DecoderLimits {
   // Vertices x frames one decode of a range may cost, counting the frames decoded to reach
   // the first one asked for (from the start of its frame group): about 50 GB of floats.
   uint64_t max_vertex_frames = uint64_t(1) << 32;
+  // Bytes one decode of a range may give (16 GiB): its frames as floats, 12 bytes a
+  // vertex-frame, or what the caller says they take in its own form (a file, MeshLab layers).
+  uint64_t max_output_bytes = uint64_t(1) << 34;
 };
 
 // Progressive decoding of streams whose frames can be cut (wavelet-coded with bitplanes):
@@ -258,9 +261,10 @@ class ANIMC_API Decoder {
   // decoded costs one frame; any other costs the frames from the start of its group.
   Status frame(int64_t k, float* xyz);
   // kLimitExceeded, saying how to raise the limit, when decoding frames [first, last) would
-  // cost more than DecoderLimits::max_vertex_frames. frame() checks each frame; call this
-  // before a range to refuse it before any work.
-  Status checkDecodeWork(int64_t first, int64_t last) const;
+  // cost more than DecoderLimits::max_vertex_frames or give more than max_output_bytes:
+  // `output_bytes`, the size of the caller's form of those frames, or when 0 their floats.
+  // frame() checks each frame; call this before a range to refuse it before any work.
+  Status checkDecodeWork(int64_t first, int64_t last, uint64_t output_bytes = 0) const;
   // Checks every group (its CRC, its frame numbers against the index, that nothing follows its
   // last frame) and decodes every frame, keeping none: `animc test`.
   Status verify(const ProgressFn& progress = {});

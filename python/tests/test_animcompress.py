@@ -279,6 +279,21 @@ def test_every_selection_is_bounded_by_the_work_limit(grouped):
                   max_vertex_frames=10 * vertices)
 
 
+def test_every_selection_is_bounded_by_the_output_limit(grouped):
+    # max_output_bytes bounds the float32 array decode() returns, and what open()[k] gives.
+    vertices = animcompress.info(grouped)['vertices']
+    one_frame = 12 * vertices
+    assert animcompress.decode(grouped, frames=range(3), max_output_bytes=3 * one_frame)[0].shape[0] == 3
+    for frames in (range(4), [0] * 4, slice(None, 8, 2)):
+        with pytest.raises(animcompress.Error) as caught:
+            animcompress.decode(grouped, frames=frames, max_output_bytes=3 * one_frame)
+        assert caught.value.code == 'limit exceeded' and 'max_output_bytes' in str(caught.value)
+    assert animcompress.open(grouped, max_output_bytes=one_frame)[5].shape == (vertices, 3)
+    raises_status('limit exceeded', lambda: animcompress.open(grouped, max_output_bytes=one_frame - 1)[5])
+    with pytest.raises(ValueError):
+        animcompress.decode(grouped, max_output_bytes=-1)
+
+
 def test_progressive_decoding_is_coarser(sequence):
     # Cuts need frames that do not code against the previous frame's contexts.
     data = animcompress.encode(sequence['frames'][:30], sequence['faces'], codec='wavelet', i_frames_only=True)

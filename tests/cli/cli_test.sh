@@ -307,7 +307,8 @@ grep -q "above the limit of 10000.*--max-vertex-frames" "$TMP/work_limit.err" ||
 expect_error work_limit_range "$ERRDIR/x.pc2" "$ANIMC" decode "$AMS" -o "$ERRDIR/x.pc2" --frames 45:50 --max-vertex-frames 10000
 run work_limit_groups "$ANIMC" decode "$TMP/groups.ams" -o "$TMP/last5.pc2" --frames 45:50 --max-vertex-frames 10000
 expect_error output_limit "$ERRDIR/frames" "$ANIMC" decode "$AMS" -o "$ERRDIR/frames" --max-output-bytes 100000
-grep -q "output would take about .*--max-output-bytes" "$TMP/output_limit.err" || check_failed "output_limit: $(cat "$TMP/output_limit.err")"
+grep -q "would take about .*--max-output-bytes" "$TMP/output_limit.err" || check_failed "output_limit: $(cat "$TMP/output_limit.err")"
+run output_unlimited "$ANIMC" decode "$AMS" -o "$TMP/unlimited.pc2" --max-output-bytes 0
 expect_error test_work_limit "" "$ANIMC" test "$AMS" --max-vertex-frames 100
 
 # --- an output that is one of the inputs is refused, by identity; the inputs stay intact ---

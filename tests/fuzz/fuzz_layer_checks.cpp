@@ -129,16 +129,19 @@ struct Expected {
   bool all() const { return range_ok && memory_ok && work_ok; }
 };
 
-Expected expectedPlan(animc::AmsSource& source, const animc::meshlab::AmsImport& range,
+Expected expectedPlan(animc::AmsSource& source, const animc::Decoder& unlimited_output,
+                      const animc::meshlab::AmsImport& range,
                       const animc::meshlab::LayerElementBytes& element) {
   Expected e;
   const int64_t frames = source.frameCount();
   const int64_t first = range.first_frame, last = range.last_frame < 0 ? frames - 1 : range.last_frame;
   e.range_ok = first >= 0 && first <= last && last < frames;
   if (!e.range_ok) return e;
-  const double bytes = double(animc::meshlab::layerBytes(source.topology(), element));
-  e.memory_ok = double(last - first + 1) * bytes / (1 << 20) <= double(range.max_layer_megabytes);
-  e.work_ok = source.checkDecodeWork(first, last + 1).ok();
+  // Small enough not to overflow: at most 256 layers of 2^16 vertices of 2^23 bytes.
+  const uint64_t bytes = animc::meshlab::layerBytes(source.topology(), element);
+  e.memory_ok = uint64_t(last - first + 1) * bytes <= uint64_t(range.max_layer_megabytes) << 20;
+  // The work alone: the same limits with no output limit.
+  e.work_ok = unlimited_output.checkDecodeWork(first, last + 1).ok();
   return e;
 }
 
@@ -148,16 +151,21 @@ void checkImport(const uint8_t* control, const uint8_t* stream, size_t size) {
   options.limits.max_triangles = 1 << 17;
   options.limits.max_frame_bytes = 1 << 22;
   options.limits.max_vertex_frames = uint64_t(1) << (control[5] % 19);
+  options.limits.max_output_bytes = uint64_t(control[3]) << 20;
   auto decoder = animc::Decoder::openMemory(stream, size, options);
   if (!decoder.ok()) return;
   animc::AmsSource source(std::move(decoder).value());
+  animc::DecoderOptions work_only = options;
+  work_only.limits.max_output_bytes = UINT64_MAX;
+  auto unlimited_output = animc::Decoder::openMemory(stream, size, work_only);
+  if (!unlimited_output.ok()) bug("a stream opened once and not twice");
   animc::meshlab::AmsImport range;
   range.first_frame = int8_t(control[1]);
   range.last_frame = int8_t(control[2]);
   range.max_layer_megabytes = control[3];
   range.max_vertex_frames = options.limits.max_vertex_frames;
   const animc::meshlab::LayerElementBytes element = {uint64_t(1) << (control[4] % 24), uint64_t(1) << (control[4] % 24)};
-  const Expected expected = expectedPlan(source, range, element);
+  const Expected expected = expectedPlan(source, unlimited_output.value(), range, element);
   const auto plan = animc::meshlab::planAmsImport("fuzz.ams", source, range, element);
   if (!plan.ok()) {
     if (plan.status().message().empty()) bug("a refusal without a message");

@@ -54,10 +54,8 @@ TEST(LayerChecks, LivePositionsSkipDeletedVertices) {
   EXPECT_EQ(xyz, expected);
 }
 
-std::unique_ptr<AmsSource> openGolden(uint64_t max_vertex_frames = DecoderLimits().max_vertex_frames) {
-  DecoderLimits limits;
-  limits.max_vertex_frames = max_vertex_frames;
-  auto source = AmsSource::open(kGolden, limits);
+std::unique_ptr<AmsSource> openGolden(const AmsImport& range = AmsImport()) {
+  auto source = AmsSource::open(kGolden, range.decoderLimits());
   EXPECT_TRUE(source.ok()) << source.status().message();
   return source.ok() ? std::move(source).value() : nullptr;
 }
@@ -99,28 +97,36 @@ TEST(LayerChecks, PlanRefusesRangesOutsideTheFile) {
 }
 
 TEST(LayerChecks, PlanRefusesRangesAboveTheMemoryLimit) {
-  auto source = openGolden();
-  ASSERT_TRUE(source);
-  const uint64_t layer = layerBytes(source->topology(), kElement);
+  auto golden = openGolden();
+  ASSERT_TRUE(golden);
+  const uint64_t layer = layerBytes(golden->topology(), kElement);
   AmsImport range;
   range.last_frame = 1;  // two layers
   range.max_layer_megabytes = int64_t(2 * layer / (1 << 20));  // rounds down: below two layers
   if (2 * layer % (1 << 20) == 0) --range.max_layer_megabytes;
-  const auto plan = planAmsImport("g.ams", *source, range, kElement);
+  auto limited = openGolden(range);
+  ASSERT_TRUE(limited);
+  const auto plan = planAmsImport("g.ams", *limited, range, kElement);
   ASSERT_FALSE(plan.ok());
   EXPECT_EQ(plan.status().code(), StatusCode::kLimitExceeded);
   EXPECT_NE(plan.status().message().find("Memory limit (MB)"), std::string::npos) << plan.status().message();
+  EXPECT_EQ(plan.status().message().find("ANIMC_MAX_VERTEX_FRAMES"), std::string::npos) << plan.status().message();
   range.max_layer_megabytes = int64_t(2 * layer / (1 << 20)) + 1;
-  EXPECT_TRUE(planAmsImport("g.ams", *source, range, kElement).ok());
+  auto enough = openGolden(range);
+  ASSERT_TRUE(enough);
+  EXPECT_TRUE(planAmsImport("g.ams", *enough, range, kElement).ok());
 }
 
 TEST(LayerChecks, PlanRefusesRangesAboveTheWorkLimitNamingMeshLabsKnobs) {
-  auto source = openGolden(/*max_vertex_frames=*/1);
+  AmsImport range;
+  range.max_vertex_frames = 1;
+  auto source = openGolden(range);
   ASSERT_TRUE(source);
-  const auto plan = planAmsImport("g.ams", *source, AmsImport(), kElement);
+  const auto plan = planAmsImport("g.ams", *source, range, kElement);
   ASSERT_FALSE(plan.ok());
   EXPECT_EQ(plan.status().code(), StatusCode::kLimitExceeded);
   EXPECT_NE(plan.status().message().find("ANIMC_MAX_VERTEX_FRAMES"), std::string::npos) << plan.status().message();
+  EXPECT_EQ(plan.status().message().find("Memory limit"), std::string::npos) << plan.status().message();
 }
 
 TEST(LayerChecks, LayerCountMustMatchTheRange) {

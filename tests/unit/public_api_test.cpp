@@ -211,6 +211,34 @@ TEST_F(PublicApi, DamagedStreamsAreRefusedWithTheirCause) {
   EXPECT_EQ(Decoder::openFile(path("missing.ams")).status().code(), StatusCode::kIoError);
 }
 
+// max_output_bytes bounds a range's output, as floats or in the caller's own measure, before
+// any work, and every frame() call; verify() keeps nothing, so it is not bounded by it.
+TEST_F(PublicApi, OutputLimitRefusesRangesBeforeAnyWork) {
+  const std::vector<uint8_t> bytes = encode(grid(20), octree(0.01, 5));
+  ASSERT_FALSE(bytes.empty());
+  auto probe = Decoder::openMemory(bytes.data(), bytes.size());
+  ASSERT_TRUE(probe.ok());
+  const uint64_t frame_bytes = 12 * uint64_t(probe.value().info().vertices);
+  DecoderOptions small;
+  small.limits.max_output_bytes = 3 * frame_bytes;
+  auto limited = Decoder::openMemory(bytes.data(), bytes.size(), small);
+  ASSERT_TRUE(limited.ok());
+  Decoder& d = limited.value();
+  EXPECT_TRUE(d.checkDecodeWork(2, 5).ok());
+  const Status four = d.checkDecodeWork(2, 6);
+  EXPECT_EQ(four.code(), StatusCode::kLimitExceeded);
+  EXPECT_NE(four.message().find("DecoderLimits::max_output_bytes"), std::string::npos) << four.message();
+  EXPECT_EQ(d.checkDecodeWork(2, 3, 3 * frame_bytes + 1).code(), StatusCode::kLimitExceeded);
+  EXPECT_TRUE(d.checkDecodeWork(2, 6, 3 * frame_bytes).ok());
+  EXPECT_TRUE(d.verify().ok());
+
+  small.limits.max_output_bytes = frame_bytes - 1;
+  auto tiny = Decoder::openMemory(bytes.data(), bytes.size(), small);
+  ASSERT_TRUE(tiny.ok());
+  std::vector<float> xyz(3 * size_t(tiny.value().info().vertices));
+  EXPECT_EQ(tiny.value().frame(1, xyz.data()).code(), StatusCode::kLimitExceeded);
+}
+
 // Different objects on different threads: the same bytes and frames as on one thread.
 TEST_F(PublicApi, IndependentObjectsRunInParallel) {
   const Grid g = grid(25);
