@@ -336,6 +336,43 @@ EOF
   ((RC != 0)) || check_failed "import_big_one_work: meshlabserver reported success"
   expect_log import_big_one_work "above the limit of 1000000; decode fewer frames"
   expect_log import_big_one_work "in MeshLab: Decode work limit (million vertex-frames) when opening"
+  out_of_memory_reaches_entry_points
+}
+
+# Memory running out where no check foresaw it (here: the 12 MB of a million triangles while
+# opening the file, with every allocation above 8 MB refused by fail_large_allocations.so)
+# raises std::bad_alloc through the library and the adapter; each entry point (File > Import,
+# the Import Compressed Animation filter) must turn it into a failure with a message, not end
+# MeshLab (server() fails the test on a death by signal).
+out_of_memory_reaches_entry_points() {
+  local build=$ANIMC_STAGE  # 2022+: the build folder
+  [[ $API == 2020 ]] && build=$(dirname "$ANIMC_STAGE")
+  local shim=$build/tests/meshlab/libfail_large_allocations.so
+  [[ -e $shim ]] || die "$shim is missing: build the fail_large_allocations target"
+  "$PY" - <<'EOF'
+import struct
+n = 1000000
+with open("strip.ply", "wb") as f:
+    f.write(b"ply\nformat binary_little_endian 1.0\nelement vertex %d\nproperty float x\nproperty float y\n"
+            b"property float z\nelement face %d\nproperty list uchar int vertex_indices\nend_header\n" % (n, n - 2))
+    f.write(b"".join(struct.pack("<3f", i % 2, i // 2, 0) for i in range(n)))
+    f.write(b"".join(struct.pack("<B3i", 3, i, i + 1, i + 2) for i in range(n - 2)))
+open("strip.txt", "w").write("strip.ply\nstrip.ply\n")
+EOF
+  "$ANIMC" encode strip.txt -o strip.ams --codec affine-octree >/dev/null
+  derive_script import.mlx import_strip.mlx AmsFile=strip.ams
+  local name
+  for name in open_strip import_strip; do
+    local args=(-i "$TMP/strip.ams" -o "$TMP/out_strip.ply")
+    [[ $name == import_strip ]] && args=(-s "$TMP/import_strip.mlx")
+    ANIMC_FAIL_ALLOCATIONS_ABOVE=8000000 LD_PRELOAD=$shim server "$name" "${args[@]}"
+    ((RC != 0)) || check_failed "$name: MeshLab reported success"
+    expect_log "$name" "out of memory (try fewer frames or layers)"
+  done
+  expect_log import_strip "Import Compressed Animation failed: out of memory"
+  # The file itself is fine: without the shim it opens.
+  server open_strip_unlimited -i "$TMP/strip.ams" -o "$TMP/out_strip.ply"
+  expect_ok open_strip_unlimited
 }
 
 "case_$CASE"
