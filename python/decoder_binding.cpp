@@ -50,8 +50,9 @@ class PyDecoder {
   std::mutex mutex_;
 };
 
-std::unique_ptr<PyDecoder> openStream(py::handle path_or_bytes, py::object max_vertex_frames,
-                                      py::object max_output_bytes, int64_t max_bitplanes, int64_t max_payload_bytes) {
+// max_output_bytes comes last: open()'s arguments may be given by position.
+std::unique_ptr<PyDecoder> openStream(py::handle path_or_bytes, py::object max_vertex_frames, int64_t max_bitplanes,
+                                      int64_t max_payload_bytes, py::object max_output_bytes) {
   const DecoderOptions options =
       decoderOptions(std::move(max_vertex_frames), std::move(max_output_bytes), max_bitplanes, max_payload_bytes);
   std::unique_ptr<HeldBuffer> buffer;
@@ -154,7 +155,7 @@ void bindDecoder(py::module_& module) {
            "Checks every frame group and decodes every frame; raises Error if one is bad.");
 
   module.def("open", &openStream, py::arg("path_or_bytes"), py::arg("max_vertex_frames") = py::none(),
-             py::arg("max_output_bytes") = py::none(), py::arg("max_bitplanes") = 0, py::arg("max_payload_bytes") = 0,
+             py::arg("max_bitplanes") = 0, py::arg("max_payload_bytes") = 0, py::arg("max_output_bytes") = py::none(),
              "A Decoder over an .ams file (str or path-like) or bytes (kept referenced while it lives).");
   module.def("info", &streamInfo, py::arg("path_or_bytes"), "The header of an .ams file or bytes, as Decoder.info().");
   module.def("decode", &decode, py::arg("data"), py::arg("frames") = py::none(), py::kw_only(),
