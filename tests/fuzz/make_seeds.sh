@@ -4,9 +4,11 @@
 # OUT/layer_checks (named after their harnesses), from which the in-tree corpus tests/fuzz/corpus
 # grew.
 #   usage: tests/fuzz/make_seeds.sh path/to/animc OUT
-# Sources: a 20-vertex grid made here and the first 3 frames of samples/sydney, encoded by the
-# project's own animc with several settings of every codec and decoded back to every format;
-# for layer_checks, layers written here and the smaller golden files of tests/golden.
+# Sources: a 20-vertex grid made here, the first 3 frames of samples/sydney, and two patches of
+# sydney's surface (60 and 90 vertices, cut here) whose files stay under fuzz_ams_decode's
+# max_len (campaign.sh), encoded by the project's own animc with several settings of every
+# codec and decoded back to every format; for layer_checks, layers written here and the smaller
+# golden files of tests/golden.
 set -euo pipefail
 ANIMC=$(realpath "$1")
 OUT=$(realpath -m "$2")
@@ -16,9 +18,9 @@ trap 'rm -rf "$WORK"' EXIT
 mkdir -p "$OUT/ams_decode" "$OUT/sequence_readers" "$OUT/layer_checks"
 
 # The grid (binary PLY + PC2) and sydney cut to 3 frames (PC2).
-/usr/bin/python3 - "$WORK" "$ROOT/samples/sydney/sydney_50.pc2.xz" <<'PY'
-import lzma, math, struct, sys
-work, sydney = sys.argv[1], sys.argv[2]
+/usr/bin/python3 - "$WORK" "$ROOT/samples/sydney/sydney_50.pc2.xz" "$ROOT/samples/sydney/sydney_md2.ply" <<'PY'
+import collections, lzma, math, struct, sys
+work, sydney, sydney_mesh = sys.argv[1], sys.argv[2], sys.argv[3]
 nx, ny, frames = 5, 4, 8
 faces = []
 for y in range(ny - 1):
@@ -44,6 +46,36 @@ with lzma.open(sydney, 'rb') as f:
     body = f.read(3 * points * 12)
 with open(work + '/sydney3.pc2', 'wb') as f:
     f.write(struct.pack('<12siiffi', magic, version, points, start, rate, 3) + body)
+# Patches: the first `size` vertices met breadth-first from `seed`, and the triangles among them.
+ply = open(sydney_mesh, 'rb').read()
+at = ply.index(b'end_header\n') + len(b'end_header\n')
+triangles = [struct.unpack_from('<3i', ply, at + 12 * points + 13 * k + 1)
+             for k in range((len(ply) - at - 12 * points) // 13)]
+around = collections.defaultdict(set)
+for t in triangles:
+    for v in t:
+        around[v].update(t)
+for size, seed in ((60, 0), (90, 200)):
+    kept, queue = [seed], collections.deque([seed])
+    while queue and len(kept) < size:
+        for w in sorted(around[queue.popleft()]):
+            if w not in kept and len(kept) < size:
+                kept.append(w)
+                queue.append(w)
+    inside = [t for t in triangles if all(v in kept for v in t)]
+    used = sorted({v for t in inside for v in t})
+    index = {v: i for i, v in enumerate(used)}
+    name = work + '/patch%d' % size
+    with open(name + '.ply', 'wb') as f:
+        f.write(('ply\nformat binary_little_endian 1.0\nelement vertex %d\nproperty float x\nproperty float y\n'
+                 'property float z\nelement face %d\nproperty list uchar int vertex_indices\nend_header\n'
+                 % (len(used), len(inside))).encode())
+        f.write(b''.join(ply[at + 12 * v:at + 12 * v + 12] for v in used))
+        f.write(b''.join(struct.pack('<B3i', 3, *(index[v] for v in t)) for t in inside))
+    with open(name + '.pc2', 'wb') as f:
+        f.write(struct.pack('<12siiffi', magic, version, len(used), start, rate, 3))
+        for frame in range(3):
+            f.write(b''.join(body[12 * (points * frame + v):12 * (points * frame + v) + 12] for v in used))
 PY
 
 # Control bytes of fuzz_ams_decode: repair CRCs (1), progressive (2), seek (4); seek frame;
@@ -81,6 +113,14 @@ encode grid_trajectory_i3 0 "${G[@]}" --codec trajectory --max-error 0.02 --ifra
 encode grid_auto_i2 0 "${G[@]}" --codec auto --max-error 0.02 --iframe-interval 2
 encode sydney_trajectory 0 "${S[@]}" --codec trajectory --bpvf 4
 encode sydney_auto 0 "${S[@]}" --codec auto --target-kg 0.5
+for size in 60 90; do
+  P=("$WORK/patch$size.pc2" "$WORK/patch$size.ply")
+  encode "patch${size}_octree" 0 "${P[@]}" --codec affine-octree --max-error 0.02
+  encode "patch${size}_wavelet_pp" 1 "${P[@]}" --codec wavelet --step 1e-2 --progressive-p-frames
+  encode "patch${size}_wavelet_ionly" 1 "${P[@]}" --codec wavelet --step 1e-2 --i-frames-only
+  encode "patch${size}_trajectory" 0 "${P[@]}" --codec trajectory --bpvf 4
+  encode "patch${size}_auto" 0 "${P[@]}" --codec auto --target-kg 0.5
+done
 
 # Sequence readers: control byte 0 picks .ply .off .pc2 .mdd .pc2.xz .mdd.xz, byte 1 is the
 # point caches' vertex count - 1 (the grid has 20 vertices).
