@@ -74,16 +74,16 @@ py::dict streamInfo(py::handle path_or_bytes) {
 std::vector<int64_t> frameIndices(py::handle frames, const StreamInfo& info, const DecoderLimits& limits) {
   const uint64_t vertices = std::max<uint64_t>(info.vertices, 1);
   auto checkCount = [&](uint64_t count) {
+    auto refuse = [&](const std::string& why) {
+      throwIfError(Status(StatusCode::kLimitExceeded, "decode: " + std::to_string(count) + " frames of " +
+                                                          std::to_string(info.vertices) + " vertices or more " + why));
+    };
     if (count > limits.max_vertex_frames / vertices)
-      throwIfError(Status(StatusCode::kLimitExceeded, "decode: " + std::to_string(count) + " frames of " + std::to_string(info.vertices) +
-                                 " vertices or more are above the limit of " +
-                                 std::to_string(limits.max_vertex_frames) +
-                                 " vertex-frames; select fewer frames or raise max_vertex_frames"));
+      refuse("are above the limit of " + std::to_string(limits.max_vertex_frames) +
+             " vertex-frames; select fewer frames or raise max_vertex_frames");
     if (count > limits.max_output_bytes / (12 * vertices))
-      throwIfError(Status(StatusCode::kLimitExceeded, "decode: " + std::to_string(count) + " frames of " + std::to_string(info.vertices) +
-                                 " vertices or more take more than the limit of " +
-                                 std::to_string(limits.max_output_bytes) +
-                                 " bytes as float32; select fewer frames or raise max_output_bytes"));
+      refuse("take more than the limit of " + std::to_string(limits.max_output_bytes) +
+             " bytes as float32; select fewer frames or raise max_output_bytes");
   };
   std::vector<int64_t> indices;
   if (frames.is_none()) {

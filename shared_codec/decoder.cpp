@@ -180,8 +180,8 @@ Status Decoder::Impl::checkOutput(int64_t first, int64_t last, uint64_t output_b
   }
   if (output_bytes <= limits.max_output_bytes) return Status();
   return limitExceeded(name + ": frames " + std::to_string(first) + " to " + std::to_string(last - 1) + " (" +
-                       std::to_string(info.vertices) + " vertices each) would take about " +
-                       bytesText(output_bytes) + ", above the limit of " + bytesText(limits.max_output_bytes) +
+                       std::to_string(info.vertices) + " vertices each) would take about " + bytesText(output_bytes) +
+                       ", above the limit of " + bytesText(limits.max_output_bytes) +
                        "; decode fewer frames or raise the limit (DecoderLimits::max_output_bytes, "
                        "animc --max-output-bytes)");
 }

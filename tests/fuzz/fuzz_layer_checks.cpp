@@ -130,8 +130,7 @@ struct Expected {
 };
 
 Expected expectedPlan(animc::AmsSource& source, const animc::Decoder& unlimited_output,
-                      const animc::meshlab::AmsImport& range,
-                      const animc::meshlab::LayerElementBytes& element) {
+                      const animc::meshlab::AmsImport& range, const animc::meshlab::LayerElementBytes& element) {
   Expected e;
   const int64_t frames = source.frameCount();
   const int64_t first = range.first_frame, last = range.last_frame < 0 ? frames - 1 : range.last_frame;

@@ -45,9 +45,7 @@ void* calloc(size_t count, size_t bytes) {
 
 void* realloc(void* block, size_t bytes) { return refused(bytes) ? nullptr : __libc_realloc(block, bytes); }
 
-void* memalign(size_t alignment, size_t bytes) {
-  return refused(bytes) ? nullptr : __libc_memalign(alignment, bytes);
-}
+void* memalign(size_t alignment, size_t bytes) { return refused(bytes) ? nullptr : __libc_memalign(alignment, bytes); }
 
 void* aligned_alloc(size_t alignment, size_t bytes) { return memalign(alignment, bytes); }
 
