@@ -8,10 +8,6 @@
 namespace animc::cli {
 namespace {
 
-bool endsWith(const std::string& s, const std::string& suffix) {
-  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-
 // "A:B" = frames A to B-1; either side may be omitted.
 Status parseRange(const std::string& text, int64_t count, int64_t& first, int64_t& last) {
   first = 0;
@@ -51,13 +47,12 @@ int runDecode(const std::vector<std::string>& argv) {
                          {"progress", "replace"});
   if (!s.ok()) return fail(s);
   if (args.positional().size() != 1 || !args.has("output"))
-    return fail(invalidArgument("usage: animc decode IN.ams -o OUT [--format ply|off|pc2|mdd] [--frames A:B] "
+    return fail(invalidArgument("usage: animc decode IN.ams -o OUT [--format " + formatNames("|") + "] [--frames A:B] "
                                 "[--bitplanes K] [--max-bytes N] [--replace] [--max-vertex-frames V] "
                                 "[--max-output-bytes B]"));
   const std::string out = args.get("output");
-  std::string format = args.get("format");
-  if (format.empty()) format = endsWith(out, ".pc2") ? "pc2" : endsWith(out, ".mdd") ? "mdd" : endsWith(out, ".off") ? "off" : "ply";
-  auto fmt = formatFromName(format);
+  Result<SequenceFormat> fmt = outputFormatOf(out);
+  if (args.has("format")) fmt = formatFromName(args.get("format"));
   if (!fmt.ok()) return fail(fmt.status());
   auto control = progressiveControl(args);
   if (!control.ok()) return fail(control.status());
@@ -92,7 +87,7 @@ int runDecode(const std::vector<std::string>& argv) {
   if (!(s = sink.value()->finish()).ok()) return fail(s);
   endProgressLine();
   std::printf("%s: %lld frames of %u vertices (%s)\n", out.c_str(), (long long)(last - first),
-              ams.topology().vertex_count, format.c_str());
+              ams.topology().vertex_count, formatSpec(fmt.value()).name);
   return 0;
 }
 

@@ -6,15 +6,18 @@
 
 #include "cli.h"
 #include "animc/animc.h"
+#include "seqio/sequence_formats.h"
 
 namespace {
 
-constexpr const char* kUsageAfterEncode =
-    "         [--progress] [--json]\n"
-    "  decode IN.ams -o OUT [--format ply|off|pc2|mdd] [--frames A:B] [--progress] [--replace]\n"
+std::string usageAfterEncode() {
+  return "         [--progress] [--json]\n"
+    "  decode IN.ams -o OUT [--format " + animc::formatNames("|") + "] [--frames A:B] [--progress]\n"
+    "         [--replace]\n"
     "         [--bitplanes K] [--max-bytes N]: progressive, fewer bitplanes/bytes per frame\n"
     "         (wavelet files encoded with --progressive-p-frames or --i-frames-only)\n"
-    "         PLY/OFF frames go to a new or empty folder OUT, or --replace an existing one\n"
+    "         frame files (" + animc::frameFileExtensionList() + ") go to a new or empty folder OUT,\n"
+    "         or --replace an existing one\n"
     "         [--max-vertex-frames V] [--max-output-bytes B]: refuse more decoding work or\n"
     "         output than that (defaults 2^32 vertex-frames, 2^34 bytes; 0 bytes = no limit)\n"
     "  info IN.ams [--json]: header, index and first group only\n"
@@ -23,8 +26,9 @@ constexpr const char* kUsageAfterEncode =
     "  compare ORIGINAL RECONSTRUCTED|IN.ams [--mesh M] [--json] [--per-frame]\n"
     "  bench IN [--mesh M] [encode options] [--runs R] [--json]\n"
     "  bench IN.ams [--runs R] [--json]: decoding only, of that file\n"
-    "IN: .pc2/.mdd (optionally .xz, with --mesh), a .ply/.off frame, a folder of them or a\n"
-    ".txt list of frame files.\n";
+    "IN: .pc2/.mdd (optionally .xz, with --mesh), a " + animc::frameFileExtensionList() + " frame, a folder of\n"
+    "them, a numbered pattern (frame_%04d.obj) or a .txt list of frame files.\n";
+}
 
 std::string usage() {
   std::string codecs;
@@ -33,7 +37,7 @@ std::string usage() {
          "  encode IN -o OUT.ams [--mesh M] [--codec " + codecs + "] [--iframe-interval K]\n" +
          "         (the codec is auto by default, affine-octree when --profile, --bits or\n"
          "         --max-depth is given)\n" +
-         animc::cli::codecUsage() + kUsageAfterEncode;
+         animc::cli::codecUsage() + usageAfterEncode();
 }
 
 }  // namespace

@@ -80,6 +80,13 @@ std::string temporaryPathBeside(const std::string& path) {
 
 void setUnnamedTemporaries(bool enabled) { unnamed_temporaries = enabled; }
 
+Status writeFileAtomically(const std::string& path, const void* data, size_t size) {
+  AtomicFile file;
+  ANIMC_RETURN_IF_ERROR(file.open(path));
+  ANIMC_RETURN_IF_ERROR(file.write(data, size));
+  return file.commit();
+}
+
 AtomicFile::~AtomicFile() { abandon(); }
 
 Status AtomicFile::open(const std::string& path) {

@@ -43,6 +43,9 @@ Result<std::string> replacedPath(const std::string& path);
 // as on a file system without O_TMPFILE: for tests of that path. Process-wide.
 void setUnnamedTemporaries(bool enabled);
 
+// The whole of a file held in memory, written through an AtomicFile.
+Status writeFileAtomically(const std::string& path, const void* data, size_t size);
+
 class AtomicFile {
  public:
   enum class Sync { kNone, kFsync };  // kFsync: flush to disk before the rename

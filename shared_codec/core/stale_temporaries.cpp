@@ -10,6 +10,8 @@
 #include <ctime>
 #include <filesystem>
 
+#include "seqio/sequence_formats.h"
+
 namespace animc {
 namespace fs = std::filesystem;
 namespace {
@@ -29,8 +31,8 @@ bool isFrameName(const std::string& name) {
   if (name.compare(0, std::strlen(kPrefix), kPrefix) != 0) return false;
   const size_t end = skipDigits(name, std::strlen(kPrefix), nullptr);
   if (end == std::string::npos) return false;
-  const std::string extension = name.substr(end);
-  return extension == ".ply" || extension == ".off";
+  const SequenceFormatSpec* format = frameFileFormatOf(name);
+  return format && name.substr(end) == format->extension;
 }
 
 bool processGone(long pid) {

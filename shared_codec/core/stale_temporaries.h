@@ -15,7 +15,7 @@ namespace animc {
 // - it has not been modified for kStaleTemporarySeconds (a run on another machine sharing
 //   the folder writes a frame or a block far more often);
 // - it is a regular file, or a folder holding only regular files named as this library's
-//   frames ("frame_<n>.ply" / ".off") or temporaries.
+//   frames ("frame_<n>.ply", ".off", ... in any frame-file format) or temporaries.
 // Best effort: a leftover that cannot be removed is left, silently. Returns how many were.
 constexpr long kStaleTemporarySeconds = 600;
 int removeStaleTemporaries(const std::string& folder);

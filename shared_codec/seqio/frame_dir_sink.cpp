@@ -14,16 +14,11 @@
 #include "core/atomic_file.h"
 #include "core/stale_temporaries.h"
 #include "core/temp_registry.h"
-#include "seqio/off_format.h"
-#include "seqio/ply_writer.h"
+#include "seqio/sequence_formats.h"
 
 namespace animc {
 namespace fs = std::filesystem;
 namespace {
-
-const char* extension(SequenceFormat format) {
-  return format == SequenceFormat::kOff ? ".off" : ".ply";
-}
 
 bool isEmptyDirectory(const std::string& dir) {
   std::error_code ec;
@@ -109,8 +104,7 @@ class FrameDirSink : public FrameSink {
       return invalidArgument(dir_ + ": more frames written than the " +
                              std::to_string(frame_count_) + " announced");
     std::string path = (fs::path(temp_) / frameFileName(int64_t(written_.size()), format_)).string();
-    ANIMC_RETURN_IF_ERROR(format_ == SequenceFormat::kOff ? writeOffFile(path, topology_, xyz)
-                                                          : writePlyFile(path, topology_, xyz));
+    ANIMC_RETURN_IF_ERROR(formatSpec(format_).frame_file->write(path, topology_, xyz));
     written_.push_back(std::move(path));
     return Status();
   }
@@ -146,7 +140,7 @@ class FrameDirSink : public FrameSink {
 std::string frameFileName(int64_t index, SequenceFormat format) {
   char name[48];
   std::snprintf(name, sizeof(name), "frame_%05lld%s", static_cast<long long>(index),
-                extension(format));
+                formatSpec(format).extension);
   return name;
 }
 

@@ -10,7 +10,7 @@
 
 namespace animc {
 
-// `format` is kPly or kOff. Frames are written into a temporary folder beside `dir`
+// `format` is a frame-file format (sequence_formats.h). Frames are written into a temporary folder beside `dir`
 // (".animc-<pid>-<n>.tmp", core/atomic_file.h), which finish() puts in place of `dir` as a
 // whole: a reader of `dir`
 // sees its old content or every new frame, never a mix, and a sink destroyed before finish()

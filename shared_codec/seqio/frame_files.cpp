@@ -3,8 +3,10 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <functional>
 #include <new>
 #include <string_view>
+#include <utility>
 
 #include "seqio/byte_input.h"
 #include "seqio/mesh_checks.h"
@@ -34,9 +36,7 @@ int compareNumbers(const std::string& a, size_t& i, const std::string& b, size_t
   return result;
 }
 
-bool isFrameFile(const std::string& name) {
-  return endsWithNoCase(name, ".ply") || endsWithNoCase(name, ".off");
-}
+bool isFrameFile(const std::string& name) { return frameFileFormatOf(name) != nullptr; }
 
 std::string trim(std::string_view line) {
   const char* kSpace = " \t\r\n";
@@ -50,6 +50,18 @@ Status withListing(const Status& status, const FrameFile& frame) {
   return frame.listed_at.empty() ? status : status.withContext(frame.listed_at);
 }
 
+// Where triangle t of the frame file at `path` came from, in its format's words (the file is
+// read again: this is for an error message only).
+std::function<std::string(size_t)> triangleOrigin(const std::string& path) {
+  const SequenceFormatSpec* spec = frameFileFormatOf(path);
+  if (!spec || !spec->frame_file->triangle_origin) return nullptr;
+  return [path, describe = spec->frame_file->triangle_origin](size_t t) {
+    Result<std::vector<uint8_t>> bytes = readWholeFile(path);
+    if (!bytes.ok()) return "triangle " + std::to_string(t);
+    return describe(bytes.value().data(), bytes.value().size(), t);
+  };
+}
+
 // The frame's mesh; `reference` (may be null) is the topology it must have, `reference_name`
 // names that in messages.
 Result<Mesh> readFrame(const FrameFile& frame, const Topology* reference,
@@ -57,11 +69,53 @@ Result<Mesh> readFrame(const FrameFile& frame, const Topology* reference,
   Result<Mesh> mesh = readMesh(frame.path);
   if (!mesh.ok()) return withListing(mesh.status(), frame);
   if (reference) {
-    Status same = checkSameTopology(mesh.value().topology, *reference, reference_name);
+    Status same = checkSameTopology(mesh.value().topology, *reference, reference_name,
+                                    triangleOrigin(frame.path));
     if (!same.ok()) return withListing(same.withContext(frame.path), frame);
   }
   return mesh;
 }
+
+// The parts of a numbered pattern's file name around its "%d" or "%0Nd".
+struct FramePattern {
+  std::string folder, prefix, suffix;
+  size_t width = 0;  // N of "%0Nd"; 0 for "%d"
+};
+
+Result<FramePattern> parsePattern(const std::string& pattern) {
+  const fs::path path(pattern);
+  const std::string name = path.filename().string();
+  const size_t percent = name.find('%');
+  size_t end = percent + 1, width = 0;
+  if (end < name.size() && name[end] == '0') {
+    while (++end < name.size() && isDigit(name[end]) && width < 100) width = width * 10 + size_t(name[end] - '0');
+    if (width == 0) end = name.size();  // "%0d": not a width
+  }
+  if (end >= name.size() || name[end] != 'd' || name.find('%', end) != std::string::npos)
+    return invalidArgument(pattern + ": a numbered pattern has one %d or %0Nd in its file name " +
+                           "(frame_%04d.obj), and nothing else with a '%'");
+  FramePattern parsed{path.parent_path().string(), name.substr(0, percent), name.substr(end + 1), width};
+  if (parsed.folder.empty()) parsed.folder = ".";
+  if (!isFrameFile(parsed.suffix))
+    return invalidArgument(pattern + ": the pattern's files must be " + frameFileExtensionList() + " frames");
+  return parsed;
+}
+
+// The frame number in `name` if it is one of the pattern's files (as printf would have
+// written it: zero-padded to the width, no other leading zero), else -1.
+long long patternNumber(const FramePattern& pattern, const std::string& name) {
+  if (name.size() <= pattern.prefix.size() + pattern.suffix.size() ||
+      name.compare(0, pattern.prefix.size(), pattern.prefix) != 0 ||
+      name.compare(name.size() - pattern.suffix.size(), pattern.suffix.size(), pattern.suffix) != 0)
+    return -1;
+  const std::string digits =
+      name.substr(pattern.prefix.size(), name.size() - pattern.prefix.size() - pattern.suffix.size());
+  if (digits.size() > 15 || !std::all_of(digits.begin(), digits.end(), isDigit)) return -1;
+  const bool padded = digits.size() == std::max<size_t>(pattern.width, 1);
+  if (!padded && (digits.size() < pattern.width || digits[0] == '0')) return -1;
+  return std::stoll(digits);
+}
+
 
 class FrameFileSource : public FrameSource {
  public:
@@ -130,10 +184,37 @@ Result<std::vector<std::string>> listFrameDirectory(const std::string& dir) {
     if (it->is_regular_file(type_ec)) names.push_back(name);
   }
   if (ec) return ioError(dir + ": cannot list the directory: " + ec.message());
-  if (names.empty()) return badInput(dir + ": no .ply or .off frames in the directory");
+  if (names.empty()) return badInput(dir + ": no " + frameFileExtensionList() + " frames in the directory");
   std::sort(names.begin(), names.end(), naturalLess);
   std::vector<std::string> paths;
   for (const std::string& name : names) paths.push_back((fs::path(dir) / name).string());
+  return paths;
+}
+
+bool isFramePattern(const std::string& path) {
+  return fs::path(path).filename().string().find('%') != std::string::npos;
+}
+
+Result<std::vector<std::string>> listNumberedFrames(const std::string& pattern) {
+  ANIMC_ASSIGN_OR_RETURN(FramePattern parsed, parsePattern(pattern));
+  std::vector<std::pair<long long, std::string>> numbered;
+  std::error_code ec;
+  for (fs::directory_iterator it(parsed.folder, ec), end; !ec && it != end; it.increment(ec)) {
+    const long long number = patternNumber(parsed, it->path().filename().string());
+    std::error_code type_ec;
+    if (number >= 0 && it->is_regular_file(type_ec)) numbered.push_back({number, it->path().string()});
+  }
+  if (ec) return ioError(parsed.folder + ": cannot list the directory: " + ec.message());
+  if (numbered.empty()) return badInput(pattern + ": no file matches the pattern");
+  std::sort(numbered.begin(), numbered.end());
+  std::vector<std::string> paths;
+  for (size_t i = 0; i < numbered.size(); ++i) {
+    if (numbered[i].first != numbered[0].first + (long long)i)
+      return badInput(pattern + ": frame " + std::to_string(numbered[0].first + (long long)i) +
+                      " is missing (the files run from " + std::to_string(numbered[0].first) +
+                      " to " + std::to_string(numbered.back().first) + ")");
+    paths.push_back(std::move(numbered[i].second));
+  }
   return paths;
 }
 
@@ -151,7 +232,7 @@ Result<std::vector<FrameFile>> readFrameList(const std::string& list_path) {
     if (entry.empty() || entry[0] == '#') continue;
     if (!isFrameFile(entry))
       return badInput(list_path + " line " + std::to_string(line_number) + ": '" + entry +
-                      "' is not a .ply or .off file");
+                      "' is not a " + frameFileExtensionList() + " file");
     // An absolute entry replaces base.
     frames.push_back({(base / entry).string(), list_path + " line " + std::to_string(line_number)});
   }

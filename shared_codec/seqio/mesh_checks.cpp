@@ -48,7 +48,8 @@ Status checkTopology(const Topology& topology) {
 }
 
 Status checkSameTopology(const Topology& actual, const Topology& expected,
-                         const std::string& other_name) {
+                         const std::string& other_name,
+                         const std::function<std::string(size_t)>& origin) {
   if (actual.vertex_count != expected.vertex_count)
     return badInput("vertex count " + std::to_string(actual.vertex_count) + " differs from " +
                     other_name + " (" + std::to_string(expected.vertex_count) + ")");
@@ -58,8 +59,8 @@ Status checkSameTopology(const Topology& actual, const Topology& expected,
                     std::to_string(expected.triangles.size()) + ")");
   for (size_t t = 0; t < actual.triangles.size(); ++t) {
     if (actual.triangles[t] != expected.triangles[t])
-      return badInput("face list differs from " + other_name + " (first at triangle " +
-                      std::to_string(t) + ")");
+      return badInput("face list differs from " + other_name + " (first at " +
+                      (origin ? origin(t) : "triangle " + std::to_string(t)) + ")");
   }
   return Status();
 }

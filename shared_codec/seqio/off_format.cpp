@@ -2,7 +2,6 @@
 #include "seqio/off_format.h"
 
 #include <algorithm>
-#include <charconv>
 #include <limits>
 #include <new>
 #include <string_view>
@@ -130,12 +129,6 @@ Status readFaces(OffLines& lines, uint64_t face_count, Mesh* mesh) {
   return Status();
 }
 
-void appendNumber(std::string& out, float value) {
-  char text[32];
-  auto result = std::to_chars(text, text + sizeof(text), value, std::chars_format::general, 9);
-  out.append(text, result.ptr);
-}
-
 }  // namespace
 
 Result<Mesh> parseOff(const uint8_t* data, size_t size) {
@@ -164,7 +157,7 @@ Status writeOffFile(const std::string& path, const Topology& topology, const flo
            std::to_string(topology.triangles.size()) + " 0\n";
     for (size_t v = 0; v < topology.vertex_count; ++v) {
       for (int axis = 0; axis < 3; ++axis) {
-        appendNumber(text, xyz[3 * v + axis]);
+        appendFloat(text, xyz[3 * v + axis]);
         text += axis < 2 ? ' ' : '\n';
       }
     }
@@ -174,10 +167,7 @@ Status writeOffFile(const std::string& path, const Topology& topology, const flo
   } catch (const std::bad_alloc&) {
     return limitExceeded(path + ": out of memory encoding the OFF frame");
   }
-  AtomicFile file;
-  ANIMC_RETURN_IF_ERROR(file.open(path));
-  ANIMC_RETURN_IF_ERROR(file.write(text.data(), text.size()));
-  return file.commit();
+  return writeFileAtomically(path, text.data(), text.size());
 }
 
 }  // namespace animc

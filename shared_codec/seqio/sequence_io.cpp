@@ -1,34 +1,27 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "seqio/sequence_io.h"
 
-#include <cctype>
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
 #include "seqio/byte_input.h"
 #include "seqio/frame_dir_sink.h"
 #include "seqio/frame_files.h"
-#include "seqio/mdd_format.h"
 #include "seqio/mesh_checks.h"
-#include "seqio/off_format.h"
-#include "seqio/pc2_format.h"
-#include "seqio/ply_reader.h"
 
 namespace animc {
 namespace {
 
 constexpr int64_t kMaxInt32 = 2147483647;  // PC2 / MDD counts and PLY indices are int32
 
-bool isPointCache(const std::string& path, const char* extension) {
-  return endsWithNoCase(path, extension) || endsWithNoCase(path, std::string(extension) + ".xz");
-}
-
 Result<std::unique_ptr<FrameSource>> openPointCache(const std::string& path,
-                                                    const std::string& mesh_path, bool mdd) {
+                                                    const std::string& mesh_path,
+                                                    const PointCacheCodec& codec) {
   if (mesh_path.empty())
     return invalidArgument(path + ": --mesh is required for PC2/MDD input (they hold no faces)");
   ANIMC_ASSIGN_OR_RETURN(Mesh mesh, readMesh(mesh_path));
-  return mdd ? openMdd(path, mesh.topology, mesh_path) : openPc2(path, mesh.topology, mesh_path);
+  return codec.open(path, mesh.topology, mesh_path);
 }
 
 Result<std::vector<FrameFile>> frameFiles(const std::string& path) {
@@ -38,45 +31,39 @@ Result<std::vector<FrameFile>> frameFiles(const std::string& path) {
     return unlistedFrameFiles(paths);
   }
   if (endsWithNoCase(path, ".txt")) return readFrameList(path);
-  if (endsWithNoCase(path, ".ply") || endsWithNoCase(path, ".off"))
-    return unlistedFrameFiles({path});
-  return invalidArgument(path + ": unrecognised input (expected .ply, .off, .pc2, .mdd, " +
-                         ".pc2.xz, .mdd.xz, a directory of frames or a .txt list)");
+  if (isFramePattern(path)) {
+    ANIMC_ASSIGN_OR_RETURN(std::vector<std::string> paths, listNumberedFrames(path));
+    return unlistedFrameFiles(paths);
+  }
+  if (frameFileFormatOf(path)) return unlistedFrameFiles({path});
+  std::string caches;
+  for (const SequenceFormatSpec& spec : sequenceFormats())
+    if (spec.point_cache) caches += std::string(spec.extension) + ", " + spec.extension + ".xz, ";
+  return invalidArgument(path + ": unrecognised input (expected " + frameFileExtensionList() +
+                         " frames (one file, a directory, a .txt list or a pattern such as " +
+                         "frame_%04d.obj), or a point cache: " + caches.substr(0, caches.size() - 2) + ")");
 }
 
-Status checkSinkArguments(const std::string& path, SequenceFormat format, const Topology& topology,
-                          double frame_rate, int64_t frame_count) {
+Status checkSinkArguments(const std::string& path, const SequenceFormatSpec& spec,
+                          const Topology& topology, double frame_rate, int64_t frame_count) {
   if (frame_count < 1 || frame_count > kMaxInt32)
     return invalidArgument(path + ": cannot write " + std::to_string(frame_count) + " frames");
   if (topology.vertex_count == 0 || topology.vertex_count > kMaxInt32)
     return invalidArgument(path + ": cannot write " + std::to_string(topology.vertex_count) +
                            " vertices");
-  if (format == SequenceFormat::kMdd && !(std::isfinite(frame_rate) && frame_rate > 0))
+  if (spec.format == SequenceFormat::kMdd && !(std::isfinite(frame_rate) && frame_rate > 0))
     return invalidArgument(path + ": frame rate must be positive for MDD");
-  if (format == SequenceFormat::kPly || format == SequenceFormat::kOff)
-    return checkTopology(topology).withContext(path);
+  if (spec.frame_file) return checkTopology(topology).withContext(path);
   return Status();
 }
 
 }  // namespace
 
-Result<SequenceFormat> formatFromName(const std::string& name) {
-  std::string lower;
-  for (char c : name) lower += char(std::tolower(static_cast<unsigned char>(c)));
-  if (lower == "ply") return SequenceFormat::kPly;
-  if (lower == "off") return SequenceFormat::kOff;
-  if (lower == "pc2") return SequenceFormat::kPc2;
-  if (lower == "mdd") return SequenceFormat::kMdd;
-  return invalidArgument("unknown sequence format '" + name + "' (expected ply, off, pc2 or mdd)");
-}
-
 Result<Mesh> readMesh(const std::string& path) {
-  bool ply = endsWithNoCase(path, ".ply");
-  if (!ply && !endsWithNoCase(path, ".off"))
-    return invalidArgument(path + ": not a .ply or .off mesh");
+  const SequenceFormatSpec* spec = frameFileFormatOf(path);
+  if (!spec) return invalidArgument(path + ": not a " + frameFileExtensionList() + " mesh");
   ANIMC_ASSIGN_OR_RETURN(std::vector<uint8_t> bytes, readWholeFile(path));
-  Result<Mesh> mesh =
-      ply ? parsePly(bytes.data(), bytes.size()) : parseOff(bytes.data(), bytes.size());
+  Result<Mesh> mesh = spec->frame_file->parse(bytes.data(), bytes.size());
   if (!mesh.ok()) return mesh.status().withContext(path);
   return mesh;
 }
@@ -84,8 +71,8 @@ Result<Mesh> readMesh(const std::string& path) {
 Result<std::unique_ptr<FrameSource>> openSequence(const std::string& path,
                                                   const std::string& mesh_path) {
   if (path.empty()) return invalidArgument("no input sequence given");
-  if (isPointCache(path, ".pc2")) return openPointCache(path, mesh_path, /*mdd=*/false);
-  if (isPointCache(path, ".mdd")) return openPointCache(path, mesh_path, /*mdd=*/true);
+  if (const SequenceFormatSpec* cache = pointCacheFormatOf(path))
+    return openPointCache(path, mesh_path, *cache->point_cache);
   ANIMC_ASSIGN_OR_RETURN(std::vector<FrameFile> frames, frameFiles(path));
   if (mesh_path.empty()) return openFrameFiles(std::move(frames), nullptr, "");
   ANIMC_ASSIGN_OR_RETURN(Mesh mesh, readMesh(mesh_path));
@@ -93,20 +80,16 @@ Result<std::unique_ptr<FrameSource>> openSequence(const std::string& path,
 }
 
 uint64_t sequenceOutputBytes(SequenceFormat format, const Topology& topology, int64_t frames) {
-  const uint64_t n = topology.vertex_count, t = topology.triangles.size(), f = uint64_t(std::max<int64_t>(frames, 0));
-  switch (format) {
-    case SequenceFormat::kPc2: return 32 + 12 * n * f;
-    case SequenceFormat::kMdd: return 8 + (4 + 12 * n) * f;
-    case SequenceFormat::kPly: return (256 + 12 * n + 13 * t) * f;  // binary: floats, then count + 3 ints
-    case SequenceFormat::kOff: return (32 + 30 * n + 24 * t) * f;   // ASCII: typical widths of %g and indices
-  }
-  return 0;
+  const OutputSize& size = formatSpec(format).size;
+  const uint64_t n = topology.vertex_count, t = topology.triangles.size(),
+                 f = uint64_t(std::max<int64_t>(frames, 0));
+  return size.header + (size.frame + size.vertex * n + size.triangle * t) * f;
 }
 
 Result<std::vector<std::string>> sequenceInputFiles(const std::string& path,
                                                     const std::string& mesh_path) {
   std::vector<std::string> files;
-  if (isPointCache(path, ".pc2") || isPointCache(path, ".mdd")) {
+  if (pointCacheFormatOf(path)) {
     files.push_back(path);
   } else {
     ANIMC_ASSIGN_OR_RETURN(std::vector<FrameFile> frames, frameFiles(path));
@@ -121,17 +104,11 @@ Result<std::unique_ptr<FrameSink>> createSequenceSink(const std::string& path,
                                                       SequenceFormat format,
                                                       const Topology& topology, double frame_rate,
                                                       int64_t frame_count, ExistingOutput existing) {
-  ANIMC_RETURN_IF_ERROR(checkSinkArguments(path, format, topology, frame_rate, frame_count));
-  switch (format) {
-    case SequenceFormat::kPc2:
-      return createPc2Sink(path, topology.vertex_count, frame_count);
-    case SequenceFormat::kMdd:
-      return createMddSink(path, topology.vertex_count, frame_count, frame_rate);
-    case SequenceFormat::kPly:
-    case SequenceFormat::kOff:
-      return createFrameDirSink(path, format, topology, frame_count, existing);
-  }
-  return invalidArgument(path + ": unknown output format");
+  const SequenceFormatSpec& spec = formatSpec(format);
+  ANIMC_RETURN_IF_ERROR(checkSinkArguments(path, spec, topology, frame_rate, frame_count));
+  if (spec.point_cache)
+    return spec.point_cache->create_sink(path, topology.vertex_count, frame_count, frame_rate);
+  return createFrameDirSink(path, format, topology, frame_count, existing);
 }
 
 }  // namespace animc

@@ -1,34 +1,33 @@
 // SPDX-License-Identifier: Apache-2.0
-// Reading and writing animated-mesh sequences in the interchange formats: PLY and OFF frame
-// files (one file per frame), PC2 and MDD point caches (optionally .xz-compressed). Every
-// reader validates what it returns (see mesh_checks.h) and every writer writes atomically.
+// Reading and writing animated-mesh sequences in the interchange formats of
+// sequence_formats.h: frame files (PLY, OFF, OBJ: one file per frame) and point caches (PC2,
+// MDD, optionally .xz-compressed). Every reader validates what it returns (see mesh_checks.h)
+// and every writer writes atomically.
 #pragma once
 #include <cstdint>
 #include <memory>
 #include <string>
 
 #include "core/sequence.h"
+#include "seqio/sequence_formats.h"
 
 namespace animc {
 
-enum class SequenceFormat { kPly, kOff, kPc2, kMdd };
-
-// "ply", "off", "pc2" or "mdd" (any case).
-Result<SequenceFormat> formatFromName(const std::string& name);
-
-// A single .ply (ascii or binary, either byte order) or .off mesh, validated.
+// A single mesh in a frame-file format (.ply ascii or binary, either byte order; .off; .obj),
+// validated.
 Result<Mesh> readMesh(const std::string& path);
 
-// `path`: a .pc2 / .mdd file (optionally .pc2.xz / .mdd.xz, decompressed while streaming), a
-// single .ply / .off (one frame), a directory of .ply / .off frames (natural order of their
-// names: 2 before 10), or a .txt list with one frame path per line (relative paths are taken
+// `path`: a point cache (.pc2 / .mdd, optionally .pc2.xz / .mdd.xz, decompressed while
+// streaming), or frame files: a single .ply / .off / .obj (one frame), a directory of them
+// (natural order of their names: 2 before 10), a numbered pattern such as walk_%04d.obj
+// (frame_files.h), or a .txt list with one frame path per line (relative paths are taken
 // from the list's directory; blank lines and lines starting with '#' are skipped).
-// `mesh_path`: the connectivity, required for PC2 / MDD; for PLY / OFF frames optional, and
+// `mesh_path`: the connectivity, required for point caches; for frame files optional, and
 // when given the frames must have its vertex count and face list.
 Result<std::unique_ptr<FrameSource>> openSequence(const std::string& path,
                                                   const std::string& mesh_path);
 
-// About how many bytes createSequenceSink(format, topology, frames) writes (PLY and OFF frames
+// About how many bytes createSequenceSink(format, topology, frames) writes (frame files
 // repeat the faces in every frame, so a small .ams of a dense mesh can expand enormously):
 // for refusing an output before writing it.
 uint64_t sequenceOutputBytes(SequenceFormat format, const Topology& topology, int64_t frames);
@@ -38,17 +37,17 @@ uint64_t sequenceOutputBytes(SequenceFormat format, const Topology& topology, in
 Result<std::vector<std::string>> sequenceInputFiles(const std::string& path,
                                                     const std::string& mesh_path);
 
-// What a sink does with a PLY / OFF output folder that already holds files.
+// What a sink does with a frame-file output folder that already holds files.
 enum class ExistingOutput {
   kRefuse,   // an error: the folder may hold anything, and none of it is the sink's to delete
   kReplace,  // the finished frames replace the folder and everything in it
 };
 
-// PC2 / MDD: `path` is the file, replaced atomically. PLY / OFF: `path` is a folder (its
+// Point caches: `path` is the file, replaced atomically. Frame files: `path` is a folder (its
 // parent must exist) that receives frame_00000.ply, frame_00001.ply, ... (binary
-// little-endian PLY, ASCII OFF) as a whole at finish() (frame_dir_sink.h). `frame_count`
-// must be exactly the number of frames written before finish(); `frame_rate` is stored by
-// MDD only.
+// little-endian PLY, ASCII OFF and OBJ) as a whole at finish() (frame_dir_sink.h).
+// `frame_count` must be exactly the number of frames written before finish(); `frame_rate`
+// is stored by MDD only.
 Result<std::unique_ptr<FrameSink>> createSequenceSink(const std::string& path,
                                                       SequenceFormat format,
                                                       const Topology& topology, double frame_rate,

@@ -1,9 +1,11 @@
 // SPDX-License-Identifier: Apache-2.0
-// Locale-independent number parsing for the ASCII formats: a host application (MeshLab sets
-// the user's locale) must not turn "1.5" into 1 the way strtod would under a comma locale.
+// Locale-independent number parsing and printing for the ASCII formats: a host application
+// (MeshLab sets the user's locale) must not turn "1.5" into 1 the way strtod would under a
+// comma locale.
 #pragma once
 #include <charconv>
 #include <cstdint>
+#include <string>
 #include <string_view>
 
 namespace animc {
@@ -31,6 +33,19 @@ inline bool parseInt64(std::string_view text, int64_t* value) {
   const char* end = text.data() + text.size();
   auto [ptr, ec] = std::from_chars(text.data(), end, *value);
   return ec == std::errc() && ptr == end && !text.empty();
+}
+
+// 9 significant digits: what reads back as the same float.
+inline void appendFloat(std::string& out, float value) {
+  char text[32];
+  auto result = std::to_chars(text, text + sizeof(text), value, std::chars_format::general, 9);
+  out.append(text, result.ptr);
+}
+
+inline void appendUnsigned(std::string& out, uint64_t value) {
+  char text[24];
+  auto result = std::to_chars(text, text + sizeof(text), value);
+  out.append(text, result.ptr);
 }
 
 // Walks whitespace-separated tokens of a character range.

@@ -328,17 +328,14 @@ TEST_F(SeqioTest, BadOffInputsAreRejectedWithReasons) {
 TEST_F(SeqioTest, RoundTripEveryFormat) {
   Topology topology = smallTopology();
   Frames frames = makeFrames(topology.vertex_count, 4);
-  const char* outputs[] = {"seq_ply", "seq_off", "seq.pc2", "seq.mdd"};
-  for (SequenceFormat format :
-       {SequenceFormat::kPly, SequenceFormat::kOff, SequenceFormat::kPc2, SequenceFormat::kMdd}) {
-    std::string out = path(outputs[int(format)]);
+  for (const SequenceFormatSpec& spec : sequenceFormats()) {
+    const SequenceFormat format = spec.format;
+    std::string out = path(std::string("seq") + (spec.frame_file ? "_" : ".") + spec.name);
     SCOPED_TRACE(out);
     auto sink = createSequenceSink(out, format, topology, 30.0, int64_t(frames.size()));
     ASSERT_TRUE(sink.ok()) << errorOf(sink);
     ASSERT_TRUE(writeAll(*sink.value(), frames).ok());
-    std::string mesh = format == SequenceFormat::kPc2 || format == SequenceFormat::kMdd
-                           ? path("seq_ply/frame_00000.ply")
-                           : "";
+    std::string mesh = spec.point_cache ? path("seq_ply/frame_00000.ply") : "";
     auto source = openSequence(out, mesh);
     ASSERT_TRUE(source.ok()) << errorOf(source);
     EXPECT_EQ(source.value()->topology().triangles, topology.triangles);
@@ -350,6 +347,7 @@ TEST_F(SeqioTest, RoundTripEveryFormat) {
     EXPECT_EQ(read.value(), frames);  // bit-exact floats
   }
   EXPECT_TRUE(fs::exists(path("seq_off/frame_00003.off")));
+  EXPECT_TRUE(fs::exists(path("seq_obj/frame_00003.obj")));
 }
 
 TEST_F(SeqioTest, FrameDirectoryInNaturalOrderAndListFile) {
@@ -409,8 +407,8 @@ TEST_F(SeqioTest, FramesMustShareConnectivity) {
   writeFile("list.txt", "walk/0000.ply\nwalk/0001.obj\n");
   EXPECT_NE(sequenceError(path("list.txt"), "").find("list.txt line 2"), std::string::npos);
   fs::create_directories(path("empty"));
-  EXPECT_NE(sequenceError(path("empty"), "").find("no .ply or .off frames"), std::string::npos);
-  EXPECT_NE(sequenceError(path("x.obj"), "").find("unrecognised input"), std::string::npos);
+  EXPECT_NE(sequenceError(path("empty"), "").find("no .ply, .off or .obj frames"), std::string::npos);
+  EXPECT_NE(sequenceError(path("x.stl"), "").find("unrecognised input"), std::string::npos);
 }
 
 // An error in a frame of a .txt list names the list and the line to fix, then the frame.
@@ -673,7 +671,9 @@ TEST_F(SeqioTest, FrameDirectorySinkThroughASymbolicLink) {
 TEST_F(SeqioTest, SinkArgumentsAndFormatNames) {
   EXPECT_EQ(formatFromName("PC2").value(), SequenceFormat::kPc2);
   EXPECT_EQ(formatFromName("off").value(), SequenceFormat::kOff);
-  EXPECT_NE(errorOf(formatFromName("obj")).find("unknown sequence format 'obj'"),
+  EXPECT_EQ(formatFromName("OBJ").value(), SequenceFormat::kObj);
+  EXPECT_NE(errorOf(formatFromName("stl")).find("unknown sequence format 'stl' (expected one of "
+                                                 "ply, off, pc2, mdd, obj)"),
             std::string::npos);
   EXPECT_FALSE(createSequenceSink(path("a.mdd"), SequenceFormat::kMdd, smallTopology(), 0, 3).ok());
   EXPECT_FALSE(

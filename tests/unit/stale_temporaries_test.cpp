@@ -65,7 +65,7 @@ TEST_F(StaleTemporariesTest, RemovesOldLeftoversOfEndedRunsOnly) {
   const std::string folder = temporaryName(ended, 1);
   fs::create_directory(path(folder));
   write(folder + "/frame_00000.ply");
-  write(folder + "/frame_00001.ply");
+  write(folder + "/frame_00001.obj");  // any frame-file format the sink writes
   write(folder + "/" + temporaryName(ended, 2));
   age(folder, old);
   // Kept: a recent leftover, one of a live process, a folder holding something else, a name

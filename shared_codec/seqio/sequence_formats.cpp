@@ -1,0 +1,93 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "seqio/sequence_formats.h"
+
+#include <cctype>
+
+#include "seqio/byte_input.h"
+#include "seqio/mdd_format.h"
+#include "seqio/obj_format.h"
+#include "seqio/off_format.h"
+#include "seqio/pc2_format.h"
+#include "seqio/ply_reader.h"
+#include "seqio/ply_writer.h"
+
+namespace animc {
+namespace {
+
+const FrameFileCodec kPlyCodec = {parsePly, writePlyFile, nullptr};
+const FrameFileCodec kOffCodec = {parseOff, writeOffFile, nullptr};
+const FrameFileCodec kObjCodec = {parseObj, writeObjFile, objTriangleOrigin};
+
+const PointCacheCodec kPc2Codec = {
+    openPc2, [](const std::string& path, uint32_t points, int64_t frames, double) {
+      return createPc2Sink(path, points, frames);  // PC2 has no field for the frame rate
+    }};
+const PointCacheCodec kMddCodec = {openMdd, createMddSink};
+
+// Output sizes: PLY is binary (floats, then a count byte and 3 ints a triangle); OFF and OBJ
+// are ASCII at typical widths of 9-digit floats and indices.
+const std::vector<SequenceFormatSpec> kFormats = {
+    {SequenceFormat::kPly, "ply", ".ply", &kPlyCodec, nullptr, {0, 256, 12, 13}},
+    {SequenceFormat::kOff, "off", ".off", &kOffCodec, nullptr, {0, 32, 30, 24}},
+    {SequenceFormat::kPc2, "pc2", ".pc2", nullptr, &kPc2Codec, {32, 0, 12, 0}},
+    {SequenceFormat::kMdd, "mdd", ".mdd", nullptr, &kMddCodec, {8, 4, 12, 0}},
+    {SequenceFormat::kObj, "obj", ".obj", &kObjCodec, nullptr, {0, 64, 40, 26}},
+};
+
+bool endsWith(const std::string& s, const std::string& suffix) {
+  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+}  // namespace
+
+const std::vector<SequenceFormatSpec>& sequenceFormats() { return kFormats; }
+
+const SequenceFormatSpec& formatSpec(SequenceFormat format) { return kFormats[size_t(format)]; }
+
+const SequenceFormatSpec* frameFileFormatOf(const std::string& path) {
+  for (const SequenceFormatSpec& spec : kFormats)
+    if (spec.frame_file && endsWithNoCase(path, spec.extension)) return &spec;
+  return nullptr;
+}
+
+const SequenceFormatSpec* pointCacheFormatOf(const std::string& path) {
+  for (const SequenceFormatSpec& spec : kFormats)
+    if (spec.point_cache && (endsWithNoCase(path, spec.extension) ||
+                             endsWithNoCase(path, std::string(spec.extension) + ".xz")))
+      return &spec;
+  return nullptr;
+}
+
+Result<SequenceFormat> formatFromName(const std::string& name) {
+  std::string lower;
+  for (char c : name) lower += char(std::tolower(static_cast<unsigned char>(c)));
+  for (const SequenceFormatSpec& spec : kFormats)
+    if (lower == spec.name) return spec.format;
+  return invalidArgument("unknown sequence format '" + name + "' (expected one of " +
+                         formatNames(", ") + ")");
+}
+
+std::string formatNames(const char* separator) {
+  std::string names;
+  for (const SequenceFormatSpec& spec : kFormats)
+    names += std::string(names.empty() ? "" : separator) + spec.name;
+  return names;
+}
+
+SequenceFormat outputFormatOf(const std::string& path) {
+  for (const SequenceFormatSpec& spec : kFormats)
+    if (endsWith(path, spec.extension)) return spec.format;
+  return SequenceFormat::kPly;
+}
+
+std::string frameFileExtensionList() {
+  std::vector<std::string> extensions;
+  for (const SequenceFormatSpec& spec : kFormats)
+    if (spec.frame_file) extensions.push_back(spec.extension);
+  std::string list;
+  for (size_t i = 0; i < extensions.size(); ++i)
+    list += (i == 0 ? "" : i + 1 == extensions.size() ? " or " : ", ") + extensions[i];
+  return list;
+}
+
+}  // namespace animc
