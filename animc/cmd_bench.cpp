@@ -3,13 +3,15 @@
 // metric of the decoded result. The input is read into memory first so that file reading
 // and xz decompression are not timed. Given an .ams file, it times decoding only (the file
 // stays in the page cache after the first run): the loop to measure a decoder change with,
-// each build decoding the same bytes.
+// each build decoding the same bytes. With --read-only it times the sequence readers instead:
+// opening the input and reading every frame, what a reader change is measured with.
 #include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
-#include <functional>
 #include <cstdio>
+#include <filesystem>
+#include <functional>
 
 #include "cli.h"
 #include "core/memory_sequence.h"
@@ -93,6 +95,56 @@ int runDecodeBench(const Args& args, long long runs) {
   return 0;
 }
 
+// Reading an input sequence R times (the files stay in the page cache after the first run),
+// without encoding: medians in million vertices (× frames) and megabytes of input per second.
+int runReadBench(const Args& args, long long runs) {
+  const std::string& path = args.positional()[0];
+  auto files = sequenceInputFiles(path, args.get("mesh"));
+  if (!files.ok()) return fail(files.status());
+  uint64_t input_bytes = 0;
+  for (const std::string& file : files.value()) {
+    std::error_code ec;
+    input_bytes += std::filesystem::file_size(file, ec);
+  }
+  std::vector<double> read_s;
+  uint64_t vertices = 0, frames = 0;
+  std::vector<float> xyz;
+  for (long long r = 0; r < runs; ++r) {
+    const auto t0 = Clock::now();
+    auto source = openSequence(path, args.get("mesh"));
+    if (!source.ok()) return fail(source.status());
+    frames = 0;
+    for (;;) {
+      auto more = source.value()->next(xyz);
+      if (!more.ok()) return fail(more.status());
+      if (!more.value()) break;
+      ++frames;
+    }
+    read_s.push_back(std::chrono::duration<double>(Clock::now() - t0).count());
+    vertices = source.value()->topology().vertex_count;
+  }
+  const double seconds = median(read_s);
+  const double read_mvps = double(vertices) * double(frames) / seconds / 1e6;
+  const double read_mbps = double(input_bytes) / seconds / 1e6;
+  if (args.has("json")) {
+    JsonObject o = newReport();
+    o.add("input", path);
+    o.add("vertices", vertices);
+    o.add("frames", frames);
+    o.add("input_bytes", input_bytes);
+    o.add("runs", runs);
+    o.add("read_seconds_median", seconds);
+    o.add("read_mvps", read_mvps);
+    o.add("read_mbps", read_mbps);
+    std::printf("%s\n", o.str().c_str());
+    return 0;
+  }
+  std::printf("%s: %llu vertices x %llu frames, %llu bytes, %lld runs, reading only\n", path.c_str(),
+              (unsigned long long)vertices, (unsigned long long)frames, (unsigned long long)input_bytes, runs);
+  std::printf("read: %.2f M vertices/s, %.1f MB/s (median %.4f s)\n", read_mvps, read_mbps, seconds);
+  return 0;
+}
+
 }  // namespace
 
 int runBench(const std::vector<std::string>& argv) {
@@ -100,11 +152,12 @@ int runBench(const std::vector<std::string>& argv) {
   std::set<std::string> options = encodeOptions();
   options.insert({"mesh", "runs", "output"});
   std::set<std::string> switches = encodeSwitches();
-  switches.insert({"progress", "json", "backwards"});
+  switches.insert({"progress", "json", "backwards", "read-only"});
   Status s = args.parse(argv, options, switches);
   if (!s.ok()) return fail(s);
   if (args.positional().size() != 1)
-    return fail(invalidArgument("usage: animc bench IN [--mesh M] [options] [--runs R] | animc bench IN.ams [--runs R] [--backwards]"));
+    return fail(invalidArgument("usage: animc bench IN [--mesh M] [options] [--runs R] | animc bench IN [--mesh M] "
+                                "--read-only [--runs R] | animc bench IN.ams [--runs R] [--backwards]"));
   auto runs = args.integer("runs", 5);
   if (!runs.ok() || runs.value() < 1 || runs.value() > 1000) return fail(invalidArgument("--runs must be in [1, 1000]"));
   if (isAmsPath(args.positional()[0])) {
@@ -115,6 +168,13 @@ int runBench(const std::vector<std::string>& argv) {
     return runDecodeBench(args, runs.value());
   }
   if (args.has("backwards")) return fail(invalidArgument("--backwards applies to the bench of an .ams file"));
+  if (args.has("read-only")) {
+    for (const std::set<std::string>* names : {&options, &switches})
+      for (const std::string& name : *names)
+        if (name != "runs" && name != "json" && name != "mesh" && name != "read-only" && args.has(name))
+          return fail(invalidArgument("bench --read-only reads the input only: --" + name + " does not apply"));
+    return runReadBench(args, runs.value());
+  }
   auto input = openEncodeInput(args);
   if (!input.ok()) return fail(input.status());
   const EncodeSettings& settings = input.value().settings;

@@ -25,6 +25,7 @@ std::string usageAfterEncode() {
     "         every frame, writes nothing\n"
     "  compare ORIGINAL RECONSTRUCTED|IN.ams [--mesh M] [--json] [--per-frame]\n"
     "  bench IN [--mesh M] [encode options] [--runs R] [--json]\n"
+    "  bench IN [--mesh M] --read-only [--runs R] [--json]: reading the sequence only\n"
     "  bench IN.ams [--runs R] [--json]: decoding only, of that file\n"
     "IN: .pc2/.mdd (optionally .xz, with --mesh), a " + animc::frameFileExtensionList() + " frame, a folder of\n"
     "them, a numbered pattern (frame_%04d.obj) or a .txt list of frame files.\n";

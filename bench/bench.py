@@ -20,7 +20,7 @@ For each sequence folder NAME/ (NAME.ply + NAME.pc2.xz) of --data (default
    parametric archive size against the paper's Cow, and the cost and cuts of progressive
    P-frames (bench/bench_progressive.py);
 5. decoding through the public Decoder from a file and from memory (bench/bench_decode_paths.py);
-   the trajectory codec against the other two and FAMC at KG 0.3 % and 1 %, and its decode
+   reading every sequence format (bench/bench_readers.py); the trajectory codec against the other two and FAMC at KG 0.3 % and 1 %, and its decode
    speed against the Affine-Octree codec's (bench/bench_trajectory.py);
 6. unless --no-plugin: encoding through the MeshLab filter against animc encode
    (bench/bench_plugin.py; needs the staged MeshLab of `cmake --install build --prefix build/stage`).
@@ -48,6 +48,7 @@ from long_sequence import write_long_sequence  # noqa: E402
 from bench_plugin import plugin_section  # noqa: E402
 from bench_wavelet import wavelet_section  # noqa: E402
 from bench_decode_paths import decode_paths_section  # noqa: E402
+from bench_readers import readers_section  # noqa: E402
 from bench_trajectory import trajectory_section  # noqa: E402
 from bench_common import (log, run_bench, loglog_interp, num, pct, mib, table,  # noqa: E402
                           failed_cell, find_sequences, START)
@@ -482,6 +483,8 @@ def main():
     failures += wavelet_failures
     paths_lines, paths_failures = decode_paths_section(args.animc, sequences, args.runs)
     failures += paths_failures
+    readers_lines, readers_failures = readers_section(args.animc, sequences, args.runs)
+    failures += readers_failures
     trajectory_lines, trajectory_failures = trajectory_section(args.animc, sequences, args.runs)
     failures += trajectory_failures
     memory_rows = []
@@ -494,8 +497,8 @@ def main():
         log('MeshLab filter against animc encode')
         plugin_lines = plugin_section(args.animc, args.data, args.runs, command_line()[0])
     elapsed = time.monotonic() - START
-    write_report(args.out, args, sequences, trajectory_lines + wavelet_lines + paths_lines, memory_rows,
-                 plugin_lines, elapsed)
+    write_report(args.out, args, sequences, trajectory_lines + wavelet_lines + paths_lines + readers_lines,
+                 memory_rows, plugin_lines, elapsed)
     log(f'wrote {args.out} ({failures} failure(s)) in {elapsed / 60:.1f} min')
     sys.exit(1 if failures else 0)
 

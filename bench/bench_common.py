@@ -1,8 +1,10 @@
 #!/usr/bin/python3
 # SPDX-License-Identifier: Apache-2.0
 """Helpers shared by the benchmark scripts (bench.py, bench_wavelet.py, bench_progressive.py,
-bench_plugin.py): finding the sequences, running `animc bench --json` and other animc
-commands that print JSON, log-log interpolation, Markdown cells and tables, progress lines."""
+bench_plugin.py, bench_decode_paths.py, bench_readers.py): finding the sequences, running
+`animc bench --json` and other animc commands that print JSON, log-log interpolation, Markdown
+cells and tables, progress lines, and replacing one section of a report."""
+import datetime
 import json
 import math
 import os
@@ -116,3 +118,23 @@ def failed_cell(result):
     return 'failed: ' + result['error'].replace('|', '\\|')
 
 
+def replace_section(report, heading, lines, command):
+    """The report's text with its `heading` section replaced by lines, which start with that
+    heading and a blank line, stamped with `command`, the time and the commit (inserted before
+    the peak-memory section when the report has none): for the scripts that, run alone,
+    rewrite their own section of docs/benchmarks.md."""
+    text = open(report).read()
+    repo = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    commit = subprocess.run(['git', '-C', repo, 'rev-parse', '--short', 'HEAD'], capture_output=True,
+                            text=True).stdout.strip()
+    when = datetime.datetime.now(datetime.timezone.utc).strftime('%Y-%m-%d %H:%M UTC')
+    measured = (f'Measured by `{command}` ({when}, commit `{commit}`, {os.cpu_count()} CPUs), apart from '
+                'the rest of this report.')
+    section = '\n'.join(lines[:2] + [measured, ''] + lines[2:]) + '\n'
+    start = text.find(heading)
+    if start < 0:
+        start = end = text.find('## Peak memory')
+    else:
+        following = text.find('\n## ', start + len(heading))
+        end = following + 1 if following >= 0 else len(text)
+    return text[:start] + section + text[end:]

@@ -7,13 +7,11 @@ replaces that section of docs/benchmarks.md (or another report) in place.
 
 usage: bench/bench_decode_paths.py [--animc PATH] [--data DIR] [--runs R] [--out FILE]"""
 import argparse
-import datetime
 import os
-import subprocess
 import sys
 import tempfile
 
-from bench_common import animc_json, find_sequences, log, num, table
+from bench_common import animc_json, find_sequences, log, num, replace_section, table
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 HEADING = '## Decoding from a file and from memory'
@@ -47,25 +45,6 @@ def decode_paths_section(animc, sequences, runs):
     return lines, failures
 
 
-def replace_section(report, lines, command):
-    """The report's text with its HEADING section replaced by lines (inserted before the next
-    top-level section after the wavelet ones when it has none)."""
-    text = open(report).read()
-    commit = subprocess.run(['git', '-C', REPO, 'rev-parse', '--short', 'HEAD'], capture_output=True,
-                            text=True).stdout.strip()
-    when = datetime.datetime.now(datetime.timezone.utc).strftime('%Y-%m-%d %H:%M UTC')
-    measured = (f'Measured by `{command}` ({when}, commit `{commit}`, {os.cpu_count()} CPUs), apart from '
-                'the rest of this report.')
-    section = '\n'.join(lines[:2] + [measured, ''] + lines[2:]) + '\n'
-    start = text.find(HEADING)
-    if start < 0:
-        start = end = text.find('## Peak memory')
-    else:
-        following = text.find('\n## ', start + len(HEADING))
-        end = following + 1 if following >= 0 else len(text)
-    return text[:start] + section + text[end:]
-
-
 def main():
     p = argparse.ArgumentParser(description=__doc__.split('\n')[0])
     p.add_argument('--animc', default=os.path.join(REPO, 'build', 'animc', 'animc'))
@@ -76,7 +55,7 @@ def main():
     sequences = [{'name': n, 'pc2': pc2, 'ply': ply} for n, pc2, ply in find_sequences(args.data)]
     lines, failures = decode_paths_section(os.path.abspath(args.animc), sequences, args.runs)
     command = 'bench/bench_decode_paths.py ' + ' '.join(sys.argv[1:])
-    text = replace_section(args.out, lines, command.strip())
+    text = replace_section(args.out, HEADING, lines, command.strip())
     with open(args.out, 'w') as f:
         f.write(text)
     log(f'wrote the section to {args.out} ({failures} failure(s))')

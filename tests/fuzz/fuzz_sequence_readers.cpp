@@ -1,18 +1,18 @@
 // SPDX-License-Identifier: Apache-2.0
-// libFuzzer harness: the sequence readers (PLY ascii/binary, OFF, PC2, MDD, the .xz streaming
-// of point caches, frame folders and .txt frame lists, with and without a mesh) on arbitrary
-// bytes, reading every frame. Any Status is fine; a crash, sanitizer report, leak, hang or
+// libFuzzer harness: the sequence readers (PLY ascii/binary, OFF, OBJ, PC2, MDD, the .xz
+// streaming of point caches, frame folders and .txt frame lists, with and without a mesh) on
+// arbitrary bytes, reading every frame. Any Status is fine; a crash, sanitizer report, leak, hang or
 // huge allocation is a bug.
 //
 // Input = 2 control bytes, then one or more files separated by kSeparator:
-//   [0] modulo 6, the format: .ply, .off, .pc2, .mdd, .pc2.xz, .mdd.xz;
-//       [0] / 6 modulo 4, the layout:
-//         0  one file: PLY and OFF as a one-frame sequence, point caches with a topology of
-//            [1] + 1 vertices and no faces
-//         1  PLY / OFF: a folder of frames, one file each; caches: a PLY mesh, then the cache
-//         2  PLY / OFF: a .txt frame list, then the frames it may name (f0.ply, f1.ply, ...
+//   [0] modulo 7, the format: .ply, .off, .pc2, .mdd, .pc2.xz, .mdd.xz, .obj;
+//       [0] / 7 modulo 4, the layout:
+//         0  one file: frame files (PLY, OFF, OBJ) as a one-frame sequence, point caches with
+//            a topology of [1] + 1 vertices and no faces
+//         1  frame files: a folder of frames, one file each; caches: a PLY mesh, then the cache
+//         2  frame files: a .txt frame list, then the frames it may name (f0.ply, f1.ply, ...
 //            beside it); caches: an OFF mesh, then the cache
-//         3  PLY / OFF: a PLY mesh the frames must match, then a folder of frames;
+//         3  frame files: a PLY mesh the frames must match, then a folder of frames;
 //            caches: as 1
 //   [1] layout 0 point caches: the mesh's vertex count minus 1 (the readers check the cache
 //       against it)
@@ -32,7 +32,11 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr size_t kControlBytes = 2;
-constexpr const char* kSuffixes[] = {".ply", ".off", ".pc2", ".mdd", ".pc2.xz", ".mdd.xz"};
+constexpr const char* kSuffixes[] = {".ply", ".off", ".pc2", ".mdd", ".pc2.xz", ".mdd.xz", ".obj"};
+constexpr int kFormats = 7;
+constexpr int kLayouts = 4;
+
+bool isPointCache(int format) { return format >= 2 && format < 6; }
 constexpr char kSeparator[] = "#next#";
 constexpr size_t kMaxFiles = 8;
 
@@ -57,8 +61,8 @@ std::vector<Part> splitFiles(const uint8_t* data, size_t size) {
 }
 
 animc::Result<std::unique_ptr<animc::FrameSource>> openOneFile(const std::string& path, const uint8_t* control) {
-  const int format = control[0] % 6;
-  if (format < 2) return animc::openSequence(path, "");
+  const int format = control[0] % kFormats;
+  if (!isPointCache(format)) return animc::openSequence(path, "");
   animc::Topology topology;
   topology.vertex_count = uint32_t(control[1]) + 1;
   const bool mdd = format % 2 == 1;
@@ -77,7 +81,7 @@ animc::Result<std::unique_ptr<animc::FrameSource>> openLayout(const fs::path& di
     return animc::fuzz::writeScratch(path.string(), part.data, part.size);
   };
   const std::string suffix = kSuffixes[format];
-  if (format >= 2) {  // a mesh, then the cache
+  if (isPointCache(format)) {  // a mesh, then the cache
     const fs::path mesh = dir / (layout == 2 ? "mesh.off" : "mesh.ply"), cache = dir / ("cache" + suffix);
     static const uint8_t kNothing = 0;
     if (!write(mesh, parts[0]) || !write(cache, parts.size() > 1 ? parts[1] : Part{&kNothing, 0}))
@@ -114,7 +118,7 @@ void readAll(animc::FrameSource& source) {
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (size < kControlBytes) return 0;
-  const int format = data[0] % 6, layout = data[0] / 6 % 4;
+  const int format = data[0] % kFormats, layout = data[0] / kFormats % kLayouts;
   animc::Result<std::unique_ptr<animc::FrameSource>> source = animc::ioError("not opened");
   if (layout == 0) {
     const std::string path = animc::fuzz::scratchPath(kSuffixes[format]);

@@ -122,7 +122,7 @@ for size in 60 90; do
   encode "patch${size}_auto" 0 "${P[@]}" --codec auto --target-kg 0.5
 done
 
-# Sequence readers: control byte 0 picks .ply .off .pc2 .mdd .pc2.xz .mdd.xz, byte 1 is the
+# Sequence readers: control byte 0 picks .ply .off .pc2 .mdd .pc2.xz .mdd.xz .obj, byte 1 is the
 # point caches' vertex count - 1 (the grid has 20 vertices).
 seq_seed() {  # name, kind, file
   { printf "\\x$(printf %02x "$2")\\x13"; cat "$3"; } > "$OUT/sequence_readers/$1"
@@ -131,6 +131,7 @@ seq_seed() {  # name, kind, file
 "$ANIMC" decode "$WORK/grid_octree.ams" -o "$WORK/grid_out.mdd" >/dev/null
 "$ANIMC" decode "$WORK/grid_octree.ams" -o "$WORK/grid_off" --format off --frames 0 >/dev/null
 "$ANIMC" decode "$WORK/grid_octree.ams" -o "$WORK/grid_ply" --format ply --frames 0 >/dev/null
+"$ANIMC" decode "$WORK/grid_octree.ams" -o "$WORK/grid_obj" --format obj --frames 0 >/dev/null
 seq_seed grid.ply 0 "$WORK/grid.ply"
 seq_seed grid_decoded.ply 0 "$WORK/grid_ply/frame_00000.ply"
 seq_seed grid.off 1 "$WORK/grid_off/frame_00000.off"
@@ -140,8 +141,9 @@ xz --check=crc32 -c "$WORK/grid_out.pc2" > "$WORK/grid.pc2.xz"
 xz --check=none -c "$WORK/grid_out.mdd" > "$WORK/grid.mdd.xz"
 seq_seed grid.pc2.xz 4 "$WORK/grid.pc2.xz"
 seq_seed grid.mdd.xz 5 "$WORK/grid.mdd.xz"
+seq_seed grid.obj 6 "$WORK/grid_obj/frame_00000.obj"
 # Several files, joined by the harness's separator: frame folders, .txt lists and point caches
-# with a mesh (control byte 0 = format + 6 * layout, see fuzz_sequence_readers.cpp).
+# with a mesh (control byte 0 = format + 7 * layout, see fuzz_sequence_readers.cpp).
 files_seed() {  # name, control byte, files...
   local name=$1 control=$2 first=1
   shift 2
@@ -154,15 +156,21 @@ files_seed() {  # name, control byte, files...
 }
 "$ANIMC" decode "$WORK/grid_octree.ams" -o "$WORK/grid_ply2" --format ply --frames 0:2 >/dev/null
 "$ANIMC" decode "$WORK/grid_octree.ams" -o "$WORK/grid_off2" --format off --frames 0:2 >/dev/null
+"$ANIMC" decode "$WORK/grid_octree.ams" -o "$WORK/grid_obj2" --format obj --frames 0:2 >/dev/null
 printf 'f0.ply\n# a comment\n\nf1.ply\n' > "$WORK/list.txt"
+printf 'f0.obj\r\nf1.obj\n' > "$WORK/list_obj.txt"
 PLY2=("$WORK/grid_ply2/frame_00000.ply" "$WORK/grid_ply2/frame_00001.ply")
-files_seed folder.ply 6 "${PLY2[@]}"
-files_seed folder.off 7 "$WORK/grid_off2/frame_00000.off" "$WORK/grid_off2/frame_00001.off"
-files_seed list.ply 12 "$WORK/list.txt" "${PLY2[@]}"
-files_seed mesh_folder.ply 18 "$WORK/grid.ply" "${PLY2[@]}"
-files_seed mesh.pc2 8 "$WORK/grid.ply" "$WORK/grid_out.pc2"
-files_seed mesh_off.mdd 15 "$WORK/grid_off/frame_00000.off" "$WORK/grid_out.mdd"
-files_seed mesh.pc2.xz 22 "$WORK/grid.ply" "$WORK/grid.pc2.xz"
+OBJ2=("$WORK/grid_obj2/frame_00000.obj" "$WORK/grid_obj2/frame_00001.obj")
+files_seed folder.ply 7 "${PLY2[@]}"
+files_seed folder.off 8 "$WORK/grid_off2/frame_00000.off" "$WORK/grid_off2/frame_00001.off"
+files_seed folder.obj 13 "${OBJ2[@]}"
+files_seed list.ply 14 "$WORK/list.txt" "${PLY2[@]}"
+files_seed list.obj 20 "$WORK/list_obj.txt" "${OBJ2[@]}"
+files_seed mesh_folder.ply 21 "$WORK/grid.ply" "${PLY2[@]}"
+files_seed mesh_folder.obj 27 "$WORK/grid.ply" "${OBJ2[@]}"
+files_seed mesh.pc2 9 "$WORK/grid.ply" "$WORK/grid_out.pc2"
+files_seed mesh_off.mdd 17 "$WORK/grid_off/frame_00000.off" "$WORK/grid_out.mdd"
+files_seed mesh.pc2.xz 25 "$WORK/grid.ply" "$WORK/grid.pc2.xz"
 # PLY in ASCII and big-endian, with extra properties and a quad, written by hand.
 { printf '\x00\x00'
   printf 'ply\nformat ascii 1.0\ncomment fuzz seed\nelement vertex 5\nproperty float x\nproperty float y\n'
@@ -179,6 +187,11 @@ PY
 { printf '\x01\x00'
   printf 'OFF\n# comment\n4 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n'
 } > "$OUT/sequence_readers/square.off"
+{ printf '\x06\x00'
+  printf '# fuzz seed\r\nmtllib a.mtl\r\no A\r\nv 0 0 0\r\nv 1 0 0 1\r\nv 1 1 0 0.5 0.5 0.5\r\nv 0 1 0\r\n'
+  printf 'vt 0 0\r\nvt 1 1\r\nvn 0 0 1\r\ng g\r\ns 1\r\nusemtl m\r\nf 1/1/1 2/2/1 3//1 4/1 # quad\r\n'
+  printf 'l 1 2\r\nf -4 -2 -1'
+} > "$OUT/sequence_readers/square.obj"
 # Layer checks: four layers (slot 1 deleted, a deleted face; the first again; again with a
 # deleted vertex appended; another mesh), then a golden file with the whole range, a range
 # above the memory limit and one above the work limit (control bytes: fuzz_layer_checks.cpp).
