@@ -20,7 +20,8 @@ For each sequence folder NAME/ (NAME.ply + NAME.pc2.xz) of --data (default
    parametric archive size against the paper's Cow, and the cost and cuts of progressive
    P-frames (bench/bench_progressive.py);
 5. decoding through the public Decoder from a file and from memory (bench/bench_decode_paths.py);
-   reading every sequence format (bench/bench_readers.py); the trajectory codec against the other two and FAMC at KG 0.3 % and 1 %, and its decode
+   reading every sequence format (bench/bench_readers.py); the glb of `animc decode` beside
+   the .ams and gltfpack -cc (bench/bench_gltf.py); the trajectory codec against the other two and FAMC at KG 0.3 % and 1 %, and its decode
    speed against the Affine-Octree codec's (bench/bench_trajectory.py);
 6. unless --no-plugin: encoding through the MeshLab filter against animc encode
    (bench/bench_plugin.py; needs the staged MeshLab of `cmake --install build --prefix build/stage`).
@@ -49,6 +50,7 @@ from bench_plugin import plugin_section  # noqa: E402
 from bench_wavelet import wavelet_section  # noqa: E402
 from bench_decode_paths import decode_paths_section  # noqa: E402
 from bench_readers import readers_section  # noqa: E402
+from bench_gltf import gltf_section  # noqa: E402
 from bench_trajectory import trajectory_section  # noqa: E402
 from bench_common import (log, run_bench, loglog_interp, num, pct, mib, table,  # noqa: E402
                           failed_cell, find_sequences, START)
@@ -485,6 +487,8 @@ def main():
     failures += paths_failures
     readers_lines, readers_failures = readers_section(args.animc, sequences, args.runs)
     failures += readers_failures
+    gltf_lines, gltf_failures = gltf_section(args.animc, shutil.which('gltfpack'), sequences)
+    failures += gltf_failures
     trajectory_lines, trajectory_failures = trajectory_section(args.animc, sequences, args.runs)
     failures += trajectory_failures
     memory_rows = []
@@ -497,7 +501,7 @@ def main():
         log('MeshLab filter against animc encode')
         plugin_lines = plugin_section(args.animc, args.data, args.runs, command_line()[0])
     elapsed = time.monotonic() - START
-    write_report(args.out, args, sequences, trajectory_lines + wavelet_lines + paths_lines + readers_lines,
+    write_report(args.out, args, sequences, trajectory_lines + wavelet_lines + paths_lines + readers_lines + gltf_lines,
                  memory_rows, plugin_lines, elapsed)
     log(f'wrote {args.out} ({failures} failure(s)) in {elapsed / 60:.1f} min')
     sys.exit(1 if failures else 0)

@@ -12,6 +12,7 @@ PACKAGES=(
   pybind11-dev python3-pybind11 python3-dev python3-pytest  # the Python module and its tests
   clang libclang-rt-dev            # the libFuzzer harnesses (tests/fuzz) of CI's short campaign
   gnuplot-nox                      # bench/rd_plot.py (rate-distortion plot of the benchmarks)
+  gltfpack                         # bench/bench_gltf.py (glTF sizes beside a web user's other choice)
   meshlab qtbase5-dev libqt5opengl5-dev libglew-dev  # MeshLab 2020.09 and what its headers need
   mesa-common-dev libglu1-mesa-dev
   xvfb xauth                       # meshlabserver and meshlab need an X server, even headless
@@ -20,6 +21,9 @@ PACKAGES=(
 source "$(dirname "$0")/host_setup.sh"
 install_missing_packages setup "${PACKAGES[@]}"
 echo "setup: all packages present"
+
+# The glTF validator the tests run with node, from npm into the cache.
+bash "$(dirname "$0")/setup_node_tools.sh" >/dev/null
 
 # MeshLab's headers come from Debian's source package, into a cache outside the tree.
 bash "$(dirname "$0")/fetch_meshlab_sdk.sh"

@@ -4,6 +4,7 @@
 #include <cctype>
 
 #include "seqio/byte_input.h"
+#include "seqio/gltf_writer.h"
 #include "seqio/mdd_format.h"
 #include "seqio/obj_format.h"
 #include "seqio/off_format.h"
@@ -24,14 +25,28 @@ const PointCacheCodec kPc2Codec = {
     }};
 const PointCacheCodec kMddCodec = {openMdd, createMddSink};
 
-// Output sizes: PLY is binary (floats, then a count byte and 3 ints a triangle); OFF and OBJ
-// are ASCII at typical widths of 9-digit floats and indices.
+const AnimatedMeshCodec kGlbCodec = {createGlbSink};
+const AnimatedMeshCodec kGltfCodec = {createGltfSink};
+
+// Output sizes. PLY is binary (floats, then a count byte and 3 ints a triangle); OFF and OBJ
+// are ASCII at typical widths of 9-digit floats and indices, every frame with its faces.
+uint64_t plyBytes(uint64_t v, uint64_t t, uint64_t f) { return (256 + 12 * v + 13 * t) * f; }
+uint64_t offBytes(uint64_t v, uint64_t t, uint64_t f) { return (32 + 30 * v + 24 * t) * f; }
+uint64_t objBytes(uint64_t v, uint64_t t, uint64_t f) { return (64 + 40 * v + 26 * t) * f; }
+uint64_t pc2Bytes(uint64_t v, uint64_t, uint64_t f) { return 32 + 12 * v * f; }
+uint64_t mddBytes(uint64_t v, uint64_t, uint64_t f) { return 8 + (4 + 12 * v) * f; }
+// glTF: the faces once, a morph target a frame, and a frame-by-frame weight matrix; the text
+// form holds all of it as base64 (4 characters for 3 bytes).
+uint64_t gltfBytes(uint64_t v, uint64_t t, uint64_t f) { return gltfBinaryBytes(v, t, f) / 3 * 4 + 4096 + 256 * f; }
+
 const std::vector<SequenceFormatSpec> kFormats = {
-    {SequenceFormat::kPly, "ply", ".ply", &kPlyCodec, nullptr, {0, 256, 12, 13}},
-    {SequenceFormat::kOff, "off", ".off", &kOffCodec, nullptr, {0, 32, 30, 24}},
-    {SequenceFormat::kPc2, "pc2", ".pc2", nullptr, &kPc2Codec, {32, 0, 12, 0}},
-    {SequenceFormat::kMdd, "mdd", ".mdd", nullptr, &kMddCodec, {8, 4, 12, 0}},
-    {SequenceFormat::kObj, "obj", ".obj", &kObjCodec, nullptr, {0, 64, 40, 26}},
+    {SequenceFormat::kPly, "ply", ".ply", &kPlyCodec, nullptr, nullptr, plyBytes},
+    {SequenceFormat::kOff, "off", ".off", &kOffCodec, nullptr, nullptr, offBytes},
+    {SequenceFormat::kPc2, "pc2", ".pc2", nullptr, &kPc2Codec, nullptr, pc2Bytes},
+    {SequenceFormat::kMdd, "mdd", ".mdd", nullptr, &kMddCodec, nullptr, mddBytes},
+    {SequenceFormat::kObj, "obj", ".obj", &kObjCodec, nullptr, nullptr, objBytes},
+    {SequenceFormat::kGlb, "glb", ".glb", nullptr, nullptr, &kGlbCodec, glbBytes},
+    {SequenceFormat::kGltf, "gltf", ".gltf", nullptr, nullptr, &kGltfCodec, gltfBytes},
 };
 
 bool endsWith(const std::string& s, const std::string& suffix) {

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // The sequence formats, one row each: what a format is called, the extension its files carry,
-// how one of its files is read and written, and about how many bytes it takes. Everything that
+// how one of its files is read or written, and about how many bytes it takes. Everything that
 // opens or writes a sequence (sequence_io.h, frame_files.h, frame_dir_sink.h, the CLI's
 // --format) asks this table, so a format is added here and in its own reader and writer.
 #pragma once
@@ -15,7 +15,7 @@
 namespace animc {
 
 // The on-disk formats (the values are not stored anywhere; the order is the table's).
-enum class SequenceFormat { kPly, kOff, kPc2, kMdd, kObj };
+enum class SequenceFormat { kPly, kOff, kPc2, kMdd, kObj, kGlb, kGltf };
 
 // One mesh per file: a sequence is a folder, a .txt list or a numbered pattern of them.
 struct FrameFileCodec {
@@ -38,18 +38,21 @@ struct PointCacheCodec {
                                                     int64_t frame_count, double frame_rate);
 };
 
-// About how many bytes a sequence takes: header + frames × (frame + V × vertex + T × triangle).
-struct OutputSize {
-  uint64_t header, frame, vertex, triangle;
+// The whole animation in one file, connectivity included, for viewers (glTF): written only.
+struct AnimatedMeshCodec {
+  Result<std::unique_ptr<FrameSink>> (*create_sink)(const std::string& path, const Topology& topology,
+                                                    int64_t frame_count, double frame_rate);
 };
 
 struct SequenceFormatSpec {
   SequenceFormat format;
   const char* name;       // as --format takes it: "ply"
   const char* extension;  // ".ply" (point caches also take it followed by ".xz")
-  const FrameFileCodec* frame_file;    // exactly one of these two is set
+  const FrameFileCodec* frame_file;  // exactly one of these three is set
   const PointCacheCodec* point_cache;
-  OutputSize size;
+  const AnimatedMeshCodec* animated_mesh;
+  // About how many bytes `frames` frames of the mesh take in this format.
+  uint64_t (*output_bytes)(uint64_t vertices, uint64_t triangles, uint64_t frames);
 };
 
 // Every format, in the order of SequenceFormat.

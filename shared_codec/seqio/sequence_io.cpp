@@ -51,9 +51,10 @@ Status checkSinkArguments(const std::string& path, const SequenceFormatSpec& spe
   if (topology.vertex_count == 0 || topology.vertex_count > kMaxInt32)
     return invalidArgument(path + ": cannot write " + std::to_string(topology.vertex_count) +
                            " vertices");
-  if (spec.format == SequenceFormat::kMdd && !(std::isfinite(frame_rate) && frame_rate > 0))
-    return invalidArgument(path + ": frame rate must be positive for MDD");
-  if (spec.frame_file) return checkTopology(topology).withContext(path);
+  if ((spec.format == SequenceFormat::kMdd || spec.animated_mesh) &&
+      !(std::isfinite(frame_rate) && frame_rate > 0))
+    return invalidArgument(path + ": frame rate must be positive for " + spec.name);
+  if (!spec.point_cache) return checkTopology(topology).withContext(path);
   return Status();
 }
 
@@ -80,10 +81,8 @@ Result<std::unique_ptr<FrameSource>> openSequence(const std::string& path,
 }
 
 uint64_t sequenceOutputBytes(SequenceFormat format, const Topology& topology, int64_t frames) {
-  const OutputSize& size = formatSpec(format).size;
-  const uint64_t n = topology.vertex_count, t = topology.triangles.size(),
-                 f = uint64_t(std::max<int64_t>(frames, 0));
-  return size.header + (size.frame + size.vertex * n + size.triangle * t) * f;
+  return formatSpec(format).output_bytes(topology.vertex_count, topology.triangles.size(),
+                                         uint64_t(std::max<int64_t>(frames, 0)));
 }
 
 Result<std::vector<std::string>> sequenceInputFiles(const std::string& path,
@@ -108,6 +107,7 @@ Result<std::unique_ptr<FrameSink>> createSequenceSink(const std::string& path,
   ANIMC_RETURN_IF_ERROR(checkSinkArguments(path, spec, topology, frame_rate, frame_count));
   if (spec.point_cache)
     return spec.point_cache->create_sink(path, topology.vertex_count, frame_count, frame_rate);
+  if (spec.animated_mesh) return spec.animated_mesh->create_sink(path, topology, frame_count, frame_rate);
   return createFrameDirSink(path, format, topology, frame_count, existing);
 }
 

@@ -85,7 +85,7 @@ fails coordinates "bad/grid3.obj: line 5: vertex 4 has fewer than 3 coordinates"
 mkdir "$TMP/gap" && cp "$TMP/grid/"grid*.obj "$TMP/gap/" && rm "$TMP/gap/grid3.obj"
 fails pattern_gap "frame 3 is missing (the files run from 0 to 29)" \
   "$ANIMC" encode "$TMP/gap/grid%d.obj" -o "$TMP/bad.ams"
-fails format "unknown sequence format 'stl' (expected one of ply, off, pc2, mdd, obj)" \
+fails format "unknown sequence format 'stl' (expected one of ply, off, pc2, mdd, obj, glb, gltf)" \
   "$ANIMC" decode "$TMP/grid_auto.ams" -o "$TMP/x" --format stl
 
 finish_checks obj_sequences_test
