@@ -13,6 +13,7 @@ PACKAGES=(
   clang libclang-rt-dev            # the libFuzzer harnesses (tests/fuzz) of CI's short campaign
   gnuplot-nox                      # bench/rd_plot.py (rate-distortion plot of the benchmarks)
   gltfpack                         # bench/bench_gltf.py (glTF sizes beside a web user's other choice)
+  blender                          # the Blender add-on's tests (blender/io_anim_ams), headless
   meshlab qtbase5-dev libqt5opengl5-dev libglew-dev  # MeshLab 2020.09 and what its headers need
   mesa-common-dev libglu1-mesa-dev
   xvfb xauth                       # meshlabserver and meshlab need an X server, even headless
