@@ -8,7 +8,6 @@ its section of docs/benchmarks.md (or another report) in place.
 
 usage: bench/bench_blender.py [--animc PATH] [--blender PATH] [--python-module DIR] [--out FILE]
                              [-- animc encode flags]"""
-import argparse
 import json
 import os
 import shutil
@@ -19,7 +18,7 @@ import tempfile
 
 import numpy as np
 
-from bench_common import log, num, replace_section, table
+from bench_common import log, num, section_main, table
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 HEADING = '## Playing an .ams in Blender'
@@ -50,6 +49,8 @@ def write_grid(pc2_path, ply_path):
 
 
 def blender_section(animc, blender, python_module, encode_flags):
+    if not blender:
+        sys.exit('no blender (scripts/setup.sh installs it)')
     rows, failures = [], 0
     with tempfile.TemporaryDirectory(prefix='animc_bench_blender_') as work:
         pc2, ply, ams = (os.path.join(work, n) for n in ('grid.pc2', 'grid.ply', 'grid.ams'))
@@ -91,25 +92,16 @@ def blender_section(animc, blender, python_module, encode_flags):
     return lines, failures
 
 
-def main():
-    p = argparse.ArgumentParser(description=__doc__.split('\n')[0])
-    p.add_argument('--animc', default=os.path.join(REPO, 'build', 'animc', 'animc'))
+def add_arguments(p):
     p.add_argument('--blender', default=shutil.which('blender'))
     p.add_argument('--python-module', default=os.path.join(REPO, 'build', 'python'),
                    help='folder of the animcompress Python module (default: build/python)')
-    p.add_argument('--out', default=os.path.join(REPO, 'docs', 'benchmarks.md'))
-    p.add_argument('encode_flags', nargs='*')
-    args = p.parse_args()
-    if not args.blender:
-        p.error('no blender (scripts/setup.sh installs it)')
-    lines, failures = blender_section(os.path.abspath(args.animc), args.blender,
-                                      os.path.abspath(args.python_module), args.encode_flags)
-    command = 'bench/bench_blender.py ' + ' '.join(sys.argv[1:])
-    text = replace_section(args.out, HEADING, lines, command.strip())
-    with open(args.out, 'w') as f:
-        f.write(text)
-    log(f'wrote the section to {args.out} ({failures} failure(s))')
-    sys.exit(1 if failures else 0)
+    p.add_argument('encode_flags', nargs='*', help='animc encode flags (default: none, its defaults)')
+
+
+def main():
+    section_main(__doc__, HEADING, lambda args, sequences: blender_section(
+        args.animc, args.blender, os.path.abspath(args.python_module), args.encode_flags), add_arguments)
 
 
 if __name__ == '__main__':

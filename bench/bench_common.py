@@ -4,6 +4,7 @@
 bench_plugin.py, bench_decode_paths.py, bench_readers.py): finding the sequences, running
 `animc bench --json` and other animc commands that print JSON, log-log interpolation, Markdown
 cells and tables, progress lines, and replacing one section of a report."""
+import argparse
 import datetime
 import json
 import math
@@ -138,3 +139,28 @@ def replace_section(report, heading, lines, command):
         following = text.find('\n## ', start + len(heading))
         end = following + 1 if following >= 0 else len(text)
     return text[:start] + section + text[end:]
+
+
+def section_main(doc, heading, section, add_arguments=None):
+    """The main of a script that, run alone, rewrites its one section of docs/benchmarks.md (or
+    --out): parses --animc, --data, --out and the script's own arguments (add_arguments(parser)),
+    calls section(args, sequences) -> (Markdown lines, failures) with the data folder's
+    sequences as dicts (name, pc2, ply), writes the section stamped with the command, and exits
+    1 when anything failed."""
+    repo = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    p = argparse.ArgumentParser(description=doc.split('\n')[0])
+    p.add_argument('--animc', default=os.path.join(repo, 'build', 'animc', 'animc'))
+    p.add_argument('--data', default=os.path.normpath(os.path.join(repo, '..', 'shared', 'data')))
+    p.add_argument('--out', default=os.path.join(repo, 'docs', 'benchmarks.md'))
+    if add_arguments:
+        add_arguments(p)
+    args = p.parse_args()
+    args.animc = os.path.abspath(args.animc)
+    sequences = [{'name': n, 'pc2': pc2, 'ply': ply} for n, pc2, ply in find_sequences(args.data)]
+    lines, failures = section(args, sequences)
+    command = ' '.join([os.path.relpath(os.path.abspath(sys.argv[0]), repo)] + sys.argv[1:])
+    text = replace_section(args.out, heading, lines, command)
+    with open(args.out, 'w') as f:
+        f.write(text)
+    log(f'wrote the section to {args.out} ({failures} failure(s))')
+    sys.exit(1 if failures else 0)

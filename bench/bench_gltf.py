@@ -7,16 +7,13 @@ puts the returned Markdown lines into docs/benchmarks.md; run alone, this script
 section of docs/benchmarks.md (or another report) in place.
 
 usage: bench/bench_gltf.py [--animc PATH] [--gltfpack PATH] [--data DIR] [--out FILE]"""
-import argparse
 import os
 import shutil
 import subprocess
-import sys
 import tempfile
 
-from bench_common import animc_json, find_sequences, log, num, replace_section, table
+from bench_common import animc_json, log, num, section_main, table
 
-REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 HEADING = '## glTF output'
 ENCODE = ['--target-kg', '0.5']
 
@@ -58,20 +55,8 @@ def gltf_section(animc, gltfpack, sequences):
 
 
 def main():
-    p = argparse.ArgumentParser(description=__doc__.split('\n')[0])
-    p.add_argument('--animc', default=os.path.join(REPO, 'build', 'animc', 'animc'))
-    p.add_argument('--gltfpack', default=shutil.which('gltfpack'))
-    p.add_argument('--data', default=os.path.normpath(os.path.join(REPO, '..', 'shared', 'data')))
-    p.add_argument('--out', default=os.path.join(REPO, 'docs', 'benchmarks.md'))
-    args = p.parse_args()
-    sequences = [{'name': n, 'pc2': pc2, 'ply': ply} for n, pc2, ply in find_sequences(args.data)]
-    lines, failures = gltf_section(os.path.abspath(args.animc), args.gltfpack, sequences)
-    command = 'bench/bench_gltf.py ' + ' '.join(sys.argv[1:])
-    text = replace_section(args.out, HEADING, lines, command.strip())
-    with open(args.out, 'w') as f:
-        f.write(text)
-    log(f'wrote the section to {args.out} ({failures} failure(s))')
-    sys.exit(1 if failures else 0)
+    section_main(__doc__, HEADING, lambda args, sequences: gltf_section(args.animc, args.gltfpack, sequences),
+                 lambda p: p.add_argument('--gltfpack', default=shutil.which('gltfpack')))
 
 
 if __name__ == '__main__':

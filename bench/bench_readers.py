@@ -7,15 +7,12 @@ files in the page cache). bench.py puts the returned Markdown lines into docs/be
 run alone, this script replaces that section of docs/benchmarks.md (or another report) in place.
 
 usage: bench/bench_readers.py [--animc PATH] [--data DIR] [--runs R] [--out FILE]"""
-import argparse
 import os
 import subprocess
-import sys
 import tempfile
 
-from bench_common import animc_json, find_sequences, log, num, replace_section, table
+from bench_common import animc_json, log, num, section_main, table
 
-REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 HEADING = '## Reading the sequence formats'
 
 # (format, output name, whether it needs --mesh): every format `animc decode --format` writes.
@@ -59,20 +56,8 @@ def readers_section(animc, sequences, runs):
 
 
 def main():
-    p = argparse.ArgumentParser(description=__doc__.split('\n')[0])
-    p.add_argument('--animc', default=os.path.join(REPO, 'build', 'animc', 'animc'))
-    p.add_argument('--data', default=os.path.normpath(os.path.join(REPO, '..', 'shared', 'data')))
-    p.add_argument('--runs', type=int, default=5)
-    p.add_argument('--out', default=os.path.join(REPO, 'docs', 'benchmarks.md'))
-    args = p.parse_args()
-    sequences = [{'name': n, 'pc2': pc2, 'ply': ply} for n, pc2, ply in find_sequences(args.data)]
-    lines, failures = readers_section(os.path.abspath(args.animc), sequences, args.runs)
-    command = 'bench/bench_readers.py ' + ' '.join(sys.argv[1:])
-    text = replace_section(args.out, HEADING, lines, command.strip())
-    with open(args.out, 'w') as f:
-        f.write(text)
-    log(f'wrote the section to {args.out} ({failures} failure(s))')
-    sys.exit(1 if failures else 0)
+    section_main(__doc__, HEADING, lambda args, sequences: readers_section(args.animc, sequences, args.runs),
+                 lambda p: p.add_argument('--runs', type=int, default=5))
 
 
 if __name__ == '__main__':

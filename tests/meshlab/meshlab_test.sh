@@ -5,7 +5,7 @@
 # or, for MeshLab 2022+ (API 2022), in mlxrun (scripts/mlxrun.sh), which takes the same flags.
 # usage: meshlab_test.sh CASE ANIMC_BINARY SOURCE_DIR STAGE_DIR [API]
 #   CASE: dump | scripts | filter_roundtrip | io_roundtrip | wavelet | trajectory | bad_layers |
-#         bad_ams
+#         bad_ams | obj_frames (MeshLab 2022+ only)
 #   API:  2020 (default) | 2022
 set -euo pipefail
 
@@ -147,6 +147,26 @@ case_io_roundtrip() {
   out=$("$ANIMC" compare frames.txt saved.ams --json) || die "animc compare of saved.ams failed"
   "$PY" -c 'import json,sys; d=json.loads(sys.argv[1]); sys.exit(0 if d["frames"]==int(sys.argv[2]) and 0 < d["max_error_rel_cube"] <= 0.01 else 1)' "$out" "$N" ||
     check_failed "io_save: saved.ams is not the $N frames within 1 %: $out"
+}
+
+case_obj_frames() {
+  # OBJ frames from animc decode --format obj open in MeshLab as the same meshes (MeshLab 2022+;
+  # Debian's 2020.09 aborts on any OBJ import), and MeshLab's OBJ export reads back in animc.
+  "$ANIMC" encode "$SRC/samples/sydney/sydney_50.pc2.xz" --mesh "$SRC/samples/sydney/sydney_md2.ply" -o cli.ams >/dev/null
+  "$ANIMC" decode cli.ams -o objs --format obj --frames 0:"$N" >/dev/null
+  local inputs=() f
+  for f in objs/frame_*.obj; do inputs+=(-i "$TMP/$f"); done
+  layer_exports 0 "$N" opened
+  server obj_open "${inputs[@]}" "${EXPORTS[@]}"
+  expect_ok obj_open
+  out=$("$ANIMC" compare opened.txt objs --mesh objs/frame_00000.obj --json) || die "animc compare of MeshLab's PLY export failed"
+  "$PY" -c 'import json,sys; d=json.loads(sys.argv[1]); sys.exit(0 if d["frames"]==int(sys.argv[2]) and d["max_error"]==0 else 1)' "$out" "$N" ||
+    check_failed "obj_open: MeshLab's layers are not the OBJ frames: $out"
+  server obj_save -i "$TMP/objs/frame_00003.obj" -o "$TMP/meshlab.obj"
+  expect_ok obj_save
+  out=$("$ANIMC" compare meshlab.obj objs/frame_00003.obj --json) || die "animc cannot read MeshLab's OBJ"
+  "$PY" -c 'import json,sys; d=json.loads(sys.argv[1]); sys.exit(0 if d["frames"]==1 and d["max_error"] < 1e-5 else 1)' "$out" ||
+    check_failed "obj_save: MeshLab's OBJ is not frame 3: $out"
 }
 
 # filter_matches_animc NAME LOG SCRIPT_ARG... -- ANIMC_ARG...: compress_error.mlx with the
