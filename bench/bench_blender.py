@@ -80,7 +80,7 @@ def blender_section(animc, blender, python_module, encode_flags):
         ams_bytes = os.path.getsize(ams)
     lines = [HEADING, '',
              f'bench/bench_blender.py: a {SIDE} × {SIDE} grid ({SIDE * SIDE} vertices) waving over {FRAMES} frames, '
-             f'`animc encode IN.pc2 --mesh M.ply -o X.ams {" ".join(encode_flags)}` ({ams_bytes} bytes), played in '
+             f'`animc encode IN.pc2 --mesh M.ply -o X.ams{"".join(" " + f for f in encode_flags)}` ({ams_bytes} bytes), played in '
              'headless Blender (Debian\'s 3.4) by bench/blender_playback.py: `cache` is the add-on\'s import '
              '(a Mesh Cache modifier over a PC2 decoded once beside the file, 12 bytes a vertex a frame on '
              'disk), `keys` one shape key per frame, `handler` a frame-change handler decoding each frame. '

@@ -40,13 +40,13 @@ uint64_t mddBytes(uint64_t v, uint64_t, uint64_t f) { return 8 + (4 + 12 * v) * 
 uint64_t gltfBytes(uint64_t v, uint64_t t, uint64_t f) { return gltfBinaryBytes(v, t, f) / 3 * 4 + 4096 + 256 * f; }
 
 const std::vector<SequenceFormatSpec> kFormats = {
-    {SequenceFormat::kPly, "ply", ".ply", &kPlyCodec, nullptr, nullptr, plyBytes},
-    {SequenceFormat::kOff, "off", ".off", &kOffCodec, nullptr, nullptr, offBytes},
-    {SequenceFormat::kPc2, "pc2", ".pc2", nullptr, &kPc2Codec, nullptr, pc2Bytes},
-    {SequenceFormat::kMdd, "mdd", ".mdd", nullptr, &kMddCodec, nullptr, mddBytes},
-    {SequenceFormat::kObj, "obj", ".obj", &kObjCodec, nullptr, nullptr, objBytes},
-    {SequenceFormat::kGlb, "glb", ".glb", nullptr, nullptr, &kGlbCodec, glbBytes},
-    {SequenceFormat::kGltf, "gltf", ".gltf", nullptr, nullptr, &kGltfCodec, gltfBytes},
+    {SequenceFormat::kPly, "ply", ".ply", &kPlyCodec, nullptr, nullptr, false, plyBytes},
+    {SequenceFormat::kOff, "off", ".off", &kOffCodec, nullptr, nullptr, false, offBytes},
+    {SequenceFormat::kPc2, "pc2", ".pc2", nullptr, &kPc2Codec, nullptr, false, pc2Bytes},
+    {SequenceFormat::kMdd, "mdd", ".mdd", nullptr, &kMddCodec, nullptr, true, mddBytes},
+    {SequenceFormat::kObj, "obj", ".obj", &kObjCodec, nullptr, nullptr, false, objBytes},
+    {SequenceFormat::kGlb, "glb", ".glb", nullptr, nullptr, &kGlbCodec, true, glbBytes},
+    {SequenceFormat::kGltf, "gltf", ".gltf", nullptr, nullptr, &kGltfCodec, true, gltfBytes},
 };
 
 bool endsWith(const std::string& s, const std::string& suffix) {

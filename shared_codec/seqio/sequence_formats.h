@@ -51,6 +51,7 @@ struct SequenceFormatSpec {
   const FrameFileCodec* frame_file;  // exactly one of these three is set
   const PointCacheCodec* point_cache;
   const AnimatedMeshCodec* animated_mesh;
+  bool stores_frame_rate;  // a writer then needs a positive, finite rate
   // About how many bytes `frames` frames of the mesh take in this format.
   uint64_t (*output_bytes)(uint64_t vertices, uint64_t triangles, uint64_t frames);
 };

@@ -51,8 +51,7 @@ Status checkSinkArguments(const std::string& path, const SequenceFormatSpec& spe
   if (topology.vertex_count == 0 || topology.vertex_count > kMaxInt32)
     return invalidArgument(path + ": cannot write " + std::to_string(topology.vertex_count) +
                            " vertices");
-  if ((spec.format == SequenceFormat::kMdd || spec.animated_mesh) &&
-      !(std::isfinite(frame_rate) && frame_rate > 0))
+  if (spec.stores_frame_rate && !(std::isfinite(frame_rate) && frame_rate > 0))
     return invalidArgument(path + ": frame rate must be positive for " + spec.name);
   if (!spec.point_cache) return checkTopology(topology).withContext(path);
   return Status();
