@@ -62,16 +62,17 @@ std::function<std::string(size_t)> triangleOrigin(const std::string& path) {
   };
 }
 
-// The frame's mesh; `reference` (may be null) is the topology it must have, `reference_name`
-// names that in messages.
-Result<Mesh> readFrame(const FrameFile& frame, const Topology* reference,
+// Frame `index`'s mesh; `reference` (may be null) is the topology it must have,
+// `reference_name` names that in messages, which name the file and the frame.
+Result<Mesh> readFrame(const FrameFile& frame, size_t index, const Topology* reference,
                        const std::string& reference_name) {
   Result<Mesh> mesh = readMesh(frame.path);
   if (!mesh.ok()) return withListing(mesh.status(), frame);
   if (reference) {
     Status same = checkSameTopology(mesh.value().topology, *reference, reference_name,
                                     triangleOrigin(frame.path));
-    if (!same.ok()) return withListing(same.withContext(frame.path), frame);
+    if (!same.ok())
+      return withListing(same.withContext(frame.path + " (frame " + std::to_string(index) + ")"), frame);
   }
   return mesh;
 }
@@ -136,7 +137,7 @@ class FrameFileSource : public FrameSource {
       xyz.swap(first_positions_);
       std::vector<float>().swap(first_positions_);
     } else {
-      ANIMC_ASSIGN_OR_RETURN(Mesh mesh, readFrame(frames_[next_], &topology_, "frame 0"));
+      ANIMC_ASSIGN_OR_RETURN(Mesh mesh, readFrame(frames_[next_], next_, &topology_, "frame 0"));
       xyz.swap(mesh.positions);
     }
     ++next_;
@@ -244,7 +245,7 @@ Result<std::unique_ptr<FrameSource>> openFrameFiles(std::vector<FrameFile> frame
                                                     const Topology* reference,
                                                     const std::string& reference_name) {
   if (frames.empty()) return badInput("no frames to read");
-  ANIMC_ASSIGN_OR_RETURN(Mesh first, readFrame(frames[0], reference, "the mesh " + reference_name));
+  ANIMC_ASSIGN_OR_RETURN(Mesh first, readFrame(frames[0], 0, reference, "the mesh " + reference_name));
   return std::unique_ptr<FrameSource>(new FrameFileSource(std::move(frames), std::move(first)));
 }
 

@@ -75,7 +75,7 @@ cp -r "$TMP/grid" "$TMP/bad"
 sed -i 's/^f 22 43 44 23$/f 22 44 43 23/' "$TMP/bad/grid7.obj"
 line=$(grep -n '^f 22 44 43 23$' "$TMP/bad/grid7.obj" | cut -d: -f1)
 [[ -n $line ]] || die "the changed face is not in grid7.obj"
-fails faces "bad/grid7.obj: face list differs from frame 0 (first at the face on line $line)" \
+fails faces "bad/grid7.obj (frame 7): face list differs from frame 0 (first at the face on line $line)" \
   "$ANIMC" encode "$TMP/bad" -o "$TMP/bad.ams"
 cp "$TMP/grid/grid7.obj" "$TMP/bad/grid7.obj"
 sed -i '5s/.*/v 1 2/' "$TMP/bad/grid3.obj"

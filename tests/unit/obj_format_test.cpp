@@ -111,11 +111,11 @@ TEST_F(ObjSequenceTest, FramesWithOtherFacesNameTheFileAndFaceLine) {
   other.replace(other.find("f -5//-1 -2/-3 5"), 16, "f -5//-1 -3/-3 5");
   writeFile("walk/2.obj", other);
   EXPECT_NE(sequenceError(path("walk"))
-                .find("walk/2.obj: face list differs from frame 0 (first at the face on line 20)"),
+                .find("walk/2.obj (frame 2): face list differs from frame 0 (first at the face on line 20)"),
             std::string::npos)
       << sequenceError(path("walk"));
   writeFile("walk/2.obj", std::string(kExported) + "\nv 1 1 1\n");
-  EXPECT_NE(sequenceError(path("walk")).find("walk/2.obj: vertex count 6 differs from frame 0 (5)"),
+  EXPECT_NE(sequenceError(path("walk")).find("walk/2.obj (frame 2): vertex count 6 differs from frame 0 (5)"),
             std::string::npos);
   writeFile("walk/2.obj", "v 0 0 0\nf 1 1 1 1\nv 1 1 1\nf 1 2 9\n");
   EXPECT_NE(sequenceError(path("walk")).find("walk/2.obj: line 4: vertex index 9 out of range"),

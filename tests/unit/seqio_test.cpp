@@ -392,11 +392,11 @@ TEST_F(SeqioTest, FramesMustShareConnectivity) {
   writeFile("walk/0002.ply",
             replaced(replaced(kTrianglePly, "vertex 3", "vertex 4"), "0 1 0\n", "0 1 0\n0 0 1\n"));
   EXPECT_NE(sequenceError(path("walk"), "")
-                .find("walk/0002.ply: vertex count 4 differs from frame 0 (3)"),
+                .find("walk/0002.ply (frame 2): vertex count 4 differs from frame 0 (3)"),
             std::string::npos)
       << sequenceError(path("walk"), "");
   writeFile("walk/0002.ply", replaced(kTrianglePly, "3 0 1 2", "3 0 2 1"));
-  EXPECT_NE(sequenceError(path("walk"), "").find("0002.ply: face list differs from frame 0"),
+  EXPECT_NE(sequenceError(path("walk"), "").find("0002.ply (frame 2): face list differs from frame 0"),
             std::string::npos);
   writeFile("walk/0002.ply", replaced(kTrianglePly, "0 1 0\n", "0 inf 0\n"));
   EXPECT_NE(sequenceError(path("walk"), "").find("0002.ply: vertex 2 has a non-finite"),
@@ -426,7 +426,7 @@ TEST_F(SeqioTest, FrameListErrorsNameTheListAndLine) {
        list + " line 4: " + path("walk/bad.ply") + ": vertex 2 has a non-finite"},
       {"walk/good.ply\nwalk/missing.ply\n", list + " line 2: " + path("walk/missing.ply") + ": "},
       {"walk/good.ply\n  walk/other.ply\r\n",
-       list + " line 2: " + path("walk/other.ply") + ": face list differs from frame 0"},
+       list + " line 2: " + path("walk/other.ply") + " (frame 1): face list differs from frame 0"},
       {"\n\nwalk/bad.ply\nwalk/good.ply\n",  // frame 0, read when the list is opened
        list + " line 3: " + path("walk/bad.ply") + ": vertex 2 has a non-finite"},
   };
@@ -438,7 +438,7 @@ TEST_F(SeqioTest, FrameListErrorsNameTheListAndLine) {
   // With --mesh, a frame 0 whose faces differ from the mesh's is named by its line too.
   writeFile("list.txt", "walk/other.ply\n");
   EXPECT_EQ(sequenceError(list, path("walk/good.ply"))
-                .find(list + " line 1: " + path("walk/other.ply") + ": face list differs from the mesh"),
+                .find(list + " line 1: " + path("walk/other.ply") + " (frame 0): face list differs from the mesh"),
             0u)
       << sequenceError(list, path("walk/good.ply"));
 }
