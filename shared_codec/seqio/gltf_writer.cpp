@@ -20,6 +20,9 @@ constexpr uint32_t kJsonChunk = 0x4E4F534A;  // "JSON"
 constexpr uint32_t kBinChunk = 0x004E4942;   // "BIN\0"
 constexpr uint64_t kGlbHeaderBytes = 12, kChunkHeaderBytes = 8;
 constexpr size_t kReservedNumberChars = 24;  // "-1.1754943508222875e-38" and a spare
+// A morph target a frame and an F x F weight matrix: past this, no viewer would play the file,
+// and the matrix alone would take 16 GiB.
+constexpr uint64_t kMaxFrames = 65536;
 
 // Where each part sits in the BIN buffer: indices, frame 0, one target a frame, times, weights.
 struct Layout {
@@ -265,6 +268,9 @@ class GltfSink : public FrameSink {
 
 Result<std::unique_ptr<FrameSink>> createSink(const std::string& path, const Topology& topology,
                                               int64_t frame_count, double frame_rate, bool binary) {
+  if (uint64_t(frame_count) > kMaxFrames)
+    return invalidArgument(path + ": glTF output holds a morph target per frame, at most " + decimal(kMaxFrames) +
+                           " (decode a range with --frames)");
   try {
     auto sink = std::make_unique<GltfSink>(path, topology, frame_count, frame_rate, binary);
     ANIMC_RETURN_IF_ERROR(sink->open(topology));
@@ -287,12 +293,14 @@ Result<std::unique_ptr<FrameSink>> createGltfSink(const std::string& path, const
 }
 
 uint64_t gltfBinaryBytes(uint64_t vertices, uint64_t triangles, uint64_t frames) {
+  if (frames > kMaxFrames) return kGltfTooLarge;  // F^2 would overflow long before the counts do
   return Layout{vertices, triangles, frames}.total();
 }
 
 uint64_t glbBytes(uint64_t vertices, uint64_t triangles, uint64_t frames) {
+  const uint64_t binary = gltfBinaryBytes(vertices, triangles, frames);
   // The JSON: about 2 * 3 * 24 characters of bounds and 100 of accessor a frame, and a name.
-  return 4096 + 280 * frames + gltfBinaryBytes(vertices, triangles, frames);
+  return binary == kGltfTooLarge ? binary : 4096 + 280 * frames + binary;
 }
 
 }  // namespace animc

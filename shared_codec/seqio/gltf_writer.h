@@ -23,6 +23,10 @@ Result<std::unique_ptr<FrameSink>> createGlbSink(const std::string& path, const 
 Result<std::unique_ptr<FrameSink>> createGltfSink(const std::string& path, const Topology& topology,
                                                   int64_t frame_count, double frame_rate);
 
+// What the sizes below give for more frames than a glTF output takes (65 536): more than any
+// output limit.
+constexpr uint64_t kGltfTooLarge = ~uint64_t(0);
+
 // The BIN buffer's bytes: indices, positions, targets, times and weights.
 uint64_t gltfBinaryBytes(uint64_t vertices, uint64_t triangles, uint64_t frames);
 // About how many bytes a .glb of these counts takes (an upper bound of its JSON included).

@@ -37,7 +37,10 @@ uint64_t pc2Bytes(uint64_t v, uint64_t, uint64_t f) { return 32 + 12 * v * f; }
 uint64_t mddBytes(uint64_t v, uint64_t, uint64_t f) { return 8 + (4 + 12 * v) * f; }
 // glTF: the faces once, a morph target a frame, and a frame-by-frame weight matrix; the text
 // form holds all of it as base64 (4 characters for 3 bytes).
-uint64_t gltfBytes(uint64_t v, uint64_t t, uint64_t f) { return gltfBinaryBytes(v, t, f) / 3 * 4 + 4096 + 256 * f; }
+uint64_t gltfBytes(uint64_t v, uint64_t t, uint64_t f) {
+  const uint64_t binary = gltfBinaryBytes(v, t, f);
+  return binary == kGltfTooLarge ? binary : binary / 3 * 4 + 4096 + 256 * f;
+}
 
 const std::vector<SequenceFormatSpec> kFormats = {
     {SequenceFormat::kPly, "ply", ".ply", &kPlyCodec, nullptr, nullptr, false, plyBytes},

@@ -686,6 +686,15 @@ TEST_F(SeqioTest, SinkArgumentsAndFormatNames) {
                 .find("frame rate must be positive for glb"),
             std::string::npos);
   EXPECT_EQ(fileCount(), 0u);
+  // A glTF output holds a morph target and a row of weights per frame: at most 65 536 frames,
+  // and its size, which grows with F^2, is "too large" for more rather than a wrapped number.
+  EXPECT_NE(errorOf(createSequenceSink(path("d.glb"), SequenceFormat::kGlb, smallTopology(), 25, 65537))
+                .find("at most 65536"),
+            std::string::npos);
+  for (SequenceFormat format : {SequenceFormat::kGlb, SequenceFormat::kGltf}) {
+    EXPECT_EQ(sequenceOutputBytes(format, smallTopology(), int64_t(1) << 31), ~uint64_t(0));
+    EXPECT_GT(sequenceOutputBytes(format, smallTopology(), 65536), uint64_t(4) * 65536 * 65536);
+  }
   // A glTF sink takes exactly the frames it announced, and leaves nothing when not finished.
   Frames frames = makeFrames(smallTopology().vertex_count, 3);
   for (SequenceFormat format : {SequenceFormat::kGlb, SequenceFormat::kGltf}) {
