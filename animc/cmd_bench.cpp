@@ -156,8 +156,9 @@ int runBench(const std::vector<std::string>& argv) {
   Status s = args.parse(argv, options, switches);
   if (!s.ok()) return fail(s);
   if (args.positional().size() != 1)
-    return fail(invalidArgument("usage: animc bench IN [--mesh M] [options] [--runs R] | animc bench IN [--mesh M] "
-                                "--read-only [--runs R] | animc bench IN.ams [--runs R] [--backwards]"));
+    return fail(
+        invalidArgument("usage: animc bench IN [--mesh M] [options] [--runs R] | animc bench IN [--mesh M] "
+                        "--read-only [--runs R] | animc bench IN.ams [--runs R] [--backwards]"));
   auto runs = args.integer("runs", 5);
   if (!runs.ok() || runs.value() < 1 || runs.value() > 1000) return fail(invalidArgument("--runs must be in [1, 1000]"));
   if (isAmsPath(args.positional()[0])) {

@@ -47,7 +47,8 @@ int runDecode(const std::vector<std::string>& argv) {
                          {"progress", "replace"});
   if (!s.ok()) return fail(s);
   if (args.positional().size() != 1 || !args.has("output"))
-    return fail(invalidArgument("usage: animc decode IN.ams -o OUT [--format " + formatNames("|") + "] [--frames A:B] "
+    return fail(invalidArgument("usage: animc decode IN.ams -o OUT [--format " + formatNames("|") +
+                                "] [--frames A:B] "
                                 "[--bitplanes K] [--max-bytes N] [--replace] [--max-vertex-frames V] "
                                 "[--max-output-bytes B]"));
   const std::string out = args.get("output");

@@ -4,38 +4,45 @@
 #include <string>
 #include <vector>
 
-#include "cli.h"
 #include "animc/animc.h"
+#include "cli.h"
 #include "seqio/sequence_formats.h"
 
 namespace {
 
 std::string usageAfterEncode() {
   return "         [--progress] [--json]\n"
-    "  decode IN.ams -o OUT [--format " + animc::formatNames("|") + "] [--frames A:B] [--progress]\n"
-    "         [--replace]\n"
-    "         [--bitplanes K] [--max-bytes N]: progressive, fewer bitplanes/bytes per frame\n"
-    "         (wavelet files encoded with --progressive-p-frames or --i-frames-only)\n"
-    "         frame files (" + animc::frameFileExtensionList() + ") go to a new or empty folder OUT,\n"
-    "         or --replace an existing one\n"
-    "         [--max-vertex-frames V] [--max-output-bytes B]: refuse more decoding work or\n"
-    "         output than that (defaults 2^32 vertex-frames, 2^34 bytes; 0 bytes = no limit)\n"
-    "  info IN.ams [--json]: header, index and first group only\n"
-    "  test IN.ams [--json] [--max-vertex-frames V]: checks every section's CRC and decodes\n"
-    "         every frame, writes nothing\n"
-    "  compare ORIGINAL RECONSTRUCTED|IN.ams [--mesh M] [--json] [--per-frame]\n"
-    "  bench IN [--mesh M] [encode options] [--runs R] [--json]\n"
-    "  bench IN [--mesh M] --read-only [--runs R] [--json]: reading the sequence only\n"
-    "  bench IN.ams [--runs R] [--json]: decoding only, of that file\n"
-    "IN: .pc2/.mdd (optionally .xz, with --mesh), a " + animc::frameFileExtensionList() + " frame, a folder of\n"
-    "them, a numbered pattern (frame_%04d.obj) or a .txt list of frame files.\n";
+         "  decode IN.ams -o OUT [--format " +
+         animc::formatNames("|") +
+         "] [--frames A:B] [--progress]\n"
+         "         [--replace]\n"
+         "         [--bitplanes K] [--max-bytes N]: progressive, fewer bitplanes/bytes per frame\n"
+         "         (wavelet files encoded with --progressive-p-frames or --i-frames-only)\n"
+         "         frame files (" +
+         animc::frameFileExtensionList() +
+         ") go to a new or empty folder OUT,\n"
+         "         or --replace an existing one\n"
+         "         [--max-vertex-frames V] [--max-output-bytes B]: refuse more decoding work or\n"
+         "         output than that (defaults 2^32 vertex-frames, 2^34 bytes; 0 bytes = no limit)\n"
+         "  info IN.ams [--json]: header, index and first group only\n"
+         "  test IN.ams [--json] [--max-vertex-frames V]: checks every section's CRC and decodes\n"
+         "         every frame, writes nothing\n"
+         "  compare ORIGINAL RECONSTRUCTED|IN.ams [--mesh M] [--json] [--per-frame]\n"
+         "  bench IN [--mesh M] [encode options] [--runs R] [--json]\n"
+         "  bench IN [--mesh M] --read-only [--runs R] [--json]: reading the sequence only\n"
+         "  bench IN.ams [--runs R] [--json]: decoding only, of that file\n"
+         "IN: .pc2/.mdd (optionally .xz, with --mesh), a " +
+         animc::frameFileExtensionList() +
+         " frame, a folder of\n"
+         "them, a numbered pattern (frame_%04d.obj) or a .txt list of frame files.\n";
 }
 
 std::string usage() {
   std::string codecs;
   for (const animc::CodecEntry* codec : animc::allCodecs()) codecs += (codecs.empty() ? "" : "|") + std::string(codec->name);
   return "usage: animc <command> ...   (animc --version prints the release)\n"
-         "  encode IN -o OUT.ams [--mesh M] [--codec " + codecs + "] [--iframe-interval K]\n" +
+         "  encode IN -o OUT.ams [--mesh M] [--codec " +
+         codecs + "] [--iframe-interval K]\n" +
          "         (the codec is auto by default, affine-octree when --profile, --bits or\n"
          "         --max-depth is given)\n" +
          animc::cli::codecUsage() + usageAfterEncode();

@@ -139,8 +139,7 @@ class FrameDirSink : public FrameSink {
 
 std::string frameFileName(int64_t index, SequenceFormat format) {
   char name[48];
-  std::snprintf(name, sizeof(name), "frame_%05lld%s", static_cast<long long>(index),
-                formatSpec(format).extension);
+  std::snprintf(name, sizeof(name), "frame_%05lld%s", static_cast<long long>(index), formatSpec(format).extension);
   return name;
 }
 

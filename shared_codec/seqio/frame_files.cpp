@@ -69,10 +69,8 @@ Result<Mesh> readFrame(const FrameFile& frame, size_t index, const Topology* ref
   Result<Mesh> mesh = readMesh(frame.path);
   if (!mesh.ok()) return withListing(mesh.status(), frame);
   if (reference) {
-    Status same = checkSameTopology(mesh.value().topology, *reference, reference_name,
-                                    triangleOrigin(frame.path));
-    if (!same.ok())
-      return withListing(same.withContext(frame.path + " (frame " + std::to_string(index) + ")"), frame);
+    Status same = checkSameTopology(mesh.value().topology, *reference, reference_name, triangleOrigin(frame.path));
+    if (!same.ok()) return withListing(same.withContext(frame.path + " (frame " + std::to_string(index) + ")"), frame);
   }
   return mesh;
 }
@@ -116,7 +114,6 @@ long long patternNumber(const FramePattern& pattern, const std::string& name) {
   if (!padded && (digits.size() < pattern.width || digits[0] == '0')) return -1;
   return std::stoll(digits);
 }
-
 
 class FrameFileSource : public FrameSource {
  public:
@@ -212,8 +209,8 @@ Result<std::vector<std::string>> listNumberedFrames(const std::string& pattern) 
   for (size_t i = 0; i < numbered.size(); ++i) {
     if (numbered[i].first != numbered[0].first + (long long)i)
       return badInput(pattern + ": frame " + std::to_string(numbered[0].first + (long long)i) +
-                      " is missing (the files run from " + std::to_string(numbered[0].first) +
-                      " to " + std::to_string(numbered.back().first) + ")");
+                      " is missing (the files run from " + std::to_string(numbered[0].first) + " to " +
+                      std::to_string(numbered.back().first) + ")");
     paths.push_back(std::move(numbered[i].second));
   }
   return paths;
@@ -232,8 +229,8 @@ Result<std::vector<FrameFile>> readFrameList(const std::string& list_path) {
     ++line_number;
     if (entry.empty() || entry[0] == '#') continue;
     if (!isFrameFile(entry))
-      return badInput(list_path + " line " + std::to_string(line_number) + ": '" + entry +
-                      "' is not a " + frameFileExtensionList() + " file");
+      return badInput(list_path + " line " + std::to_string(line_number) + ": '" + entry + "' is not a " +
+                      frameFileExtensionList() + " file");
     // An absolute entry replaces base.
     frames.push_back({(base / entry).string(), list_path + " line " + std::to_string(line_number)});
   }

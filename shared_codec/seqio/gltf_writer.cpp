@@ -70,14 +70,14 @@ void appendVec3(std::string& out, const char* key, const float* v, bool reserve)
 
 std::string decimal(uint64_t value) { return std::to_string(value); }
 
-void appendAccessors(std::string& out, const Layout& layout, const std::vector<Bounds>& bounds,
-                     float last_time, bool reserve) {
+void appendAccessors(std::string& out, const Layout& layout, const std::vector<Bounds>& bounds, float last_time,
+                     bool reserve) {
   out += "\"accessors\":[{\"bufferView\":0,\"componentType\":5125,\"count\":" + decimal(3 * layout.triangles) +
          ",\"type\":\"SCALAR\"}";
   for (uint64_t k = 0; k <= layout.frames; ++k) {  // frame 0, then the targets
     const uint64_t offset = k == 0 ? 0 : layout.target(k - 1) - layout.positions();
-    out += ",{\"bufferView\":1,\"byteOffset\":" + decimal(offset) + ",\"componentType\":5126,\"count\":" +
-           decimal(layout.vertices) + ",\"type\":\"VEC3\"";
+    out += ",{\"bufferView\":1,\"byteOffset\":" + decimal(offset) +
+           ",\"componentType\":5126,\"count\":" + decimal(layout.vertices) + ",\"type\":\"VEC3\"";
     appendVec3(out, "min", bounds[k].min, reserve);
     appendVec3(out, "max", bounds[k].max, reserve);
     out += '}';
@@ -91,12 +91,12 @@ void appendAccessors(std::string& out, const Layout& layout, const std::vector<B
 
 // Everything but the buffer: the scene, the mesh and its targets, the animation, the views
 // and the accessors, as members of the top-level object (no braces).
-std::string documentBody(const Layout& layout, const std::vector<Bounds>& bounds, float last_time,
-                         bool reserve) {
+std::string documentBody(const Layout& layout, const std::vector<Bounds>& bounds, float last_time, bool reserve) {
   const uint64_t f = layout.frames;
-  std::string out = "\"asset\":{\"version\":\"2.0\",\"generator\":\"animcompress " ANIMC_VERSION_STRING
-                    "\"},\"scene\":0,\"scenes\":[{\"nodes\":[0]}],\"nodes\":[{\"mesh\":0,\"name\":\"animation\"}],"
-                    "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":1},\"indices\":0,\"mode\":4,\"targets\":[";
+  std::string out =
+      "\"asset\":{\"version\":\"2.0\",\"generator\":\"animcompress " ANIMC_VERSION_STRING
+      "\"},\"scene\":0,\"scenes\":[{\"nodes\":[0]}],\"nodes\":[{\"mesh\":0,\"name\":\"animation\"}],"
+      "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":1},\"indices\":0,\"mode\":4,\"targets\":[";
   for (uint64_t k = 0; k < f; ++k) out += (k ? ",{\"POSITION\":" : "{\"POSITION\":") + decimal(2 + k) + "}";
   out += "]}],\"extras\":{\"targetNames\":[";
   char name[32];
@@ -104,8 +104,9 @@ std::string documentBody(const Layout& layout, const std::vector<Bounds>& bounds
     std::snprintf(name, sizeof(name), "%s\"frame_%05llu\"", k ? "," : "", static_cast<unsigned long long>(k));
     out += name;
   }
-  out += "]}}],\"animations\":[{\"name\":\"frames\",\"samplers\":[{\"input\":" + decimal(2 + f) + ",\"output\":" +
-         decimal(3 + f) + ",\"interpolation\":\"STEP\"}],\"channels\":[{\"sampler\":0,\"target\":{\"node\":0," +
+  out += "]}}],\"animations\":[{\"name\":\"frames\",\"samplers\":[{\"input\":" + decimal(2 + f) +
+         ",\"output\":" + decimal(3 + f) +
+         ",\"interpolation\":\"STEP\"}],\"channels\":[{\"sampler\":0,\"target\":{\"node\":0," +
          "\"path\":\"weights\"}}]}],\"bufferViews\":[{\"buffer\":0,\"byteLength\":" + decimal(layout.positions()) +
          ",\"target\":34963},{\"buffer\":0,\"byteOffset\":" + decimal(layout.positions()) +
          ",\"byteLength\":" + decimal(layout.times() - layout.positions()) +
@@ -154,12 +155,8 @@ class Base64Writer {
 class GltfSink : public FrameSink {
  public:
   GltfSink(std::string path, const Topology& topology, int64_t frame_count, double frame_rate, bool binary)
-      : path_(std::move(path)),
-        layout_{topology.vertex_count, topology.triangles.size(), uint64_t(frame_count)},
-        frame_rate_(frame_rate),
-        binary_(binary),
-        bounds_(size_t(frame_count) + 1),
-        base64_(file_) {}
+      : path_(std::move(path)), layout_{topology.vertex_count, topology.triangles.size(), uint64_t(frame_count)},
+        frame_rate_(frame_rate), binary_(binary), bounds_(size_t(frame_count) + 1), base64_(file_) {}
 
   Status open(const Topology& topology) {
     ANIMC_RETURN_IF_ERROR(file_.open(path_));
@@ -266,8 +263,8 @@ class GltfSink : public FrameSink {
   std::vector<uint8_t> bytes_;
 };
 
-Result<std::unique_ptr<FrameSink>> createSink(const std::string& path, const Topology& topology,
-                                              int64_t frame_count, double frame_rate, bool binary) {
+Result<std::unique_ptr<FrameSink>> createSink(const std::string& path, const Topology& topology, int64_t frame_count,
+                                              double frame_rate, bool binary) {
   if (uint64_t(frame_count) > kMaxFrames)
     return invalidArgument(path + ": glTF output holds a morph target per frame, at most " + decimal(kMaxFrames) +
                            " (decode a range with --frames)");
@@ -282,8 +279,8 @@ Result<std::unique_ptr<FrameSink>> createSink(const std::string& path, const Top
 
 }  // namespace
 
-Result<std::unique_ptr<FrameSink>> createGlbSink(const std::string& path, const Topology& topology,
-                                                 int64_t frame_count, double frame_rate) {
+Result<std::unique_ptr<FrameSink>> createGlbSink(const std::string& path, const Topology& topology, int64_t frame_count,
+                                                 double frame_rate) {
   return createSink(path, topology, frame_count, frame_rate, /*binary=*/true);
 }
 

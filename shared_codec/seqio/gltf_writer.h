@@ -18,8 +18,8 @@
 
 namespace animc {
 
-Result<std::unique_ptr<FrameSink>> createGlbSink(const std::string& path, const Topology& topology,
-                                                 int64_t frame_count, double frame_rate);
+Result<std::unique_ptr<FrameSink>> createGlbSink(const std::string& path, const Topology& topology, int64_t frame_count,
+                                                 double frame_rate);
 Result<std::unique_ptr<FrameSink>> createGltfSink(const std::string& path, const Topology& topology,
                                                   int64_t frame_count, double frame_rate);
 

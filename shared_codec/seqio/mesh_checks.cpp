@@ -47,8 +47,7 @@ Status checkTopology(const Topology& topology) {
   return Status();
 }
 
-Status checkSameTopology(const Topology& actual, const Topology& expected,
-                         const std::string& other_name,
+Status checkSameTopology(const Topology& actual, const Topology& expected, const std::string& other_name,
                          const std::function<std::string(size_t)>& origin) {
   if (actual.vertex_count != expected.vertex_count)
     return badInput("vertex count " + std::to_string(actual.vertex_count) + " differs from " +

@@ -19,8 +19,7 @@ Status checkTopology(const Topology& topology);
 // Same vertex count and triangle list; `other_name` says what `expected` came from
 // ("frame 0", "the mesh cow.ply"). The message does not name the file being checked; it names
 // the first differing triangle t as `origin(t)` ("the face on line 12"), or "triangle t".
-Status checkSameTopology(const Topology& actual, const Topology& expected,
-                         const std::string& other_name,
+Status checkSameTopology(const Topology& actual, const Topology& expected, const std::string& other_name,
                          const std::function<std::string(size_t)>& origin = nullptr);
 
 }  // namespace animc

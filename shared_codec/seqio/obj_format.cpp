@@ -18,8 +18,7 @@ namespace {
 // rest. Comments are cut off and lines without a statement skipped.
 class ObjLines {
  public:
-  ObjLines(const uint8_t* data, size_t size)
-      : pos_(reinterpret_cast<const char*>(data)), end_(pos_ + size) {}
+  ObjLines(const uint8_t* data, size_t size) : pos_(reinterpret_cast<const char*>(data)), end_(pos_ + size) {}
 
   bool next() {
     while (pos_ < end_) {
@@ -55,22 +54,19 @@ struct DefinedSoFar {
 };
 
 // A corner's reference into a list with `count` elements so far: 1-based, or -1 for the last.
-Status resolveIndex(const ObjLines& lines, std::string_view text, uint64_t count, const char* list,
-                    uint64_t* index) {
+Status resolveIndex(const ObjLines& lines, std::string_view text, uint64_t count, const char* list, uint64_t* index) {
   int64_t value;
   if (!parseInt64(text, &value) || value == 0)
-    return lineError(lines, "bad " + std::string(list) + " index '" +
-                                std::string(text.substr(0, 40)) + "' in a face");
+    return lineError(lines, "bad " + std::string(list) + " index '" + std::string(text.substr(0, 40)) + "' in a face");
   if (value > 0 ? uint64_t(value) > count : value < -int64_t(count))
-    return lineError(lines, std::string(list) + " index " + std::to_string(value) +
-                                " out of range (" + std::to_string(count) + " defined so far)");
+    return lineError(lines, std::string(list) + " index " + std::to_string(value) + " out of range (" +
+                                std::to_string(count) + " defined so far)");
   *index = value > 0 ? uint64_t(value) - 1 : count - uint64_t(-value);
   return Status();
 }
 
 // "v", "v/vt", "v//vn" or "v/vt/vn": the position's 0-based index; the others are checked.
-Status readCorner(const ObjLines& lines, std::string_view corner, const DefinedSoFar& defined,
-                  uint32_t* position) {
+Status readCorner(const ObjLines& lines, std::string_view corner, const DefinedSoFar& defined, uint32_t* position) {
   const size_t slash = corner.find('/');
   uint64_t index;
   ANIMC_RETURN_IF_ERROR(resolveIndex(lines, corner.substr(0, slash), defined.positions, "vertex", &index));
@@ -80,8 +76,7 @@ Status readCorner(const ObjLines& lines, std::string_view corner, const DefinedS
   const size_t second = rest.find('/');
   const std::string_view texture = rest.substr(0, second);
   if (second == std::string_view::npos || !texture.empty())
-    ANIMC_RETURN_IF_ERROR(
-        resolveIndex(lines, texture, defined.texture_coordinates, "texture coordinate", &index));
+    ANIMC_RETURN_IF_ERROR(resolveIndex(lines, texture, defined.texture_coordinates, "texture coordinate", &index));
   if (second != std::string_view::npos)
     ANIMC_RETURN_IF_ERROR(resolveIndex(lines, rest.substr(second + 1), defined.normals, "normal", &index));
   return Status();
@@ -93,8 +88,7 @@ Status readPosition(ObjLines& lines, Mesh* mesh, uint64_t vertex) {
     double value;
     if (!lines.tokens().next(&token))
       return lineError(lines, "vertex " + std::to_string(vertex) + " has fewer than 3 coordinates");
-    if (!parseDouble(token, &value))
-      return lineError(lines, "bad number '" + std::string(token.substr(0, 40)) + "'");
+    if (!parseDouble(token, &value)) return lineError(lines, "bad number '" + std::string(token.substr(0, 40)) + "'");
     Status finite = checkCoordinate(value, vertex);
     if (!finite.ok()) return finite.withContext("line " + std::to_string(lines.lineNumber()));
     mesh->positions.push_back(float(value));
@@ -102,8 +96,7 @@ Status readPosition(ObjLines& lines, Mesh* mesh, uint64_t vertex) {
   return Status();
 }
 
-Status readFace(ObjLines& lines, const DefinedSoFar& defined, std::vector<uint32_t>& corners,
-                Mesh* mesh) {
+Status readFace(ObjLines& lines, const DefinedSoFar& defined, std::vector<uint32_t>& corners, Mesh* mesh) {
   corners.clear();
   std::string_view token;
   while (lines.tokens().next(&token)) {
@@ -112,8 +105,7 @@ Status readFace(ObjLines& lines, const DefinedSoFar& defined, std::vector<uint32
     corners.push_back(position);
   }
   if (corners.size() < 3)
-    return lineError(lines, "a face of " + std::to_string(corners.size()) +
-                                " vertices (at least 3 needed)");
+    return lineError(lines, "a face of " + std::to_string(corners.size()) + " vertices (at least 3 needed)");
   for (size_t i = 1; i + 1 < corners.size(); ++i)  // a fan keeps the orientation
     mesh->topology.triangles.push_back({corners[0], corners[i], corners[i + 1]});
   return Status();
@@ -149,8 +141,7 @@ Result<Mesh> parseObj(const uint8_t* data, size_t size) {
   try {
     ANIMC_RETURN_IF_ERROR(readStatements(lines, &mesh));
   } catch (const std::bad_alloc&) {
-    return limitExceeded("out of memory reading an OBJ mesh at line " +
-                         std::to_string(lines.lineNumber()));
+    return limitExceeded("out of memory reading an OBJ mesh at line " + std::to_string(lines.lineNumber()));
   }
   ANIMC_RETURN_IF_ERROR(checkTopology(mesh.topology));
   return mesh;

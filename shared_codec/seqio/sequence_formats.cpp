@@ -19,10 +19,9 @@ const FrameFileCodec kPlyCodec = {parsePly, writePlyFile, nullptr};
 const FrameFileCodec kOffCodec = {parseOff, writeOffFile, nullptr};
 const FrameFileCodec kObjCodec = {parseObj, writeObjFile, objTriangleOrigin};
 
-const PointCacheCodec kPc2Codec = {
-    openPc2, [](const std::string& path, uint32_t points, int64_t frames, double) {
-      return createPc2Sink(path, points, frames);  // PC2 has no field for the frame rate
-    }};
+const PointCacheCodec kPc2Codec = {openPc2, [](const std::string& path, uint32_t points, int64_t frames, double) {
+                                     return createPc2Sink(path, points, frames);  // PC2 has no field for the frame rate
+                                   }};
 const PointCacheCodec kMddCodec = {openMdd, createMddSink};
 
 const AnimatedMeshCodec kGlbCodec = {createGlbSink};
@@ -70,8 +69,8 @@ const SequenceFormatSpec* frameFileFormatOf(const std::string& path) {
 
 const SequenceFormatSpec* pointCacheFormatOf(const std::string& path) {
   for (const SequenceFormatSpec& spec : kFormats)
-    if (spec.point_cache && (endsWithNoCase(path, spec.extension) ||
-                             endsWithNoCase(path, std::string(spec.extension) + ".xz")))
+    if (spec.point_cache &&
+        (endsWithNoCase(path, spec.extension) || endsWithNoCase(path, std::string(spec.extension) + ".xz")))
       return &spec;
   return nullptr;
 }
@@ -81,14 +80,12 @@ Result<SequenceFormat> formatFromName(const std::string& name) {
   for (char c : name) lower += char(std::tolower(static_cast<unsigned char>(c)));
   for (const SequenceFormatSpec& spec : kFormats)
     if (lower == spec.name) return spec.format;
-  return invalidArgument("unknown sequence format '" + name + "' (expected one of " +
-                         formatNames(", ") + ")");
+  return invalidArgument("unknown sequence format '" + name + "' (expected one of " + formatNames(", ") + ")");
 }
 
 std::string formatNames(const char* separator) {
   std::string names;
-  for (const SequenceFormatSpec& spec : kFormats)
-    names += std::string(names.empty() ? "" : separator) + spec.name;
+  for (const SequenceFormatSpec& spec : kFormats) names += std::string(names.empty() ? "" : separator) + spec.name;
   return names;
 }
 

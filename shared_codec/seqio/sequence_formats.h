@@ -34,8 +34,8 @@ struct PointCacheCodec {
   Result<std::unique_ptr<FrameSource>> (*open)(const std::string& path, const Topology& topology,
                                                const std::string& mesh_name);
   // `frame_rate` is stored where the format has room for it.
-  Result<std::unique_ptr<FrameSink>> (*create_sink)(const std::string& path, uint32_t point_count,
-                                                    int64_t frame_count, double frame_rate);
+  Result<std::unique_ptr<FrameSink>> (*create_sink)(const std::string& path, uint32_t point_count, int64_t frame_count,
+                                                    double frame_rate);
 };
 
 // The whole animation in one file, connectivity included, for viewers (glTF): written only.
@@ -46,8 +46,8 @@ struct AnimatedMeshCodec {
 
 struct SequenceFormatSpec {
   SequenceFormat format;
-  const char* name;       // as --format takes it: "ply"
-  const char* extension;  // ".ply" (point caches also take it followed by ".xz")
+  const char* name;                  // as --format takes it: "ply"
+  const char* extension;             // ".ply" (point caches also take it followed by ".xz")
   const FrameFileCodec* frame_file;  // exactly one of these three is set
   const PointCacheCodec* point_cache;
   const AnimatedMeshCodec* animated_mesh;

@@ -15,8 +15,7 @@ namespace {
 
 constexpr int64_t kMaxInt32 = 2147483647;  // PC2 / MDD counts and PLY indices are int32
 
-Result<std::unique_ptr<FrameSource>> openPointCache(const std::string& path,
-                                                    const std::string& mesh_path,
+Result<std::unique_ptr<FrameSource>> openPointCache(const std::string& path, const std::string& mesh_path,
                                                     const PointCacheCodec& codec) {
   if (mesh_path.empty())
     return invalidArgument(path + ": --mesh is required for PC2/MDD input (they hold no faces)");
@@ -44,8 +43,8 @@ Result<std::vector<FrameFile>> frameFiles(const std::string& path) {
                          "frame_%04d.obj), or a point cache: " + caches.substr(0, caches.size() - 2) + ")");
 }
 
-Status checkSinkArguments(const std::string& path, const SequenceFormatSpec& spec,
-                          const Topology& topology, double frame_rate, int64_t frame_count) {
+Status checkSinkArguments(const std::string& path, const SequenceFormatSpec& spec, const Topology& topology,
+                          double frame_rate, int64_t frame_count) {
   if (frame_count < 1 || frame_count > kMaxInt32)
     return invalidArgument(path + ": cannot write " + std::to_string(frame_count) + " frames");
   if (topology.vertex_count == 0 || topology.vertex_count > kMaxInt32)
@@ -104,8 +103,7 @@ Result<std::unique_ptr<FrameSink>> createSequenceSink(const std::string& path,
                                                       int64_t frame_count, ExistingOutput existing) {
   const SequenceFormatSpec& spec = formatSpec(format);
   ANIMC_RETURN_IF_ERROR(checkSinkArguments(path, spec, topology, frame_rate, frame_count));
-  if (spec.point_cache)
-    return spec.point_cache->create_sink(path, topology.vertex_count, frame_count, frame_rate);
+  if (spec.point_cache) return spec.point_cache->create_sink(path, topology.vertex_count, frame_count, frame_rate);
   if (spec.animated_mesh) return spec.animated_mesh->create_sink(path, topology, frame_count, frame_rate);
   return createFrameDirSink(path, format, topology, frame_count, existing);
 }

@@ -49,8 +49,7 @@ TEST(ObjFormat, ReadsWhatExportersWrite) {
             (std::vector<float>{0.1f, -2.5f, 3, 1e-7f, 4, 5, -6, 7.75f, 8, 9, 10, 11.5f, -12, 13, 1e20f}));
   EXPECT_EQ(mesh.value().topology.vertex_count, 5u);
   // The quad is cut as a fan from its first corner, in the same order for every frame.
-  EXPECT_EQ(mesh.value().topology.triangles,
-            (std::vector<Triangle>{{0, 1, 2}, {0, 2, 3}, {0, 3, 4}, {0, 2, 4}}));
+  EXPECT_EQ(mesh.value().topology.triangles, (std::vector<Triangle>{{0, 1, 2}, {0, 2, 3}, {0, 3, 4}, {0, 2, 4}}));
 }
 
 TEST(ObjFormat, ErrorsNameTheLine) {
@@ -118,8 +117,7 @@ TEST_F(ObjSequenceTest, FramesWithOtherFacesNameTheFileAndFaceLine) {
   EXPECT_NE(sequenceError(path("walk")).find("walk/2.obj (frame 2): vertex count 6 differs from frame 0 (5)"),
             std::string::npos);
   writeFile("walk/2.obj", "v 0 0 0\nf 1 1 1 1\nv 1 1 1\nf 1 2 9\n");
-  EXPECT_NE(sequenceError(path("walk")).find("walk/2.obj: line 4: vertex index 9 out of range"),
-            std::string::npos)
+  EXPECT_NE(sequenceError(path("walk")).find("walk/2.obj: line 4: vertex index 9 out of range"), std::string::npos)
       << sequenceError(path("walk"));
 }
 
@@ -132,8 +130,8 @@ TEST_F(ObjSequenceTest, NumberedPatterns) {
     std::snprintf(name, sizeof(name), "walk/frame_%03d.obj", f);
     writeFile(name, text);
   }
-  writeFile("walk/frame_01.obj", kExported);      // too narrow for %03d
-  writeFile("walk/frame_0013.obj", kExported);    // a leading zero past the width
+  writeFile("walk/frame_01.obj", kExported);    // too narrow for %03d
+  writeFile("walk/frame_0013.obj", kExported);  // a leading zero past the width
   writeFile("walk/frame_013.obj.bak", kExported);
   writeFile("walk/other_013.obj", kExported);
   auto paths = listNumberedFrames(path("walk/frame_%03d.obj"));
@@ -159,10 +157,8 @@ TEST_F(ObjSequenceTest, NumberedPatterns) {
 
   EXPECT_NE(sequenceError(path("walk/frame_%3d.obj")).find("one %d or %0Nd"), std::string::npos);
   EXPECT_NE(sequenceError(path("walk/frame_%03d_%d.obj")).find("one %d or %0Nd"), std::string::npos);
-  EXPECT_NE(sequenceError(path("walk/frame_%03d.stl")).find("must be .ply, .off or .obj frames"),
-            std::string::npos);
-  EXPECT_NE(sequenceError(path("walk/take_%03d.obj")).find("no file matches the pattern"),
-            std::string::npos);
+  EXPECT_NE(sequenceError(path("walk/frame_%03d.stl")).find("must be .ply, .off or .obj frames"), std::string::npos);
+  EXPECT_NE(sequenceError(path("walk/take_%03d.obj")).find("no file matches the pattern"), std::string::npos);
   EXPECT_NE(sequenceError(path("none/f_%d.obj")).find("cannot list the directory"), std::string::npos);
 }
 

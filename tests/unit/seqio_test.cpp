@@ -391,8 +391,7 @@ TEST_F(SeqioTest, FramesMustShareConnectivity) {
   writeFile("walk/0001.ply", kTrianglePly);
   writeFile("walk/0002.ply",
             replaced(replaced(kTrianglePly, "vertex 3", "vertex 4"), "0 1 0\n", "0 1 0\n0 0 1\n"));
-  EXPECT_NE(sequenceError(path("walk"), "")
-                .find("walk/0002.ply (frame 2): vertex count 4 differs from frame 0 (3)"),
+  EXPECT_NE(sequenceError(path("walk"), "").find("walk/0002.ply (frame 2): vertex count 4 differs from frame 0 (3)"),
             std::string::npos)
       << sequenceError(path("walk"), "");
   writeFile("walk/0002.ply", replaced(kTrianglePly, "3 0 1 2", "3 0 2 1"));
@@ -673,8 +672,9 @@ TEST_F(SeqioTest, SinkArgumentsAndFormatNames) {
   EXPECT_EQ(formatFromName("PC2").value(), SequenceFormat::kPc2);
   EXPECT_EQ(formatFromName("off").value(), SequenceFormat::kOff);
   EXPECT_EQ(formatFromName("OBJ").value(), SequenceFormat::kObj);
-  EXPECT_NE(errorOf(formatFromName("stl")).find("unknown sequence format 'stl' (expected one of "
-                                                 "ply, off, pc2, mdd, obj, glb, gltf)"),
+  EXPECT_NE(errorOf(formatFromName("stl"))
+                .find("unknown sequence format 'stl' (expected one of "
+                      "ply, off, pc2, mdd, obj, glb, gltf)"),
             std::string::npos);
   EXPECT_FALSE(createSequenceSink(path("a.mdd"), SequenceFormat::kMdd, smallTopology(), 0, 3).ok());
   EXPECT_FALSE(
