@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: Apache-2.0
-# Installs the node packages the tests run (tests/gltf/package.json: the Khronos glTF validator)
+# Installs the node packages the tests run (tests/gltf/package.json: the Khronos glTF validator
+# and three.js)
 # from the npm registry into the cache, never into the tree: $ANIMC_CACHE_DIR/node/gltf
 # (default /var/cache/animcompress). Idempotent: nothing is fetched while the cached lock file
 # equals the tree's. Node and npm come from Debian when the machine has neither.

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <limits>
 #include <new>
@@ -24,14 +25,17 @@ constexpr size_t kReservedNumberChars = 24;  // "-1.1754943508222875e-38" and a 
 // and the matrix alone would take 16 GiB.
 constexpr uint64_t kMaxFrames = 65536;
 
-// Where each part sits in the BIN buffer: indices, frame 0, one target a frame, times, weights.
+// Where each part sits in the BIN buffer: indices, frame 0, one target a frame, then the F + 1
+// key times and F + 1 rows of F weights (the last key ends the last frame, which would
+// otherwise last no time at all in a player).
 struct Layout {
   uint64_t vertices, triangles, frames;
+  uint64_t keys() const { return frames + 1; }
   uint64_t positions() const { return 12 * triangles; }
   uint64_t target(uint64_t k) const { return positions() + 12 * vertices * (1 + k); }
   uint64_t times() const { return target(frames); }
-  uint64_t weights() const { return times() + 4 * frames; }
-  uint64_t total() const { return weights() + 4 * frames * frames; }
+  uint64_t weights() const { return times() + 4 * keys(); }
+  uint64_t total() const { return weights() + 4 * keys() * frames; }
 };
 
 struct Bounds {
@@ -82,11 +86,11 @@ void appendAccessors(std::string& out, const Layout& layout, const std::vector<B
     appendVec3(out, "max", bounds[k].max, reserve);
     out += '}';
   }
-  out += ",{\"bufferView\":2,\"componentType\":5126,\"count\":" + decimal(layout.frames) +
+  out += ",{\"bufferView\":2,\"componentType\":5126,\"count\":" + decimal(layout.keys()) +
          ",\"type\":\"SCALAR\",\"min\":[0],\"max\":[";
   appendBound(out, last_time, reserve);
-  out += "]},{\"bufferView\":2,\"byteOffset\":" + decimal(4 * layout.frames) +
-         ",\"componentType\":5126,\"count\":" + decimal(layout.frames * layout.frames) + ",\"type\":\"SCALAR\"}]";
+  out += "]},{\"bufferView\":2,\"byteOffset\":" + decimal(4 * layout.keys()) +
+         ",\"componentType\":5126,\"count\":" + decimal(layout.keys() * layout.frames) + ",\"type\":\"SCALAR\"}]";
 }
 
 // Everything but the buffer: the scene, the mesh and its targets, the animation, the views
@@ -211,13 +215,14 @@ class GltfSink : public FrameSink {
     if (written_ != layout_.frames)
       return invalidArgument(path_ + ": " + decimal(written_) + " frames written but " + decimal(layout_.frames) +
                              " announced");
-    std::vector<float> row(size_t(layout_.frames));
-    for (uint64_t k = 0; k < layout_.frames; ++k) row[k] = float(double(k) / frame_rate_);
+    std::vector<float> row(size_t(layout_.keys()));
+    for (uint64_t k = 0; k < layout_.keys(); ++k) row[k] = keyTime(k);
     const float last_time = row.back();
     ANIMC_RETURN_IF_ERROR(emitFloats(row.data(), row.size()));
-    for (uint64_t k = 0; k < layout_.frames; ++k) {  // at frame k, target k alone
+    row.resize(size_t(layout_.frames));
+    for (uint64_t k = 0; k < layout_.keys(); ++k) {  // from key k on, target k alone (the last again)
       std::fill(row.begin(), row.end(), 0.f);
-      row[k] = 1.f;
+      row[std::min(k, layout_.frames - 1)] = 1.f;
       ANIMC_RETURN_IF_ERROR(emitFloats(row.data(), row.size()));
     }
     const std::string body = documentBody(layout_, bounds_, last_time, /*reserve=*/false);
@@ -235,6 +240,14 @@ class GltfSink : public FrameSink {
   }
 
  private:
+  // Frame k's key time: k / rate rounded down to a float, so that a player asked for exactly
+  // k / rate (in double) is at or past the key and shows frame k, not frame k - 1.
+  float keyTime(uint64_t k) const {
+    const double exact = double(k) / frame_rate_;
+    const float time = float(exact);
+    return double(time) > exact ? std::nextafter(time, 0.f) : time;
+  }
+
   // The JSON at its longest, rounded up to the 4 bytes a chunk is aligned to.
   uint64_t reservedJsonBytes() const {
     const std::string body = documentBody(layout_, bounds_, 0.f, /*reserve=*/true);

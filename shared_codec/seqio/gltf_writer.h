@@ -2,8 +2,9 @@
 // A sequence as one glTF 2.0 asset that any glTF viewer plays (Blender, three.js, ...): one
 // mesh whose POSITION is frame 0, one morph target per frame (frame k minus frame 0, so
 // target 0 is all zeros), and one animation driving the mesh's weights with STEP
-// interpolation at the frame rate: at time k / rate, target k has weight 1 and every other 0.
-// The frames stream through the sink (memory O(vertices)); the weight matrix takes 4·F² bytes.
+// interpolation at the frame rate: from time k / rate, target k has weight 1 and every other
+// 0, and a last key at F / rate gives the last frame its time too. The frames stream through
+// the sink (memory O(vertices)); the weight matrix takes 4·F·(F + 1) bytes.
 //
 // .glb: the binary container (12-byte header, a JSON chunk, a BIN chunk); its JSON chunk is
 // reserved at its largest possible size and padded with spaces, so that the accessors'

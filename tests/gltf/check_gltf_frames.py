@@ -63,10 +63,14 @@ def main():
     assert worst <= 1e-6 * scale, f'a played frame is {worst} away from the decoded one'
     sampler = doc['animations'][0]['samplers'][0]
     times = accessor(doc, buffer, sampler['input']).ravel()
-    weights = accessor(doc, buffer, sampler['output']).reshape(len(frames), len(frames))
+    weights = accessor(doc, buffer, sampler['output']).reshape(len(frames) + 1, len(frames))
     assert sampler['interpolation'] == 'STEP', 'not a STEP animation'
-    assert np.allclose(times, np.arange(len(frames)) / rate, rtol=1e-6), 'times are not k / rate'
-    assert np.array_equal(weights, np.eye(len(frames), dtype=np.float32)), 'weights are not one-hot'
+    exact = np.arange(len(frames) + 1) / rate  # key k at frame k, one more ending the last
+    assert np.allclose(times, exact, rtol=1e-6), 'times are not k / rate'
+    # A player asked for exactly k / rate must be at or past key k, so each key is rounded down.
+    assert (times.astype(np.float64) <= exact).all(), 'a key comes after k / rate'
+    one_hot = np.vstack([np.eye(len(frames)), np.eye(len(frames))[-1:]]).astype(np.float32)
+    assert np.array_equal(weights, one_hot), 'weights are not one-hot, the last frame repeated'
     print(f'{path}: {len(frames)} frames play within {worst:.3g} of the decoded ones')
 
 

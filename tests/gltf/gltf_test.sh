@@ -2,7 +2,9 @@
 # SPDX-License-Identifier: Apache-2.0
 # animc decode --format glb|gltf: the files pass the Khronos glTF validator with no error and no
 # warning, hold one morph target per frame and one STEP animation at the file's frame rate,
-# and play the decoded frames (check_gltf_frames.py against --format pc2 of the same file).
+# hold the decoded frames (check_gltf_frames.py against --format pc2 of the same file), and
+# three.js plays them: at each frame's time, and halfway through it, it shows that frame
+# (play_three.mjs).
 # usage: gltf_test.sh ANIMC_BINARY SAMPLES_DIR NODE_MODULES   (exit 77: no validator installed)
 set -euo pipefail
 
@@ -13,8 +15,8 @@ PY=/usr/bin/python3
 HERE=$(dirname "$0")
 PC2=$SAMPLES/sydney/sydney_50.pc2.xz
 MESH=$SAMPLES/sydney/sydney_md2.ply
-if [[ ! -d $NODE_MODULES/gltf-validator ]] || ! command -v node >/dev/null; then
-  echo "gltf_test: no node or no gltf-validator in $NODE_MODULES (scripts/setup_node_tools.sh installs it): not run"
+if [[ ! -d $NODE_MODULES/gltf-validator || ! -d $NODE_MODULES/three ]] || ! command -v node >/dev/null; then
+  echo "gltf_test: no node, or no gltf-validator or three in $NODE_MODULES (scripts/setup_node_tools.sh installs them): not run"
   exit 77
 fi
 
@@ -30,26 +32,37 @@ validate() {
               and abs(d['duration'] - $duration) < 1e-6)" "$TMP/$name.json"
 }
 
+# played NAME FILE FRAMES.pc2 RATE: three.js shows every frame of FRAMES.pc2 at its time.
+played() {
+  local name=$1
+  NODE_PATH=$NODE_MODULES node "$HERE/play_three.mjs" "$2" "$3" "$4" >"$TMP/$name.three.json" 2>"$TMP/$name.three.err" ||
+    { check_failed "$name: three.js failed: $(cat "$TMP/$name.three.err")"; return; }
+  json_check "(d['wrong_weights'] == 0 and d['worst_error'] <= 1e-6 * d['largest_coordinate']
+              and d['frames_checked'] == 2 * d['targets'])" "$TMP/$name.three.json"
+}
+
 for codec in auto affine-octree wavelet trajectory; do
   run "encode_$codec" "$ANIMC" encode "$PC2" --mesh "$MESH" -o "$TMP/$codec.ams" --codec "$codec"
 done
 run pc2 "$ANIMC" decode "$TMP/auto.ams" -o "$TMP/auto.pc2"
 for format in glb gltf; do
   run "decode_$format" "$ANIMC" decode "$TMP/auto.ams" -o "$TMP/auto.$format"  # the extension picks it
-  validate "$format" "$TMP/auto.$format" 50 "49 / 25"
+  validate "$format" "$TMP/auto.$format" 50 "50 / 25"
   run "frames_$format" "$PY" "$HERE/check_gltf_frames.py" "$TMP/auto.$format" "$TMP/auto.pc2" "$MESH" 25
+  played "three_$format" "$TMP/auto.$format" "$TMP/auto.pc2" 25
 done
 for codec in affine-octree wavelet trajectory; do
   run "glb_$codec" "$ANIMC" decode "$TMP/$codec.ams" -o "$TMP/$codec.glb"
-  validate "glb_$codec" "$TMP/$codec.glb" 50 "49 / 25"
+  validate "glb_$codec" "$TMP/$codec.glb" 50 "50 / 25"
 done
 # A range: its own frames from time 0.
 run range "$ANIMC" decode "$TMP/auto.ams" -o "$TMP/part.glb" --frames 10:20
-validate range "$TMP/part.glb" 10 "9 / 25"
+validate range "$TMP/part.glb" 10 "10 / 25"
 run range_pc2 "$ANIMC" decode "$TMP/auto.ams" -o "$TMP/part.pc2" --frames 10:20
 run range_frames "$PY" "$HERE/check_gltf_frames.py" "$TMP/part.glb" "$TMP/part.pc2" "$MESH" 25
+played three_range "$TMP/part.glb" "$TMP/part.pc2" 25
 run one "$ANIMC" decode "$TMP/auto.ams" -o "$TMP/one.glb" --frames 7
-validate one "$TMP/one.glb" 1 0
+validate one "$TMP/one.glb" 1 "1 / 25"
 # An MDD at 30 frames per second: the .ams keeps the rate, and the glb's times follow it.
 "$PY" -c "
 import struct, sys
@@ -63,9 +76,10 @@ with open('$TMP/30fps.mdd', 'wb') as f:
 " || die "could not write the 30 fps MDD"
 run mdd_encode "$ANIMC" encode "$TMP/30fps.mdd" --mesh "$MESH" -o "$TMP/30fps.ams"
 run mdd_glb "$ANIMC" decode "$TMP/30fps.ams" -o "$TMP/30fps.glb"
-validate mdd_glb "$TMP/30fps.glb" 50 "49 / 30"
+validate mdd_glb "$TMP/30fps.glb" 50 "50 / 30"
 run mdd_pc2 "$ANIMC" decode "$TMP/30fps.ams" -o "$TMP/30fps.pc2"
 run mdd_frames "$PY" "$HERE/check_gltf_frames.py" "$TMP/30fps.glb" "$TMP/30fps.pc2" "$MESH" 30
+played three_30fps "$TMP/30fps.glb" "$TMP/30fps.pc2" 30
 # A failed decode leaves no glb.
 "$ANIMC" decode "$TMP/auto.ams" -o "$TMP/none.glb" --max-output-bytes 1000 >/dev/null 2>&1 &&
   check_failed "--max-output-bytes 1000 let a glb through"
