@@ -185,7 +185,10 @@ PYBIND11_MODULE(animcompress, module) {
   module.def("encode", &encode, py::arg("frames"), py::arg("faces"), py::arg("codec") = "affine-octree",
              py::arg("iframe_interval") = 0, py::arg("frame_rate") = 25.0,
              "The .ams bytes of frames (F, N, 3) over faces (T, 3); keyword options are the codec's "
-             "(max_error=0.01 is animc encode's --max-error 0.01; True sets a switch).");
+             "(max_error=0.01 is animc encode's --max-error 0.01; True sets a switch). The codec is "
+             "'affine-octree' unless codec= says otherwise, as in the C++ library and in 1.0; animc encode "
+             "and the MeshLab filter default to 'auto', which writes the smallest files but encodes "
+             "several times slower: pass codec='auto' to write what animc writes.");
   module.def("compare", &compare, py::arg("original"), py::arg("reconstructed"), py::arg("faces") = py::none(),
              "The error figures (KG, PSNR, max and RMS errors, per frame) of a reconstruction, as animc compare; "
              "with faces (T, 3), STED too (sted, sted_spatial, sted_temporal).");

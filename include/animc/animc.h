@@ -105,7 +105,11 @@ using ProgressFn = std::function<bool(int percent, const char* what)>;
 // ("max-error", "target-kg", "bits", "profile", ...; `animc --help` lists each codec's);
 // a switch is set with the value "1". An option the chosen codec does not have is an error.
 struct EncoderOptions {
-  std::string codec = "affine-octree";  // or "wavelet"
+  // "affine-octree" (the default), "wavelet", "trajectory" or "auto". `animc encode` and the
+  // MeshLab filter default to "auto", the smallest files; the library keeps 1.0's default, so
+  // that a program written for 1.0 writes the same codec, and because auto encodes several
+  // times slower (docs/benchmarks.md). Say codec = "auto" for what animc writes.
+  std::string codec = "affine-octree";
   std::map<std::string, std::string> values;
   uint32_t iframe_interval = 0;  // an intra frame (a random-access point) every K frames; 0 = the first only
   double frame_rate = 25.0;      // stored in the stream for players
@@ -119,7 +123,7 @@ struct EncoderOptions {
   ANIMC_API Status validate() const;
 };
 
-// The codecs this library writes and reads, by name ("affine-octree", "wavelet").
+// The codecs this library writes and reads, by name ("affine-octree", "wavelet", ...).
 ANIMC_API std::vector<std::string> codecNames();
 
 // Where an encoder writes. The stream is written front to back, with seeks back to fill in
