@@ -15,7 +15,7 @@
 //   [1] bits 0-6: grid width - 2 (mod 7); bit 7: random triangles over the grid's vertices
 //       (as many as the grid has) instead of the grid's
 //   [2] bits 0-4: grid height - 2 (mod 7); bits 5-7: the decoded frames are written as
-//       4 PLY frames, 5 OFF frames, 6 PC2, 7 MDD (0-3: not written)
+//       3 OBJ frames, 4 PLY frames, 5 OFF frames, 6 PC2, 7 MDD (0-2: not written)
 //   [3] quality (max error, step, KG target); trajectory and auto: bit 0 set, a max error, else
 //       a KG target
 //   then int16 coordinates (scaled by 1/256), x y z per vertex per frame, until they run out
@@ -192,12 +192,13 @@ void checkKgTarget(double target_percent, const std::vector<std::vector<float>>&
   if (squared_error > bound) bug("KG error above the target", int64_t(originals.size()), squared_error, bound);
 }
 
-// The decoded frames through a sequence writer (4 PLY, 5 OFF, 6 PC2, 7 MDD) and back through
-// its reader: the same frames, bit for bit (OFF is text with 9 significant digits, enough for
-// any float), and for PLY and OFF the same faces.
+// The decoded frames through a sequence writer (3 OBJ, 4 PLY, 5 OFF, 6 PC2, 7 MDD) and back
+// through its reader: the same frames, bit for bit (OBJ and OFF are text with 9 significant
+// digits, enough for any float), and for the frame files the same faces.
 void writeAndReadBack(const Mesh& mesh, const std::vector<std::vector<float>>& frames, int writer) {
   using animc::SequenceFormat;
-  const SequenceFormat format = writer == 4   ? SequenceFormat::kPly
+  const SequenceFormat format = writer == 3   ? SequenceFormat::kObj
+                                : writer == 4 ? SequenceFormat::kPly
                                 : writer == 5 ? SequenceFormat::kOff
                                 : writer == 6 ? SequenceFormat::kPc2
                                               : SequenceFormat::kMdd;
@@ -288,6 +289,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (target_kg != o.values.end())
     checkKgTarget(std::strtod(target_kg->second.c_str(), nullptr), originals, expected);
   const int writer = data[2] >> 5;
-  if (writer >= 4) writeAndReadBack(mesh, expected, writer);
+  if (writer >= 3) writeAndReadBack(mesh, expected, writer);
   return 0;
 }
