@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """File > Import > Animated mesh (.ams): a mesh object with the file's first frame and
 connectivity, played by a Mesh Cache modifier over the decoded frames. The frames are decoded
-once into a PC2 point cache beside the .ams (NAME.ams.pc2), which Blender streams frame by
+once into a PC2 point cache beside the .ams (NAME.ams.pc2, or NAME.ams.FIRST-LAST.pc2 for a
+range), which Blender streams frame by
 frame: of the ways measured (docs/blender.md: Mesh Cache, shape keys, a frame-change handler
 over the decoder), it plays fastest forwards and backwards and keeps the .blend small."""
 import os
@@ -68,6 +69,12 @@ def frame_range(frames, first, last):
     return first, end
 
 
+def cache_path(path, first, end, frames):
+    """NAME.ams.pc2 for all frames, NAME.ams.FIRST-LAST.pc2 for a range: an import of another
+    range of the same file must not replace the cache an earlier import plays."""
+    return f"{path}.pc2" if (first, end) == (0, frames) else f"{path}.{first}-{end - 1}.pc2"
+
+
 def new_mesh(name, positions, faces):
     mesh = bpy.data.meshes.new(name)
     mesh.vertices.add(len(positions))
@@ -110,7 +117,7 @@ def import_animation(context, ac, path, first, last, start_frame, set_scene, cac
     if cache_bytes > cache_limit_mb * 2**20:
         raise ValueError(f"the decoded frames would take {cache_bytes / 2**20:.0f} MB, above the cache "
                          f"limit of {cache_limit_mb} MB: import fewer frames or raise the limit")
-    cache = bpy.path.abspath(path) + '.pc2'
+    cache = cache_path(bpy.path.abspath(path), first, end, info['frames'])
     write_cache(context, decoder, cache, first, end)
     name = os.path.splitext(os.path.basename(path))[0]
     obj = bpy.data.objects.new(name, new_mesh(name, decoder[first], decoder.faces))

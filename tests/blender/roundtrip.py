@@ -136,6 +136,7 @@ def main():
     part = bpy.context.active_object
     bpy.context.scene.frame_set(105)
     check(np.array_equal(evaluated(part), ac.open(ams)[14]), 'scene frame 105 shows file frame 14')
+    check(part.modifiers[0].filepath == ams + '.10-19.pc2', f'a range has its own cache: {part.modifiers[0].filepath}')
     check((scene.frame_start, scene.frame_end) == (101, 110), f'scene range {scene.frame_start}-{scene.frame_end}')
 
     # Bad files end as an error report, never a crash, and make no object.
