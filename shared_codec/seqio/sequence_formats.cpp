@@ -95,14 +95,29 @@ SequenceFormat outputFormatOf(const std::string& path) {
   return SequenceFormat::kPly;
 }
 
+namespace {
+
+// "a, b or c"
+std::string alternatives(const std::vector<std::string>& items) {
+  std::string list;
+  for (size_t i = 0; i < items.size(); ++i) list += (i == 0 ? "" : i + 1 == items.size() ? " or " : ", ") + items[i];
+  return list;
+}
+
+}  // namespace
+
 std::string frameFileExtensionList() {
   std::vector<std::string> extensions;
   for (const SequenceFormatSpec& spec : kFormats)
     if (spec.frame_file) extensions.push_back(spec.extension);
-  std::string list;
-  for (size_t i = 0; i < extensions.size(); ++i)
-    list += (i == 0 ? "" : i + 1 == extensions.size() ? " or " : ", ") + extensions[i];
-  return list;
+  return alternatives(extensions);
+}
+
+std::string pointCacheExtensionList() {
+  std::vector<std::string> extensions;
+  for (const SequenceFormatSpec& spec : kFormats)
+    if (spec.point_cache) extensions.insert(extensions.end(), {spec.extension, std::string(spec.extension) + ".xz"});
+  return alternatives(extensions);
 }
 
 }  // namespace animc

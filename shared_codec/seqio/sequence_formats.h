@@ -75,5 +75,7 @@ SequenceFormat outputFormatOf(const std::string& path);
 std::string formatNames(const char* separator);
 // ".ply, .off or .obj": the frame-file extensions, for messages.
 std::string frameFileExtensionList();
+// ".pc2, .pc2.xz, .mdd or .mdd.xz": the point caches' names, for messages.
+std::string pointCacheExtensionList();
 
 }  // namespace animc

@@ -18,7 +18,8 @@ constexpr int64_t kMaxInt32 = 2147483647;  // PC2 / MDD counts and PLY indices a
 Result<std::unique_ptr<FrameSource>> openPointCache(const std::string& path, const std::string& mesh_path,
                                                     const PointCacheCodec& codec) {
   if (mesh_path.empty())
-    return invalidArgument(path + ": --mesh is required for PC2/MDD input (they hold no faces)");
+    return invalidArgument(path + ": --mesh is required for point-cache input (" + pointCacheExtensionList() +
+                           ": they hold no faces)");
   ANIMC_ASSIGN_OR_RETURN(Mesh mesh, readMesh(mesh_path));
   return codec.open(path, mesh.topology, mesh_path);
 }
@@ -35,12 +36,9 @@ Result<std::vector<FrameFile>> frameFiles(const std::string& path) {
     return unlistedFrameFiles(paths);
   }
   if (frameFileFormatOf(path)) return unlistedFrameFiles({path});
-  std::string caches;
-  for (const SequenceFormatSpec& spec : sequenceFormats())
-    if (spec.point_cache) caches += std::string(spec.extension) + ", " + spec.extension + ".xz, ";
   return invalidArgument(path + ": unrecognised input (expected " + frameFileExtensionList() +
                          " frames (one file, a directory, a .txt list or a pattern such as " +
-                         "frame_%04d.obj), or a point cache: " + caches.substr(0, caches.size() - 2) + ")");
+                         "frame_%04d.obj), or a point cache: " + pointCacheExtensionList() + ")");
 }
 
 Status checkSinkArguments(const std::string& path, const SequenceFormatSpec& spec, const Topology& topology,

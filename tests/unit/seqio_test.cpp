@@ -449,7 +449,8 @@ TEST_F(SeqioTest, PointCacheErrors) {
   std::string mesh = path("mesh.ply");
   std::string good = pc2Bytes(path("good.pc2"), makeFrames(5, 3));
   const size_t frame_bytes = 5 * 12;
-  EXPECT_NE(sequenceError(path("good.pc2"), "").find("--mesh is required for PC2/MDD input"),
+  EXPECT_NE(sequenceError(path("good.pc2"), "")
+                .find("--mesh is required for point-cache input (.pc2, .pc2.xz, .mdd or .mdd.xz: they hold no faces)"),
             std::string::npos);
   writeFile("cut.pc2", good.substr(0, good.size() - 1));
   EXPECT_NE(sequenceError(path("cut.pc2"), mesh).find("cut.pc2: truncated at frame 2 of 3"),
