@@ -190,7 +190,8 @@ Result<std::vector<std::string>> listFrameDirectory(const std::string& dir) {
 }
 
 bool isFramePattern(const std::string& path) {
-  return fs::path(path).filename().string().find('%') != std::string::npos;
+  std::error_code ec;  // a file that exists is itself, whatever its name holds ("100%.ply")
+  return fs::path(path).filename().string().find('%') != std::string::npos && !fs::exists(path, ec);
 }
 
 Result<std::vector<std::string>> listNumberedFrames(const std::string& pattern) {

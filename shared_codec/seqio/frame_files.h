@@ -28,7 +28,8 @@ bool naturalLess(const std::string& a, const std::string& b);
 // their names.
 Result<std::vector<std::string>> listFrameDirectory(const std::string& dir);
 
-// Whether the file name of `path` has a '%': a numbered pattern, or a mistyped one.
+// Whether `path` names no file and its file name has a '%': a numbered pattern, or a mistyped
+// one.
 bool isFramePattern(const std::string& path);
 
 // A numbered pattern: a frame file's name with "%d" or "%0Nd" where the frame number stands,

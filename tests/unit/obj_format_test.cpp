@@ -160,6 +160,9 @@ TEST_F(ObjSequenceTest, NumberedPatterns) {
   EXPECT_NE(sequenceError(path("walk/frame_%03d.stl")).find("must be .ply, .off or .obj frames"), std::string::npos);
   EXPECT_NE(sequenceError(path("walk/take_%03d.obj")).find("no file matches the pattern"), std::string::npos);
   EXPECT_NE(sequenceError(path("none/f_%d.obj")).find("cannot list the directory"), std::string::npos);
+  // A file whose name holds a '%' is that file, not a pattern.
+  writeFile("plain/100%.obj", kExported);
+  EXPECT_EQ(sequenceError(path("plain/100%.obj")), "OK");
 }
 
 TEST_F(ObjSequenceTest, WrittenFramesReadBackExactlyInEveryFrameFileFormat) {
