@@ -60,7 +60,7 @@ std::set<std::string> flagsOfEveryCodec(bool switches) {
 const std::set<std::string>& encodeOptions() {
   static const std::set<std::string> names = [] {
     std::set<std::string> names = flagsOfEveryCodec(false);
-    names.insert({"codec", "iframe-interval"});
+    names.insert({"codec", "iframe-interval", "threads"});
     return names;
   }();
   return names;
@@ -97,7 +97,14 @@ Result<EncodeSettings> encodeSettingsFrom(const Args& args) {
   ANIMC_ASSIGN_OR_RETURN(long long interval, args.integer("iframe-interval", 0));
   if (interval < 0 || interval > 0x7fffffff) return invalidArgument("--iframe-interval must be >= 0");
   options.iframe_interval = uint32_t(interval);
+  ANIMC_ASSIGN_OR_RETURN(options.threads, threadsFrom(args));
   return animc::encodeSettingsFrom(options);
+}
+
+Result<uint32_t> threadsFrom(const Args& args) {
+  ANIMC_ASSIGN_OR_RETURN(long long threads, args.integer("threads", 0));
+  if (threads < 0 || threads > 1024) return invalidArgument("--threads must be in [0, 1024] (0 = one per core)");
+  return uint32_t(threads);
 }
 
 Result<DecoderLimits> decoderLimitsFrom(const Args& args) {
@@ -144,9 +151,7 @@ void endProgressLine() {
   g_progress_shown = false;
 }
 
-bool isAmsPath(const std::string& path) {
-  return path.size() > 4 && path.compare(path.size() - 4, 4, ".ams") == 0;
-}
+bool isAmsPath(const std::string& path) { return path.size() > 4 && path.compare(path.size() - 4, 4, ".ams") == 0; }
 
 int fail(const Status& status) {
   endProgressLine();

@@ -46,6 +46,9 @@ struct EncodeInput {
 };
 Result<EncodeInput> openEncodeInput(const Args& args);
 
+// --threads N: the threads encoding or decoding may use, 0 (the default) = one per core.
+Result<uint32_t> threadsFrom(const Args& args);
+
 // The decoder's limits with --max-vertex-frames V and --max-output-bytes B (0 = no limit)
 // applied (DecoderLimits::max_vertex_frames, max_output_bytes).
 Result<DecoderLimits> decoderLimitsFrom(const Args& args);

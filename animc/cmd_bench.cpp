@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
-// animc bench: median encode and decode throughput over R runs on one core, plus every
+// animc bench: median encode and decode throughput over R runs on --threads N threads (0 =
+// one per core, the default), plus every
 // metric of the decoded result. The input is read into memory first so that file reading
 // and xz decompression are not timed. Given an .ams file, it times decoding only (the file
 // stays in the page cache after the first run): the loop to measure a decoder change with,
@@ -32,16 +33,31 @@ double median(std::vector<double> v) {
   return v.empty() ? 0 : (v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]));
 }
 
-// Seconds to open a stream and decode all its frames through the public Decoder: in order, or
+// Seconds to open a stream and decode all its frames through the public Decoder: in order, in
+// the runs of frames a reader takes (decodeChunkEnd(), several groups at once with threads), or
 // from the last to the first (every frame then a random access from the start of its group).
 Result<double> timeDecode(const std::function<Result<Decoder>()>& open, bool backwards = false) {
   const auto t0 = Clock::now();
   ANIMC_ASSIGN_OR_RETURN(Decoder decoder, open());
-  std::vector<float> xyz(3 * size_t(decoder.info().vertices));
+  const size_t size = 3 * size_t(decoder.info().vertices);
+  std::vector<float> xyz;
   const int64_t frames = decoder.info().frames;
-  for (int64_t i = 0; i < frames; ++i)
-    ANIMC_RETURN_IF_ERROR(decoder.frame(backwards ? frames - 1 - i : i, xyz.data()));
+  if (backwards) {
+    xyz.resize(size);
+    for (int64_t i = frames - 1; i >= 0; --i) ANIMC_RETURN_IF_ERROR(decoder.frame(i, xyz.data()));
+  }
+  for (int64_t first = 0, end = 0; !backwards && first < frames; first = end) {
+    end = decodeChunkEnd(decoder, first);
+    xyz.resize(size_t(end - first) * size);
+    ANIMC_RETURN_IF_ERROR(decoder.frames(first, end, xyz.data()));
+  }
   return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+DecoderOptions withThreads(uint32_t threads) {
+  DecoderOptions options;
+  options.threads = threads;
+  return options;
 }
 
 // Decoding of an existing .ams, R times from the file and R times from memory, alternating:
@@ -49,6 +65,9 @@ Result<double> timeDecode(const std::function<Result<Decoder>()>& open, bool bac
 int runDecodeBench(const Args& args, long long runs) {
   const bool backwards = args.has("backwards");
   const std::string& path = args.positional()[0];
+  auto threads = threadsFrom(args);
+  if (!threads.ok()) return fail(threads.status());
+  const DecoderOptions options = withThreads(threads.value());
   auto bytes = readWholeFile(path);
   if (!bytes.ok()) return fail(bytes.status());
   const std::vector<uint8_t>& stream = bytes.value();
@@ -56,10 +75,10 @@ int runDecodeBench(const Args& args, long long runs) {
   ProgressFn progress = progressLine("bench", args.has("progress"));
   for (long long r = 0; r < runs; ++r) {
     if (progress) progress(int(100 * r / runs), "decoding");
-    auto d = timeDecode([&] { return Decoder::openFile(path); }, backwards);
+    auto d = timeDecode([&] { return Decoder::openFile(path, options); }, backwards);
     if (!d.ok()) return fail(d.status());
     decode_s.push_back(d.value());
-    d = timeDecode([&] { return Decoder::openMemory(stream.data(), stream.size(), {}, path); }, backwards);
+    d = timeDecode([&] { return Decoder::openMemory(stream.data(), stream.size(), options, path); }, backwards);
     if (!d.ok()) return fail(d.status());
     memory_s.push_back(d.value());
   }
@@ -88,10 +107,11 @@ int runDecodeBench(const Args& args, long long runs) {
     std::printf("%s\n", o.str().c_str());
     return 0;
   }
-  std::printf("%s: %u vertices x %lld frames, %lld runs, decoding only%s\n", path.c_str(), vertices,
-              (long long)frames, runs, backwards ? ", last frame first" : "");
-  std::printf("decode: %.2f M vertices/s (median %.4f s) from the file, %.2f M vertices/s (median %.4f s) from memory\n",
-              decode_mvps, median(decode_s), memory_mvps, median(memory_s));
+  std::printf("%s: %u vertices x %lld frames, %lld runs, decoding only%s\n", path.c_str(), vertices, (long long)frames,
+              runs, backwards ? ", last frame first" : "");
+  std::printf(
+      "decode: %.2f M vertices/s (median %.4f s) from the file, %.2f M vertices/s (median %.4f s) from memory\n",
+      decode_mvps, median(decode_s), memory_mvps, median(memory_s));
   return 0;
 }
 
@@ -158,13 +178,15 @@ int runBench(const std::vector<std::string>& argv) {
   if (args.positional().size() != 1)
     return fail(
         invalidArgument("usage: animc bench IN [--mesh M] [options] [--runs R] | animc bench IN [--mesh M] "
-                        "--read-only [--runs R] | animc bench IN.ams [--runs R] [--backwards]"));
+                        "--read-only [--runs R] | animc bench IN.ams [--runs R] [--backwards] [--threads N]"));
   auto runs = args.integer("runs", 5);
-  if (!runs.ok() || runs.value() < 1 || runs.value() > 1000) return fail(invalidArgument("--runs must be in [1, 1000]"));
+  if (!runs.ok() || runs.value() < 1 || runs.value() > 1000)
+    return fail(invalidArgument("--runs must be in [1, 1000]"));
   if (isAmsPath(args.positional()[0])) {
     for (const std::set<std::string>* names : {&options, &switches})
       for (const std::string& name : *names)
-        if (name != "runs" && name != "json" && name != "progress" && name != "backwards" && args.has(name))
+        if (name != "runs" && name != "json" && name != "progress" && name != "backwards" && name != "threads" &&
+            args.has(name))
           return fail(invalidArgument("bench of an .ams file decodes it only: --" + name + " does not apply"));
     return runDecodeBench(args, runs.value());
   }
@@ -182,8 +204,8 @@ int runBench(const std::vector<std::string>& argv) {
   auto sequence = readAll(*input.value().source);
   if (!sequence.ok()) return fail(sequence.status());
   MemorySequence& seq = sequence.value();
-  const std::string out = args.has("output") ? args.get("output")
-                                             : "/tmp/animc-bench-" + std::to_string(getpid()) + ".ams";
+  const std::string out =
+      args.has("output") ? args.get("output") : "/tmp/animc-bench-" + std::to_string(getpid()) + ".ams";
   // The scratch output is rewritten every run: an interrupted bench removes it too.
   const int scratch_slot = args.has("output") ? -1 : registerTemporary(out, TemporaryKind::kFile);
   std::vector<double> encode_s, decode_s;
@@ -197,7 +219,7 @@ int runBench(const std::vector<std::string>& argv) {
     if (!rep.ok()) return fail(rep.status());
     encode_s.push_back(std::chrono::duration<double>(Clock::now() - t0).count());
     report = rep.value();
-    auto d = timeDecode([&] { return Decoder::openFile(out); });
+    auto d = timeDecode([&] { return Decoder::openFile(out, withThreads(settings.threads)); });
     if (!d.ok()) return fail(d.status());
     decode_s.push_back(d.value());
   }
@@ -233,8 +255,8 @@ int runBench(const std::vector<std::string>& argv) {
               (long long)report.frames, runs.value());
   std::fputs(formatEncodeResult(settings, report).c_str(), stdout);
   std::fputs(formatMetricsText(metrics.value()).c_str(), stdout);
-  std::printf("encode: %.2f M vertices/s (median %.4f s)\ndecode: %.2f M vertices/s (median %.4f s)\n",
-              encode_mvps, median(encode_s), decode_mvps, median(decode_s));
+  std::printf("encode: %.2f M vertices/s (median %.4f s)\ndecode: %.2f M vertices/s (median %.4f s)\n", encode_mvps,
+              median(encode_s), decode_mvps, median(decode_s));
   return 0;
 }
 

@@ -42,15 +42,16 @@ Result<WaveletDecodeControl> progressiveControl(const Args& args) {
 
 int runDecode(const std::vector<std::string>& argv) {
   Args args;
-  Status s = args.parse(argv, {"output", "format", "frames", "bitplanes", "max-bytes", "max-vertex-frames",
-                               "max-output-bytes"},
-                         {"progress", "replace"});
+  Status s = args.parse(
+      argv,
+      {"output", "format", "frames", "bitplanes", "max-bytes", "max-vertex-frames", "max-output-bytes", "threads"},
+      {"progress", "replace"});
   if (!s.ok()) return fail(s);
   if (args.positional().size() != 1 || !args.has("output"))
     return fail(invalidArgument("usage: animc decode IN.ams -o OUT [--format " + formatNames("|") +
                                 "] [--frames A:B] "
                                 "[--bitplanes K] [--max-bytes N] [--replace] [--max-vertex-frames V] "
-                                "[--max-output-bytes B]"));
+                                "[--max-output-bytes B] [--threads N]"));
   const std::string out = args.get("output");
   Result<SequenceFormat> fmt = outputFormatOf(out);
   if (args.has("format")) fmt = formatFromName(args.get("format"));
@@ -60,7 +61,9 @@ int runDecode(const std::vector<std::string>& argv) {
   if (!(s = refuseOutputOverInput(out, {args.positional()[0]})).ok()) return fail(s);
   auto limits = decoderLimitsFrom(args);
   if (!limits.ok()) return fail(limits.status());
-  auto source = AmsSource::open(args.positional()[0], limits.value(), control.value());
+  auto threads = threadsFrom(args);
+  if (!threads.ok()) return fail(threads.status());
+  auto source = AmsSource::open(args.positional()[0], limits.value(), control.value(), threads.value());
   if (!source.ok()) return fail(source.status());
   AmsSource& ams = *source.value();
   int64_t first = 0, last = 0;

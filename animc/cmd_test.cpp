@@ -11,14 +11,16 @@ namespace animc::cli {
 
 int runTest(const std::vector<std::string>& argv) {
   Args args;
-  Status s = args.parse(argv, {"max-vertex-frames"}, {"json"});
+  Status s = args.parse(argv, {"max-vertex-frames", "threads"}, {"json"});
   if (!s.ok()) return fail(s);
   if (args.positional().size() != 1)
-    return fail(invalidArgument("usage: animc test IN.ams [--json] [--max-vertex-frames V]"));
+    return fail(invalidArgument("usage: animc test IN.ams [--json] [--max-vertex-frames V] [--threads N]"));
   auto limits = decoderLimitsFrom(args);
   if (!limits.ok()) return fail(limits.status());
+  auto threads = threadsFrom(args);
+  if (!threads.ok()) return fail(threads.status());
   const std::string& path = args.positional()[0];
-  auto check = checkAmsFile(path, limits.value());
+  auto check = checkAmsFile(path, limits.value(), threads.value());
   if (!check.ok()) return fail(check.status());
   const AmsCheck& c = check.value();
   if (args.has("json")) {
@@ -35,8 +37,8 @@ int runTest(const std::vector<std::string>& argv) {
     std::printf("%s\n", o.str().c_str());
     return 0;
   }
-  std::printf("%s: OK, %lld frames of %u vertices, %llu groups\n", path.c_str(), (long long)c.frames,
-              c.vertices, (unsigned long long)c.groups);
+  std::printf("%s: OK, %lld frames of %u vertices, %llu groups\n", path.c_str(), (long long)c.frames, c.vertices,
+              (unsigned long long)c.groups);
   return 0;
 }
 

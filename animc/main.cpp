@@ -30,7 +30,9 @@ std::string usageAfterEncode() {
          "  compare ORIGINAL RECONSTRUCTED|IN.ams [--mesh M] [--json] [--per-frame]\n"
          "  bench IN [--mesh M] [encode options] [--runs R] [--json]\n"
          "  bench IN [--mesh M] --read-only [--runs R] [--json]: reading the sequence only\n"
-         "  bench IN.ams [--runs R] [--json]: decoding only, of that file\n"
+         "  bench IN.ams [--runs R] [--json] [--backwards]: decoding only, of that file\n"
+         "--threads N (encode, decode, test, bench): the threads to use, 0 (the default) = one per\n"
+         "         core; the bytes written and the frames decoded are the same for any N\n"
          "IN: .pc2/.mdd (optionally .xz, with --mesh), a " +
          animc::frameFileExtensionList() +
          " frame, a folder of\n"

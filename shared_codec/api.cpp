@@ -28,9 +28,8 @@ AutoOptions& EncodeSettings::automatic() {
   return std::get<AutoOptions>(options);
 }
 
-Result<EncodeSummary> encodeSequence(FrameSource& source, const EncodeSettings& settings,
-                                     const std::string& out_path, const ProgressFn& progress,
-                                     const FrameObserver& observer) {
+Result<EncodeSummary> encodeSequence(FrameSource& source, const EncodeSettings& settings, const std::string& out_path,
+                                     const ProgressFn& progress, const FrameObserver& observer) {
   // Settings and mesh are checked before the output file is created.
   ANIMC_RETURN_IF_ERROR(settings.validate());
   ANIMC_ASSIGN_OR_RETURN(std::unique_ptr<ByteSink> sink, fileSink(out_path));
@@ -78,10 +77,11 @@ Result<EncodeSummary> encodeSequence(FrameSource& source, const EncodeSettings& 
 }
 
 Result<std::unique_ptr<AmsSource>> AmsSource::open(const std::string& path, const DecoderLimits& limits,
-                                                   const WaveletDecodeControl& progressive) {
+                                                   const WaveletDecodeControl& progressive, uint32_t threads) {
   DecoderOptions options;
   options.limits = limits;
   options.progressive = progressive;
+  options.threads = threads;
   ANIMC_ASSIGN_OR_RETURN(Decoder decoder, Decoder::openFile(path, options));
   return std::make_unique<AmsSource>(std::move(decoder));
 }
@@ -95,17 +95,26 @@ Status AmsSource::seek(int64_t frame) {
 
 Result<bool> AmsSource::next(std::vector<float>& xyz) {
   if (next_frame_ >= frameCount()) return false;
-  xyz.resize(size_t(topology().vertex_count) * 3);
-  ANIMC_RETURN_IF_ERROR(decoder_.frame(next_frame_, xyz.data()));
+  const size_t size = size_t(topology().vertex_count) * 3;
+  if (next_frame_ < chunk_first_ || next_frame_ >= chunk_end_) {
+    const int64_t end = decodeChunkEnd(decoder_, next_frame_);
+    chunk_end_ = chunk_first_ = next_frame_;  // empty until the frames are there
+    chunk_.resize(size_t(end - next_frame_) * size);
+    ANIMC_RETURN_IF_ERROR(decoder_.frames(next_frame_, end, chunk_.data()));
+    chunk_end_ = end;
+  }
+  const float* frame = chunk_.data() + size_t(next_frame_ - chunk_first_) * size;
+  xyz.assign(frame, frame + size);
   ++next_frame_;
   return true;
 }
 
 std::string AmsSource::where() const { return streamName(decoder_) + " frame " + std::to_string(next_frame_); }
 
-Result<AmsCheck> checkAmsFile(const std::string& path, const DecoderLimits& limits) {
+Result<AmsCheck> checkAmsFile(const std::string& path, const DecoderLimits& limits, uint32_t threads) {
   DecoderOptions options;
   options.limits = limits;
+  options.threads = threads;
   ANIMC_ASSIGN_OR_RETURN(Decoder decoder, Decoder::openFile(path, options));
   ANIMC_RETURN_IF_ERROR(decoder.verify());
   AmsCheck check;

@@ -9,17 +9,18 @@
 #include <string>
 #include <vector>
 
+#include "animc/animc.h"
 #include "codecs/codec_registry.h"
 #include "container/container_reader.h"
 #include "core/sequence.h"
-#include "animc/animc.h"
 #include "core/status.h"
 
 namespace animc {
 
 struct EncodeSettings {
-  CodecOptions options;  // the chosen codec's options (Affine-Octree's defaults by default)
+  CodecOptions options;          // the chosen codec's options (Affine-Octree's defaults by default)
   uint32_t iframe_interval = 0;  // an intra frame every K frames; 0 = the first frame only
+  uint32_t threads = 1;          // EncoderOptions::threads (not written to the stream)
 
   CodecId codec() const { return codecOf(options).id; }
   const CodecEntry& entry() const { return codecOf(options); }
@@ -49,6 +50,10 @@ const ContainerInfo& containerInfo(const Decoder& decoder);
 const EncodeSettings& streamSettings(const Decoder& decoder);
 const Topology& streamTopology(const Decoder& decoder);
 const std::string& streamName(const Decoder& decoder);
+// Where a run of frames from `first` that Decoder::frames() decodes at once, on every thread
+// the decoder has, should end: after the groups of one batch, within a bound on memory
+// (128 MB of frames, and the output limit); first + 1 with one thread.
+int64_t decodeChunkEnd(const Decoder& decoder, int64_t first);
 
 // Sees each original frame with its reconstruction as the decoder will produce it, so the
 // caller can measure errors without decoding the file again.
@@ -56,9 +61,8 @@ using FrameObserver = std::function<void(int64_t frame, const float* original, c
 
 // Encodes every frame of source through an Encoder into out_path (written atomically: on any
 // error, nothing appears there). progress is called once per frame.
-Result<EncodeSummary> encodeSequence(FrameSource& source, const EncodeSettings& settings,
-                                     const std::string& out_path, const ProgressFn& progress = {},
-                                     const FrameObserver& observer = {});
+Result<EncodeSummary> encodeSequence(FrameSource& source, const EncodeSettings& settings, const std::string& out_path,
+                                     const ProgressFn& progress = {}, const FrameObserver& observer = {});
 // The same into any sink.
 Result<EncodeSummary> encodeSequence(FrameSource& source, const EncodeSettings& settings,
                                      std::unique_ptr<ByteSink> sink, const ProgressFn& progress = {},
@@ -67,9 +71,9 @@ Result<EncodeSummary> encodeSequence(FrameSource& source, const EncodeSettings& 
 // A Decoder as a stream of frames (for the sequence writers and the metrics).
 class AmsSource final : public FrameSource {
  public:
-  // Starts at frame 0. progressive: see ProgressiveOptions.
+  // Starts at frame 0. progressive: see ProgressiveOptions; threads: DecoderOptions::threads.
   static Result<std::unique_ptr<AmsSource>> open(const std::string& path, const DecoderLimits& limits = {},
-                                                 const WaveletDecodeControl& progressive = {});
+                                                 const WaveletDecodeControl& progressive = {}, uint32_t threads = 0);
   explicit AmsSource(Decoder decoder) : decoder_(std::move(decoder)) {}
 
   const Topology& topology() const override { return streamTopology(decoder_); }
@@ -90,6 +94,9 @@ class AmsSource final : public FrameSource {
  private:
   Decoder decoder_;
   int64_t next_frame_ = 0;
+  // Frames decoded ahead, several groups at once (decodeChunkEnd()): chunk_first_ on.
+  std::vector<float> chunk_;
+  int64_t chunk_first_ = 0, chunk_end_ = 0;
 };
 
 // What checkAmsFile() saw of a file that passed.
@@ -104,6 +111,6 @@ struct AmsCheck {
 
 // The whole-file check of `animc test`: Decoder::verify() of the file. Opening a file alone
 // (Decoder::openFile(), `animc info`) checks the first group only.
-Result<AmsCheck> checkAmsFile(const std::string& path, const DecoderLimits& limits = {});
+Result<AmsCheck> checkAmsFile(const std::string& path, const DecoderLimits& limits = {}, uint32_t threads = 0);
 
 }  // namespace animc

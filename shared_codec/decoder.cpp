@@ -3,8 +3,11 @@
 // frame decoder, and the cursor that turns frame(k) into "seek to k's group, decode forward".
 #include "api.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
+
+#include "core/parallel.h"
 
 namespace animc {
 namespace {
@@ -38,11 +41,23 @@ StreamInfo streamInfo(const ContainerInfo& c, const EncodeSettings& s) {
   return info;
 }
 
+// Decodes one payload into xyz; the first frame of a group must be an intra frame.
+Status decodePayload(FrameDecoder& codec, const std::vector<uint8_t>& payload, bool group_start,
+                     std::vector<float>& xyz, const std::string& where) {
+  bool intra = false;
+  Status s = codec.decodeFrame(ByteReader(payload.data(), payload.size()), xyz, &intra);
+  if (!s.ok()) return s.withContext(where);
+  if (group_start && !intra) return corrupt(where + ": a frame group does not start with an intra frame");
+  return Status();
+}
+
 }  // namespace
 
 struct Decoder::Impl {
   std::string name;  // of the stream, in messages
   DecoderLimits limits;
+  unsigned threads = 1;
+  WaveletDecodeControl progressive;
   std::unique_ptr<ContainerReader> reader;
   std::unique_ptr<FrameDecoder> codec;
   EncodeSettings settings;
@@ -53,9 +68,18 @@ struct Decoder::Impl {
   size_t group = 0;
   bool positioned = false;  // the cursor is at next_frame (a group was entered)
 
-  std::string where() const { return name + " frame " + std::to_string(next_frame); }
+  // Decoders of their own for the groups decoded at once by frames(), one a group.
+  std::vector<std::unique_ptr<FrameDecoder>> group_codecs;
+
+  std::string where(int64_t frame) const { return name + " frame " + std::to_string(frame); }
+  std::string where() const { return where(next_frame); }
   Status enterGroupOf(int64_t frame);
   Status decodeNext();
+  int64_t groupEnd(size_t g) const;
+  Status readPayloads(size_t g, int64_t last, std::vector<std::vector<uint8_t>>& payloads);
+  Status decodeGroups(int64_t first, int64_t last, float* xyz, const ProgressFn& progress = {});
+  Status decodeGroupPart(FrameDecoder& codec, size_t g, const std::vector<std::vector<uint8_t>>& payloads,
+                         int64_t first, float* xyz) const;
   // The two halves of Decoder::checkDecodeWork, for a range inside the stream.
   Status checkWork(int64_t first, int64_t last) const;
   Status checkOutput(int64_t first, int64_t last, uint64_t output_bytes) const;
@@ -81,12 +105,79 @@ Status Decoder::Impl::decodeNext() {
     if (!got.ok()) return got.status().withContext(where());
     if (!got.value()) return corrupt(where() + ": empty frame group");
   }
-  bool intra = false;
-  Status s = codec->decodeFrame(ByteReader(payload.data(), payload.size()), xyz, &intra);
-  if (!s.ok()) return s.withContext(where());
-  if (next_frame == int64_t(reader->groupFirstFrame(group)) && !intra)
-    return corrupt(where() + ": a frame group does not start with an intra frame");
+  const bool group_start = next_frame == int64_t(reader->groupFirstFrame(group));
+  ANIMC_RETURN_IF_ERROR(decodePayload(*codec, payload, group_start, xyz, where()));
   ++next_frame;
+  return Status();
+}
+
+int64_t Decoder::Impl::groupEnd(size_t g) const {
+  return g + 1 < reader->groupCount() ? int64_t(reader->groupFirstFrame(g + 1)) : info.frames;
+}
+
+// Group g's frames up to `payloads`' count, decoded by `codec`; those from frame `first` on go
+// to xyz, one after the other (3N floats each), unless xyz is null.
+Status Decoder::Impl::decodeGroupPart(FrameDecoder& codec, size_t g, const std::vector<std::vector<uint8_t>>& payloads,
+                                      int64_t first, float* xyz) const {
+  const int64_t start = int64_t(reader->groupFirstFrame(g));
+  std::vector<float> frame;
+  for (size_t i = 0; i < payloads.size(); ++i) {
+    const int64_t k = start + int64_t(i);
+    ANIMC_RETURN_IF_ERROR(decodePayload(codec, payloads[i], i == 0, frame, where(k)));
+    if (xyz && k >= first) std::copy(frame.begin(), frame.end(), xyz + size_t(k - first) * frame.size());
+  }
+  return Status();
+}
+
+// The payloads of group g's frames before `last`, read in order (its CRC checked on entering
+// it); a group read to its end is checked for bytes after its last frame.
+Status Decoder::Impl::readPayloads(size_t g, int64_t last, std::vector<std::vector<uint8_t>>& payloads) {
+  Status s = reader->beginGroup(g);
+  if (!s.ok()) return s.withContext(name);
+  const int64_t end = std::min(groupEnd(g), last);
+  for (int64_t k = int64_t(reader->groupFirstFrame(g)); k < end; ++k) {
+    payloads.emplace_back();
+    auto got = reader->nextFrame(payloads.back());
+    if (!got.ok()) return got.status().withContext(where(k));
+    if (!got.value()) return corrupt(where(k) + ": the frame group ends before this frame");
+  }
+  if (end == groupEnd(g)) {
+    std::vector<uint8_t> after;
+    auto got = reader->nextFrame(after);
+    if (!got.ok()) return got.status().withContext(name);
+  }
+  return Status();
+}
+
+// Frames [first, last) of two or more groups: up to one group a thread at once, each by a
+// decoder of its own, from payloads read in order by this thread.
+Status Decoder::Impl::decodeGroups(int64_t first, int64_t last, float* xyz, const ProgressFn& progress) {
+  const size_t g_first = reader->groupOf(uint64_t(first)), g_last = reader->groupOf(uint64_t(last - 1));
+  positioned = false;  // the cursor is left anywhere
+  for (size_t g0 = g_first; g0 <= g_last; g0 += threads) {
+    const size_t count = std::min<size_t>(threads, g_last + 1 - g0);
+    // A group that cannot be read ends the batch there; the groups before it are decoded
+    // first, so that the error reported is the first in frame order, as one thread finds it.
+    std::vector<std::vector<std::vector<uint8_t>>> payloads(count);
+    Status read_failure;
+    size_t readable = 0;
+    while (readable < count && (read_failure = readPayloads(g0 + readable, last, payloads[readable])).ok()) ++readable;
+    while (group_codecs.size() < readable) {
+      ANIMC_ASSIGN_OR_RETURN(auto codec, settings.entry().makeDecoder(settings.options, reader->topology(), progressive,
+                                                                      name, bestSimdPath()));
+      group_codecs.push_back(std::move(codec));
+    }
+    std::vector<Status> status(readable);
+    parallelFor(readable, [&](size_t i) {
+      const int64_t start = int64_t(reader->groupFirstFrame(g0 + i));
+      float* out = xyz ? xyz + size_t(std::max<int64_t>(0, start - first)) * 3 * info.vertices : nullptr;
+      status[i] = decodeGroupPart(*group_codecs[i], g0 + i, payloads[i], std::max(first, start), out);
+    });
+    for (const Status& s : status) ANIMC_RETURN_IF_ERROR(s);
+    ANIMC_RETURN_IF_ERROR(read_failure);
+    const int64_t done = std::min(groupEnd(g0 + count - 1), last) - first;
+    if (progress && !progress(int(100 * done / (last - first)), "checking")) return cancelled();
+  }
   return Status();
 }
 
@@ -96,13 +187,15 @@ struct DecoderAccess {
     auto impl = std::make_unique<Decoder::Impl>();
     impl->name = name;
     impl->limits = options.limits;
+    impl->threads = resolveThreads(options.threads);
+    impl->progressive = options.progressive;
     ANIMC_ASSIGN_OR_RETURN(impl->reader, ContainerReader::open(std::move(source), name, options.limits));
     auto settings = readSettings(impl->reader->info().header);
     if (!settings.ok()) return settings.status().withContext(name);
     impl->settings = settings.value();
-    ANIMC_ASSIGN_OR_RETURN(impl->codec, impl->settings.entry().makeDecoder(impl->settings.options,
-                                                                            impl->reader->topology(),
-                                                                            options.progressive, name, bestSimdPath()));
+    ANIMC_ASSIGN_OR_RETURN(impl->codec,
+                           impl->settings.entry().makeDecoder(impl->settings.options, impl->reader->topology(),
+                                                              options.progressive, name, bestSimdPath()));
     impl->info = streamInfo(impl->reader->info(), impl->settings);
     // The first group is checked on opening (its CRC), as the container reader promises.
     ANIMC_RETURN_IF_ERROR(impl->enterGroupOf(0));
@@ -138,10 +231,11 @@ const uint32_t* Decoder::triangles() const {
 Status Decoder::frame(int64_t k, float* xyz) {
   Impl& d = *impl_;
   if (k < 0 || k >= d.info.frames)
-    return invalidArgument(d.name + ": frame " + std::to_string(k) + " outside [0, " +
-                           std::to_string(d.info.frames) + ")");
+    return invalidArgument(d.name + ": frame " + std::to_string(k) + " outside [0, " + std::to_string(d.info.frames) +
+                           ")");
   if (xyz == nullptr) return invalidArgument("no frame buffer");
   ANIMC_RETURN_IF_ERROR(d.checkOutput(k, k + 1, 0));
+  ThreadBudget budget(d.threads);
   if (!d.positioned || k < d.next_frame || d.reader->groupOf(uint64_t(k)) != d.group) {
     ANIMC_RETURN_IF_ERROR(d.checkWork(k, k + 1));
     ANIMC_RETURN_IF_ERROR(d.enterGroupOf(k));
@@ -150,6 +244,23 @@ Status Decoder::frame(int64_t k, float* xyz) {
   while (d.next_frame <= k) ANIMC_RETURN_IF_ERROR(d.decodeNext());
   d.positioned = true;
   std::memcpy(xyz, d.xyz.data(), d.xyz.size() * sizeof(float));
+  return Status();
+}
+
+Status Decoder::frames(int64_t first, int64_t last, float* xyz) {
+  Impl& d = *impl_;
+  if (first < 0 || last > d.info.frames || first >= last)
+    return invalidArgument(d.name + ": frames " + std::to_string(first) + " to " + std::to_string(last) +
+                           " are not a range of [0, " + std::to_string(d.info.frames) + ")");
+  if (xyz == nullptr) return invalidArgument("no frame buffer");
+  ANIMC_RETURN_IF_ERROR(d.checkOutput(first, last, 0));
+  ANIMC_RETURN_IF_ERROR(d.checkWork(first, last));
+  ThreadBudget budget(d.threads);
+  if (d.threads > 1 && d.reader->groupOf(uint64_t(first)) != d.reader->groupOf(uint64_t(last - 1)))
+    return d.decodeGroups(first, last, xyz);
+  // One group, or one thread: the cursor goes on from where it is, as frame() does.
+  const size_t size = size_t(3) * d.info.vertices;
+  for (int64_t k = first; k < last; ++k) ANIMC_RETURN_IF_ERROR(frame(k, xyz + size_t(k - first) * size));
   return Status();
 }
 
@@ -197,6 +308,12 @@ Status Decoder::verify(const ProgressFn& progress) {
   Impl& d = *impl_;
   // Nothing is kept, so only the work is bounded, not the output.
   if (d.info.frames > 0) ANIMC_RETURN_IF_ERROR(d.checkWork(0, d.info.frames));
+  ThreadBudget budget(d.threads);
+  if (d.threads > 1 && d.reader->groupCount() > 1) {
+    // Every group is read to its end, and so checked for bytes after its last frame.
+    ANIMC_RETURN_IF_ERROR(d.decodeGroups(0, d.info.frames, nullptr, progress));
+    return Status();
+  }
   ANIMC_RETURN_IF_ERROR(d.enterGroupOf(0));
   d.positioned = false;
   // decodeNext() enters each group in turn, checking its CRC and its numbers.
@@ -211,6 +328,22 @@ Status Decoder::verify(const ProgressFn& progress) {
   if (after.value()) return corrupt(d.name + ": bytes follow the last frame of the last group");
   d.positioned = true;
   return Status();
+}
+
+int64_t decodeChunkEnd(const Decoder& decoder, int64_t first) {
+  const Decoder::Impl& d = DecoderAccess::impl(decoder);
+  if (d.threads <= 1) return first + 1;
+  // At most kChunkBytes of frames, and never more than the output limit allows.
+  constexpr uint64_t kChunkBytes = uint64_t(1) << 27;
+  const uint64_t frame_bytes = uint64_t(12) * std::max<uint32_t>(1, d.info.vertices);
+  const int64_t most = int64_t(std::max<uint64_t>(1, std::min(kChunkBytes, d.limits.max_output_bytes) / frame_bytes));
+  const int64_t cap = std::min(d.info.frames, first + most);
+  // The end of the group `threads` groups on, or failing that the last group boundary below
+  // the cap; inside one group, the cap (the next chunk goes on from there).
+  const size_t g = d.reader->groupOf(uint64_t(first));
+  int64_t end = d.groupEnd(std::min(g + d.threads, d.reader->groupCount()) - 1);
+  while (end > cap) end = int64_t(d.reader->groupFirstFrame(d.reader->groupOf(uint64_t(end - 1))));
+  return end > first ? end : cap;
 }
 
 const ContainerInfo& containerInfo(const Decoder& decoder) { return DecoderAccess::impl(decoder).reader->info(); }

@@ -7,7 +7,9 @@
 #include <cstdio>
 
 #include "api.h"
+#include "codecs/frame_group_encoder.h"
 #include "container/container_writer.h"
+#include "core/parallel.h"
 #include "io/byte_writer.h"
 
 namespace animc {
@@ -72,52 +74,78 @@ struct Encoder::Impl {
   EncodeSettings settings;
   Topology topology;
   ContainerWriter writer;
-  std::unique_ptr<FrameEncoder> codec;        // a codec that codes frame by frame,
-  std::unique_ptr<GroupEncoder> group_codec;  // or one that codes whole groups
+  unsigned threads = 1;
+  // A frame-by-frame codec on one thread codes each frame as it comes (codec). Otherwise the
+  // frames are gathered into groups, and up to one group a thread is coded at once, each by
+  // a group coder of its own (the codec's own for a group codec).
+  std::unique_ptr<FrameEncoder> codec;
+  std::vector<std::unique_ptr<GroupEncoder>> group_coders;
+  uint32_t max_group_frames = 0;
   EncodeSummary summary;
   std::vector<uint8_t> payload;
   std::vector<float> reconstruction;
   int64_t reconstruction_frame = -1;  // the frame `reconstruction` holds
-  // Group codecs: the frames of the open group, and the first frame of the last coded one.
-  std::vector<float> group;
-  uint32_t group_frames = 0;
-  int64_t coded_group_first = 0;
+  // Group mode: the frames gathered (3N floats each) in the groups they make, the last one
+  // open; and the first frame of each group of the last batch coded, then its end.
+  std::vector<float> pending;
+  std::vector<uint32_t> pending_groups;  // frame counts of the closed groups
+  uint32_t open_frames = 0;
+  std::vector<int64_t> coded_first;
   bool finished = false;
 
+  bool groupMode() const { return codec == nullptr; }
+  int64_t pendingFrames() const;
   bool groupEnds(int64_t next_frame) const;
-  Status codeGroup();
-  Status writeFrame(const std::vector<uint8_t>& payload, bool intra, const FrameCodingStats& stats);
+  Status codeBatch();
+  Status writeFrame(const std::vector<uint8_t>& payload, const FrameCodingStats& stats);
 };
+
+int64_t Encoder::Impl::pendingFrames() const {
+  int64_t frames = open_frames;
+  for (uint32_t g : pending_groups) frames += g;
+  return frames;
+}
 
 // Whether the open group closes before frame next_frame: the I-frame interval starts a
 // group there, or the group is as long as the codec takes.
 bool Encoder::Impl::groupEnds(int64_t next_frame) const {
   const uint32_t interval = settings.iframe_interval;
-  return group_frames > 0 && ((interval > 0 && next_frame % interval == 0) ||
-                              group_frames >= group_codec->maxGroupFrames());
+  return open_frames > 0 && ((interval > 0 && next_frame % interval == 0) || open_frames >= max_group_frames);
 }
 
-Status Encoder::Impl::codeGroup() {
-  std::vector<std::vector<uint8_t>> payloads;
+// Codes the closed groups gathered, one a thread, and writes them in order.
+Status Encoder::Impl::codeBatch() {
+  const size_t count = pending_groups.size();
+  while (group_coders.size() < count)
+    group_coders.push_back(makeAnyGroupEncoder(settings.entry(), settings.options, topology, bestSimdPath()));
+  std::vector<size_t> offset(count + 1, 0);
+  for (size_t i = 0; i < count; ++i) offset[i + 1] = offset[i] + pending_groups[i];
+  const size_t frame_size = size_t(3) * topology.vertex_count;
+  std::vector<std::vector<std::vector<uint8_t>>> payloads(count);
   const auto start = Clock::now();
-  group_codec->encodeGroup(group.data(), group_frames, payloads);
-  summary.encode_seconds += std::chrono::duration<double>(Clock::now() - start).count();
-  FrameCodingStats stats;
-  for (size_t i = 0; i < payloads.size(); ++i) {
-    stats.intra = i == 0;
-    ANIMC_RETURN_IF_ERROR(writeFrame(payloads[i], stats.intra, stats));
+  {
+    ThreadBudget budget(threads);
+    parallelFor(count, [&](size_t i) {
+      group_coders[i]->encodeGroup(pending.data() + offset[i] * frame_size, pending_groups[i], payloads[i]);
+    });
   }
-  coded_group_first = summary.frames - group_frames;
-  group_frames = 0;
-  group.clear();
+  summary.encode_seconds += std::chrono::duration<double>(Clock::now() - start).count();
+  for (size_t i = 0; i < count; ++i)
+    for (uint32_t k = 0; k < pending_groups[i]; ++k)
+      ANIMC_RETURN_IF_ERROR(writeFrame(payloads[i][k], group_coders[i]->frameStats(k)));
+  const int64_t first = summary.frames - open_frames - int64_t(offset[count]);
+  coded_first.clear();
+  for (size_t i = 0; i <= count; ++i) coded_first.push_back(first + int64_t(offset[i]));
+  pending.erase(pending.begin(), pending.begin() + offset[count] * frame_size);
+  pending_groups.clear();
   reconstruction_frame = -1;
   return Status();
 }
 
-Status Encoder::Impl::writeFrame(const std::vector<uint8_t>& bytes, bool intra, const FrameCodingStats& stats) {
-  ANIMC_RETURN_IF_ERROR(writer.addFrame(bytes, intra));
+Status Encoder::Impl::writeFrame(const std::vector<uint8_t>& bytes, const FrameCodingStats& stats) {
+  ANIMC_RETURN_IF_ERROR(writer.addFrame(bytes, stats.intra));
   if (summary.static_bytes == 0) summary.static_bytes = writer.bytesWritten();
-  summary.intra_frames += intra;
+  summary.intra_frames += stats.intra;
   summary.cells += stats.cells;
   return Status();
 }
@@ -140,10 +168,13 @@ struct EncoderAccess {
     header.iframe_interval = settings.iframe_interval;
     ANIMC_RETURN_IF_ERROR(impl->writer.open(std::move(sink), header, impl->topology));
     const CodecEntry& codec = settings.entry();
-    if (codec.makeGroupEncoder)
-      impl->group_codec = codec.makeGroupEncoder(settings.options, impl->topology, bestSimdPath());
-    else
+    impl->threads = resolveThreads(settings.threads);
+    if (codec.makeGroupEncoder || (impl->threads > 1 && settings.iframe_interval > 0)) {
+      impl->group_coders.push_back(makeAnyGroupEncoder(codec, settings.options, impl->topology, bestSimdPath()));
+      impl->max_group_frames = impl->group_coders[0]->maxGroupFrames();
+    } else {
       impl->codec = codec.makeEncoder(settings.options, impl->topology, bestSimdPath());
+    }
     impl->summary.vertices = impl->topology.vertex_count;
     impl->summary.triangles = impl->topology.triangles.size();
     return Encoder(std::move(impl));
@@ -157,6 +188,7 @@ Result<EncodeSettings> encodeSettingsFrom(const EncoderOptions& options) {
   EncodeSettings s;
   ANIMC_ASSIGN_OR_RETURN(s.options, codec->fromFlags(MapOptionValues(options.values)));
   s.iframe_interval = options.iframe_interval;
+  s.threads = options.threads;
   ANIMC_RETURN_IF_ERROR(s.validate());
   return s;
 }
@@ -206,11 +238,15 @@ Status Encoder::addFrame(const float* xyz) {
   if (xyz == nullptr) return invalidArgument("no frame");
   const int64_t frame = e.summary.frames;
   ANIMC_RETURN_IF_ERROR(checkFrame(xyz, e.topology.vertex_count, frame));
-  if (e.group_codec) {
-    e.group.insert(e.group.end(), xyz, xyz + size_t(e.topology.vertex_count) * 3);
-    ++e.group_frames;
+  if (e.groupMode()) {
+    e.pending.insert(e.pending.end(), xyz, xyz + size_t(e.topology.vertex_count) * 3);
+    ++e.open_frames;
     ++e.summary.frames;
-    if (e.groupEnds(e.summary.frames)) ANIMC_RETURN_IF_ERROR(e.codeGroup());
+    if (e.groupEnds(e.summary.frames)) {
+      e.pending_groups.push_back(e.open_frames);
+      e.open_frames = 0;
+      if (e.pending_groups.size() >= e.threads) ANIMC_RETURN_IF_ERROR(e.codeBatch());
+    }
     return Status();
   }
   const uint32_t interval = e.settings.iframe_interval;
@@ -222,22 +258,22 @@ Status Encoder::addFrame(const float* xyz) {
   e.summary.encode_seconds += std::chrono::duration<double>(Clock::now() - start).count();
   e.reconstruction_frame = -1;
   ++e.summary.frames;
-  return e.writeFrame(e.payload, stats.intra, stats);
+  return e.writeFrame(e.payload, stats);
 }
 
-int64_t Encoder::reconstructedFrames() const {
-  const Impl& e = *impl_;
-  return e.group_codec ? e.summary.frames - e.group_frames : e.summary.frames;
-}
+int64_t Encoder::reconstructedFrames() const { return impl_->summary.frames - impl_->pendingFrames(); }
 
 const float* Encoder::reconstruction(int64_t frame) {
   Impl& e = *impl_;
-  const int64_t first = e.group_codec ? e.coded_group_first : e.summary.frames - 1;
-  if (frame < first || frame >= reconstructedFrames()) return nullptr;
+  if (frame < 0 || frame >= reconstructedFrames()) return nullptr;
+  if (e.groupMode() && (e.coded_first.empty() || frame < e.coded_first.front())) return nullptr;
+  if (!e.groupMode() && frame != e.summary.frames - 1) return nullptr;
   if (e.reconstruction_frame != frame) {
     e.reconstruction.resize(size_t(e.topology.vertex_count) * 3);
-    if (e.group_codec) {
-      e.group_codec->reconstruction(uint32_t(frame - first), e.reconstruction.data());
+    if (e.groupMode()) {
+      const size_t i =
+          size_t(std::upper_bound(e.coded_first.begin(), e.coded_first.end(), frame) - e.coded_first.begin()) - 1;
+      e.group_coders[i]->reconstruction(uint32_t(frame - e.coded_first[i]), e.reconstruction.data());
     } else {
       // The codecs reconstruct in double; decoders output these rounded to float.
       const std::vector<double>& r = e.codec->reconstruction();
@@ -255,7 +291,9 @@ Result<EncodeSummary> Encoder::finish() {
   if (e.finished) return invalidArgument("the encoder has finished already");
   if (e.summary.frames == 0) return badInput("the sequence has no frames");
   e.finished = true;
-  if (e.group_frames > 0) ANIMC_RETURN_IF_ERROR(e.codeGroup());
+  if (e.open_frames > 0) e.pending_groups.push_back(e.open_frames);
+  e.open_frames = 0;
+  if (!e.pending_groups.empty()) ANIMC_RETURN_IF_ERROR(e.codeBatch());
   ANIMC_RETURN_IF_ERROR(e.writer.finish());
   e.summary.bytes = e.writer.bytesWritten();
   return e.summary;

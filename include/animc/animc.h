@@ -13,7 +13,9 @@
 // message names what is at fault. A moved-from Encoder or Decoder may only be destroyed or
 // assigned to.
 // Threads: an object is used by one thread at a time; different objects, on any threads, are
-// independent and safe to use in parallel.
+// independent and safe to use in parallel. An Encoder or Decoder may itself use several threads
+// for one call (EncoderOptions::threads, DecoderOptions::threads); what it writes or decodes is
+// the same, to the bit, whatever their number.
 // Frames are 3 * vertex_count floats, x y z of vertex 0, then of vertex 1, ...; triangles are
 // 3 * triangle_count vertex indices.
 #pragma once
@@ -81,7 +83,7 @@ class [[nodiscard]] Status {
 template <class T>
 class [[nodiscard]] Result {
  public:
-  Result(T value) : v_(std::move(value)) {}        // NOLINT: implicit by design, like StatusOr
+  Result(T value) : v_(std::move(value)) {}         // NOLINT: implicit by design, like StatusOr
   Result(Status status) : v_(std::move(status)) {}  // NOLINT
   bool ok() const { return v_.index() == 0; }
   const Status& status() const {
@@ -113,6 +115,13 @@ struct EncoderOptions {
   std::map<std::string, std::string> values;
   uint32_t iframe_interval = 0;  // an intra frame (a random-access point) every K frames; 0 = the first only
   double frame_rate = 25.0;      // stored in the stream for players
+  // Threads the encoder may use: 0 = one per core, 1 = the calling thread only. Frame groups
+  // are coded several at once (one per thread, so memory grows to one group a thread), and
+  // the trajectory codec splits one group's work; the bytes written do not depend on it. The
+  // default is 1, unlike animc's and DecoderOptions': with more threads, reconstruction()
+  // knows a frame later (reconstructedFrames() says when), and a program written for 1.x that
+  // reads the reconstruction of each frame as it adds it keeps working.
+  uint32_t threads = 1;
 
   EncoderOptions& set(const std::string& name, const std::string& value) {
     values[name] = value;
@@ -168,13 +177,15 @@ class ANIMC_API Encoder {
   // Codes the next frame (3 * vertex_count floats, finite).
   Status addFrame(const float* xyz);
   // Frames whose reconstruction is known. A codec that codes frame by frame knows each as
-  // soon as it is added; the trajectory codec knows a group's frames when the group closes
-  // (when the next frame would not fit in it, and at finish()).
+  // soon as it is added; frames coded in groups (the trajectory and auto codecs, and any codec
+  // with an I-frame interval on several threads) are known when their group is coded: when it
+  // closes (when the next frame would not fit in it, and at finish()), or with several
+  // threads when as many groups have closed as there are threads.
   int64_t reconstructedFrames() const;
   // Frame k as every decoder will reconstruct it (3 * vertex_count floats, valid until the
   // next call of addFrame() or reconstruction()): what the caller measures errors on. Known
-  // for the last frame added (frame-by-frame codecs) or the frames of the last closed group;
-  // null for any other frame.
+  // for the last frame added (a frame-by-frame codec on one thread) or the frames of the
+  // groups coded last; null for any other frame.
   const float* reconstruction(int64_t frame);
   // reconstruction() of the last frame added: null for a frame of a group still open.
   const float* reconstruction();
@@ -220,6 +231,9 @@ struct ProgressiveOptions {
 struct DecoderOptions {
   DecoderLimits limits;
   ProgressiveOptions progressive;
+  // Threads Decoder::frames() may use: 0 = one per core, 1 = the calling thread only. Frames
+  // are the same whatever their number.
+  uint32_t threads = 0;
 };
 
 // One codec setting of a stream, as `animc info --json` shows it.
@@ -264,6 +278,10 @@ class ANIMC_API Decoder {
   // Decodes frame k into xyz (3 * info().vertices floats). The frame after the last one
   // decoded costs one frame; any other costs the frames from the start of its group.
   Status frame(int64_t k, float* xyz);
+  // Decodes frames [first, last) into xyz, one after the other (3 * info().vertices floats
+  // each): the same frames as frame() in a loop, with the groups of the range decoded several
+  // at once (DecoderOptions::threads). Refused before any work above the limits.
+  Status frames(int64_t first, int64_t last, float* xyz);
   // kLimitExceeded, saying how to raise the limit, when decoding frames [first, last) would
   // cost more than DecoderLimits::max_vertex_frames or give more than max_output_bytes:
   // `output_bytes`, the size of the caller's form of those frames, or when 0 their floats.
@@ -350,8 +368,8 @@ class ANIMC_API MetricsAccumulator {
 // (lengths of the edges joining a vertex's positions in consecutive frames). Definitions and
 // the neighbourhood used here in docs/metrics.md.
 struct StedOptions {
-  int rings = 1;             // neighbourhood of a vertex: its edges within this many rings (1-3)
-  double time_step = 0.01;   // one frame's temporal edge length, times frame 0's bbox diagonal
+  int rings = 1;               // neighbourhood of a vertex: its edges within this many rings (1-3)
+  double time_step = 0.01;     // one frame's temporal edge length, times frame 0's bbox diagonal
   double temporal_weight = 1;  // c in STED = sqrt(spatial^2 + c^2 temporal^2)
 };
 

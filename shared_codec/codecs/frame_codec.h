@@ -45,6 +45,12 @@ class GroupEncoder {
   virtual void encodeGroup(const float* frames, uint32_t frame_count, std::vector<std::vector<uint8_t>>& payloads) = 0;
   // Frame k of the last coded group as the decoder will produce it (3 * vertex_count floats).
   virtual void reconstruction(uint32_t k, float* xyz) const = 0;
+  // What frame k of the last coded group is (whether it is intra, its cells).
+  virtual FrameCodingStats frameStats(uint32_t k) const {
+    FrameCodingStats stats;
+    stats.intra = k == 0;
+    return stats;
+  }
 };
 
 class FrameDecoder {

@@ -7,6 +7,8 @@
 //   [0] bit 0: repair section CRCs first, so mutations reach the parsers behind them
 //       bit 1: progressive decoding with the limits of bytes [2] and [3]
 //       bit 2: seek to frame [1] (modulo the frame count) before decoding
+//       bit 3: decode the frames as one range through Decoder::frames() on two threads
+//              (several groups at once) instead of frame() by frame()
 //   [2] max bitplanes (modulo 65; 0 = all)   [3] max payload bytes / 4 (0 = all)
 #include <algorithm>
 #include <cstdint>
@@ -57,6 +59,7 @@ DecoderLimits fuzzLimits() {
 void decode(const std::vector<uint8_t>& stream, const uint8_t* control) {
   animc::DecoderOptions options;
   options.limits = fuzzLimits();
+  options.threads = 2;
   if (control[0] & 2) {
     options.progressive.max_bitplanes = control[2] % 65;
     options.progressive.max_payload_bytes = uint64_t(control[3]) * 4;
@@ -66,6 +69,13 @@ void decode(const std::vector<uint8_t>& stream, const uint8_t* control) {
   animc::Decoder& decoder = opened.value();
   const int64_t frames = decoder.info().frames;
   const int64_t first = (control[0] & 4) ? int64_t(control[1]) % frames : 0;
+  if (control[0] & 8) {
+    const int64_t vertices = std::max<int64_t>(1, decoder.info().vertices);
+    const int64_t last = std::min<int64_t>(frames, first + std::max<int64_t>(1, int64_t(kVertexBudget) / vertices));
+    std::vector<float> range(3 * size_t(decoder.info().vertices) * size_t(last - first));
+    (void)decoder.frames(first, last, range.data());
+    return;
+  }
   std::vector<float> xyz(3 * size_t(decoder.info().vertices));
   uint64_t work = 0;
   for (int64_t k = first; k < frames && work < kVertexBudget; ++k, work += decoder.info().vertices)

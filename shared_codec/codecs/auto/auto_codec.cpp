@@ -5,6 +5,8 @@
 #include <cstring>
 
 #include "codecs/codec_registry.h"
+#include "codecs/frame_group_encoder.h"
+#include "core/parallel.h"
 
 namespace animc {
 namespace {
@@ -25,93 +27,59 @@ Result<Candidate> candidateOf(const AutoCandidate& c) {
   return out;
 }
 
-// A group coded by one candidate: its payloads and the frames decoders will make of them.
-struct CodedGroup {
-  std::vector<std::vector<uint8_t>> payloads;
-  std::vector<float> frames;  // 3N floats a frame
-  size_t bytes() const {
-    size_t n = 0;
-    for (const auto& p : payloads) n += p.size();
-    return n;
-  }
-};
-
 class AutoEncoder final : public GroupEncoder {
  public:
   AutoEncoder(const AutoOptions& options, const Topology& topology, SimdPath path)
-      : topology_(topology), path_(path), group_frames_(options.group_frames) {
+      : topology_(topology), group_frames_(options.group_frames) {
     for (const AutoCandidate& c : options.candidates) {
       auto candidate = candidateOf(c);
       if (!candidate.ok() || !candidate.value().entry->checkMesh(topology).ok()) continue;
-      candidates_.push_back(candidate.value());
-      if (candidate.value().entry->makeGroupEncoder)
-        group_encoders_.push_back(candidate.value().entry->makeGroupEncoder(candidate.value().options, topology, path));
-      else
-        group_encoders_.push_back(nullptr);
+      const Candidate& chosen = candidate.value();
+      encoders_.push_back(makeAnyGroupEncoder(*chosen.entry, chosen.options, topology_, path));
+      frame_by_frame_.push_back(chosen.entry->makeGroupEncoder == nullptr);
       index_.push_back(uint8_t(&c - options.candidates.data()));
     }
+    payloads_.resize(encoders_.size());
   }
 
   uint32_t maxGroupFrames() const override {
     uint32_t frames = group_frames_;
-    for (const auto& g : group_encoders_)
-      if (g) frames = std::min(frames, g->maxGroupFrames());
+    for (const auto& e : encoders_) frames = std::min(frames, e->maxGroupFrames());
     return frames;
   }
 
+  // Every candidate codes the group; the smallest is kept (the first of equal ones). With
+  // more than one thread the frame-by-frame candidates run on a thread of their own beside
+  // the group codecs, which keep the caller's threads (they do most of the work).
   void encodeGroup(const float* frames, uint32_t frame_count, std::vector<std::vector<uint8_t>>& payloads) override {
-    CodedGroup best;
-    uint8_t best_index = 0;
-    for (size_t i = 0; i < candidates_.size(); ++i) {
-      CodedGroup coded = code(i, frames, frame_count);
-      if (i == 0 || coded.bytes() < best.bytes()) {
-        best = std::move(coded);
-        best_index = index_[i];
-      }
-    }
-    payloads.clear();
-    for (auto& p : best.payloads) {
-      p.insert(p.begin(), best_index);
-      payloads.push_back(std::move(p));
-    }
-    frames_ = std::move(best.frames);
+    auto code = [&](bool frame_by_frame) {
+      for (size_t i = 0; i < encoders_.size(); ++i)
+        if (frame_by_frame_[i] == frame_by_frame) encoders_[i]->encodeGroup(frames, frame_count, payloads_[i]);
+    };
+    runBeside([&] { code(true); }, [&] { code(false); });
+    best_ = 0;
+    for (size_t i = 1; i < encoders_.size(); ++i)
+      if (bytes(payloads_[i]) < bytes(payloads_[best_])) best_ = i;
+    payloads = std::move(payloads_[best_]);
+    for (auto& p : payloads) p.insert(p.begin(), index_[best_]);
   }
 
-  void reconstruction(uint32_t k, float* xyz) const override {
-    const size_t size = size_t(3) * topology_.vertex_count;
-    std::memcpy(xyz, frames_.data() + k * size, size * sizeof(float));
-  }
+  void reconstruction(uint32_t k, float* xyz) const override { encoders_[best_]->reconstruction(k, xyz); }
 
  private:
-  CodedGroup code(size_t i, const float* frames, uint32_t frame_count) const {
-    CodedGroup out;
-    const size_t size = size_t(3) * topology_.vertex_count;
-    out.frames.resize(frame_count * size);
-    if (group_encoders_[i]) {
-      group_encoders_[i]->encodeGroup(frames, frame_count, out.payloads);
-      for (uint32_t k = 0; k < frame_count; ++k) group_encoders_[i]->reconstruction(k, out.frames.data() + k * size);
-      return out;
-    }
-    // A frame-by-frame codec starts afresh for each group, as its decoder does at the
-    // group's intra frame.
-    auto encoder = candidates_[i].entry->makeEncoder(candidates_[i].options, topology_, path_);
-    for (uint32_t k = 0; k < frame_count; ++k) {
-      out.payloads.emplace_back();
-      FrameCodingStats stats;
-      encoder->encodeFrame(frames + k * size, k == 0, out.payloads.back(), stats);
-      const std::vector<double>& r = encoder->reconstruction();
-      std::copy(r.begin(), r.end(), out.frames.begin() + k * size);  // decoders output floats
-    }
-    return out;
+  static size_t bytes(const std::vector<std::vector<uint8_t>>& payloads) {
+    size_t n = 0;
+    for (const auto& p : payloads) n += p.size();
+    return n;
   }
 
   Topology topology_;
-  SimdPath path_;
   uint32_t group_frames_;
-  std::vector<Candidate> candidates_;
-  std::vector<std::unique_ptr<GroupEncoder>> group_encoders_;  // null for frame-by-frame codecs
-  std::vector<uint8_t> index_;                                 // in the file's candidate list
-  std::vector<float> frames_;                                  // the last group, as decoded
+  std::vector<std::unique_ptr<GroupEncoder>> encoders_;
+  std::vector<bool> frame_by_frame_;
+  std::vector<uint8_t> index_;                               // in the file's candidate list
+  std::vector<std::vector<std::vector<uint8_t>>> payloads_;  // of each candidate, for the last group
+  size_t best_ = 0;                                          // the candidate kept for the last group
 };
 
 class AutoDecoder final : public FrameDecoder {
@@ -148,14 +116,15 @@ Result<std::unique_ptr<FrameDecoder>> makeAutoDecoder(const AutoOptions& options
                                                       const WaveletDecodeControl& control, const std::string& file,
                                                       SimdPath path) {
   if (control.partial())
-    return invalidArgument(file + ": progressive decoding (fewer bitplanes or bytes) needs a wavelet-coded "
+    return invalidArgument(file +
+                           ": progressive decoding (fewer bitplanes or bytes) needs a wavelet-coded "
                            "file; this one is auto");
   std::vector<std::unique_ptr<FrameDecoder>> decoders;
   for (const AutoCandidate& c : options.candidates) {
     auto candidate = candidateOf(c);
     if (!candidate.ok()) return candidate.status().withContext(file);
-    ANIMC_ASSIGN_OR_RETURN(auto decoder, candidate.value().entry->makeDecoder(candidate.value().options, topology,
-                                                                             control, file, path));
+    ANIMC_ASSIGN_OR_RETURN(
+        auto decoder, candidate.value().entry->makeDecoder(candidate.value().options, topology, control, file, path));
     decoders.push_back(std::move(decoder));
   }
   return std::unique_ptr<FrameDecoder>(std::make_unique<AutoDecoder>(std::move(decoders)));
