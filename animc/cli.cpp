@@ -115,6 +115,9 @@ Result<DecoderLimits> decoderLimitsFrom(const Args& args) {
   ANIMC_ASSIGN_OR_RETURN(long long output, args.integer("max-output-bytes", (long long)limits.max_output_bytes));
   if (output < 0) return invalidArgument("--max-output-bytes must be at least 1 (0 = no limit)");
   limits.max_output_bytes = output == 0 ? UINT64_MAX : uint64_t(output);
+  ANIMC_ASSIGN_OR_RETURN(long long adds, args.integer("max-multiply-adds", (long long)limits.max_multiply_adds));
+  if (adds < 1) return invalidArgument("--max-multiply-adds must be at least 1");
+  limits.max_multiply_adds = uint64_t(adds);
   return limits;
 }
 

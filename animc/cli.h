@@ -49,8 +49,9 @@ Result<EncodeInput> openEncodeInput(const Args& args);
 // --threads N: the threads encoding or decoding may use, 0 (the default) = one per core.
 Result<uint32_t> threadsFrom(const Args& args);
 
-// The decoder's limits with --max-vertex-frames V and --max-output-bytes B (0 = no limit)
-// applied (DecoderLimits::max_vertex_frames, max_output_bytes).
+// The decoder's limits with --max-vertex-frames V, --max-output-bytes B (0 = no limit) and
+// --max-multiply-adds W applied (DecoderLimits::max_vertex_frames, max_output_bytes,
+// max_multiply_adds).
 Result<DecoderLimits> decoderLimitsFrom(const Args& args);
 
 // Progress on stderr, at most ten updates a second, only when stderr is a terminal or

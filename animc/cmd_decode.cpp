@@ -42,16 +42,16 @@ Result<WaveletDecodeControl> progressiveControl(const Args& args) {
 
 int runDecode(const std::vector<std::string>& argv) {
   Args args;
-  Status s = args.parse(
-      argv,
-      {"output", "format", "frames", "bitplanes", "max-bytes", "max-vertex-frames", "max-output-bytes", "threads"},
-      {"progress", "replace"});
+  Status s = args.parse(argv,
+                        {"output", "format", "frames", "bitplanes", "max-bytes", "max-vertex-frames",
+                         "max-output-bytes", "max-multiply-adds", "threads"},
+                        {"progress", "replace"});
   if (!s.ok()) return fail(s);
   if (args.positional().size() != 1 || !args.has("output"))
     return fail(invalidArgument("usage: animc decode IN.ams -o OUT [--format " + formatNames("|") +
                                 "] [--frames A:B] "
                                 "[--bitplanes K] [--max-bytes N] [--replace] [--max-vertex-frames V] "
-                                "[--max-output-bytes B] [--threads N]"));
+                                "[--max-output-bytes B] [--max-multiply-adds W] [--threads N]"));
   const std::string out = args.get("output");
   Result<SequenceFormat> fmt = outputFormatOf(out);
   if (args.has("format")) fmt = formatFromName(args.get("format"));

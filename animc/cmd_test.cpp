@@ -11,10 +11,11 @@ namespace animc::cli {
 
 int runTest(const std::vector<std::string>& argv) {
   Args args;
-  Status s = args.parse(argv, {"max-vertex-frames", "threads"}, {"json"});
+  Status s = args.parse(argv, {"max-vertex-frames", "max-multiply-adds", "threads"}, {"json"});
   if (!s.ok()) return fail(s);
   if (args.positional().size() != 1)
-    return fail(invalidArgument("usage: animc test IN.ams [--json] [--max-vertex-frames V] [--threads N]"));
+    return fail(invalidArgument(
+        "usage: animc test IN.ams [--json] [--max-vertex-frames V] [--max-multiply-adds W] [--threads N]"));
   auto limits = decoderLimitsFrom(args);
   if (!limits.ok()) return fail(limits.status());
   auto threads = threadsFrom(args);

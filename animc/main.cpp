@@ -22,10 +22,12 @@ std::string usageAfterEncode() {
          animc::frameFileExtensionList() +
          ") go to a new or empty folder OUT,\n"
          "         or --replace an existing one\n"
-         "         [--max-vertex-frames V] [--max-output-bytes B]: refuse more decoding work or\n"
-         "         output than that (defaults 2^32 vertex-frames, 2^34 bytes; 0 bytes = no limit)\n"
+         "         [--max-vertex-frames V] [--max-output-bytes B] [--max-multiply-adds W]: refuse\n"
+         "         more decoding work or output than that (defaults 2^32 vertex-frames, 2^34\n"
+         "         bytes, 2^37 multiply-adds a frame group; 0 bytes = no limit)\n"
          "  info IN.ams [--json]: header, index and first group only\n"
-         "  test IN.ams [--json] [--max-vertex-frames V]: checks every section's CRC and decodes\n"
+         "  test IN.ams [--json] [--max-vertex-frames V] [--max-multiply-adds W]: checks every\n"
+         "         section's CRC and decodes\n"
          "         every frame, writes nothing\n"
          "  compare ORIGINAL RECONSTRUCTED|IN.ams [--mesh M] [--json] [--per-frame]\n"
          "  bench IN [--mesh M] [encode options] [--runs R] [--json]\n"
@@ -41,7 +43,8 @@ std::string usageAfterEncode() {
 
 std::string usage() {
   std::string codecs;
-  for (const animc::CodecEntry* codec : animc::allCodecs()) codecs += (codecs.empty() ? "" : "|") + std::string(codec->name);
+  for (const animc::CodecEntry* codec : animc::allCodecs())
+    codecs += (codecs.empty() ? "" : "|") + std::string(codec->name);
   return "usage: animc <command> ...   (animc --version prints the release)\n"
          "  encode IN -o OUT.ams [--mesh M] [--codec " +
          codecs + "] [--iframe-interval K]\n" +

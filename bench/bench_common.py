@@ -55,8 +55,10 @@ def encode_wavelet(animc, seq, ams, args):
 
 def run_bench(animc, pc2, ply, settings, runs):
     """One `animc bench --json` with the encoder settings (a list of animc arguments, e.g.
-    ['--profile', 'predictive', '--max-error', '0.01']); its JSON object, or {'error': text}."""
-    cmd = [animc, 'bench', pc2, '--mesh', ply] + settings + ['--runs', str(runs), '--json']
+    ['--profile', 'predictive', '--max-error', '0.01']), on one thread unless they say
+    `--threads`; its JSON object, or {'error': text}."""
+    threads = [] if '--threads' in settings else ['--threads', '1']
+    cmd = [animc, 'bench', pc2, '--mesh', ply] + settings + threads + ['--runs', str(runs), '--json']
     try:
         p = subprocess.run(cmd, capture_output=True, text=True, timeout=ANIMC_TIMEOUT_S)
     except subprocess.TimeoutExpired:

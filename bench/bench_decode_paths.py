@@ -26,7 +26,7 @@ def decode_paths_section(animc, sequences, runs):
             ams = os.path.join(work, seq['name'] + '.ams')
             log(f'{seq["name"]}: decode from file and from memory, {decode_runs} runs')
             encoded = animc_json([animc, 'encode', seq['pc2'], '--mesh', seq['ply'], '-o', ams, '--json'] + SETTINGS)
-            r = encoded and animc_json([animc, 'bench', ams, '--runs', str(decode_runs), '--json'])
+            r = encoded and animc_json([animc, 'bench', ams, '--threads', '1', '--runs', str(decode_runs), '--json'])
             if not r:
                 failures += 1
                 rows.append([seq['name'], 'failed', 'failed', ''])

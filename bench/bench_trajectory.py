@@ -43,7 +43,7 @@ def octree_at(seq, kg):
 def decode_speed(animc, seq, ams, args, runs):
     """(decode M v/s, KG %) of seq encoded with args into ams, or (None, None)."""
     encoded = animc_json([animc, 'encode', seq['pc2'], '--mesh', seq['ply'], '-o', ams, '--json'] + args)
-    r = encoded and animc_json([animc, 'bench', ams, '--runs', str(runs), '--json'])
+    r = encoded and animc_json([animc, 'bench', ams, '--threads', '1', '--runs', str(runs), '--json'])
     return (r['decode_mvps'], encoded['kg_error']) if r else (None, None)
 
 

@@ -20,16 +20,18 @@ void addEncodeParameters(RichParameterList& par) {
   const EncodeSettings defaults;
   const AffineOctreeOptions octree_defaults;
   const WaveletOptions wavelet_defaults;
-  par.addParam(RichEnum("Codec", kAutoCodec, kCodecs, "Codec",
-                        "Affine-Octree: per-frame octree of affine motions, every vertex within the max error "
-                        "(docs/affine_octree.md). Wavelet: progressive wavelet coding on a mesh hierarchy, "
-                        "error set by the step or the bits per vertex (docs/wavelet.md). Trajectory: each group of frames "
-                        "as principal trajectories, the smallest files at a KG error; its groups are the I-frame "
-                        "interval, or up to 512 frames (docs/trajectory.md). Auto (the default): per group, the smaller "
-                        "of Trajectory and Affine-Octree within the max error, or of Trajectory and Wavelet at the "
-                        "target KG error when it is set (docs/auto.md)."));
-  par.addParam(RichEnum("Profile", 0, kProfiles, "Profile (Affine-Octree)",
-                        "predictive (the default): our predictive octree, smaller files; paper: the method exactly as published."));
+  par.addParam(
+      RichEnum("Codec", kAutoCodec, kCodecs, "Codec",
+               "Affine-Octree: per-frame octree of affine motions, every vertex within the max error "
+               "(docs/affine_octree.md). Wavelet: progressive wavelet coding on a mesh hierarchy, "
+               "error set by the step or the bits per vertex (docs/wavelet.md). Trajectory: each group of frames "
+               "as principal trajectories, the smallest files at a KG error; its groups are the I-frame "
+               "interval, or up to 512 frames (docs/trajectory.md). Auto (the default): per group, the smaller "
+               "of Trajectory and Affine-Octree within the max error, or of Trajectory and Wavelet at the "
+               "target KG error when it is set (docs/auto.md)."));
+  par.addParam(RichEnum(
+      "Profile", 0, kProfiles, "Profile (Affine-Octree)",
+      "predictive (the default): our predictive octree, smaller files; paper: the method exactly as published."));
   par.addParam(RichFloat("MaxErrorPercent", float(100 * octree_defaults.max_error), "Max error (%) (Affine-Octree)",
                          "Largest vertex error, in percent of the side of the frame's bounding cube "
                          "(the paper's ME; animc encode --max-error takes the same as a fraction)."));
@@ -43,7 +45,8 @@ void addEncodeParameters(RichParameterList& par) {
                          "Bits per vertex per frame (Wavelet)",
                          "Fixed rate: each frame is cut at this many bits per vertex (the paper's 1, 2, 4, 8); "
                          "0 = no limit, the step alone sets the quality."));
-  par.addParam(RichFloat("WaveletTargetKG", float(wavelet_defaults.target_kg), "Target KG error (%) (Wavelet, Trajectory)",
+  par.addParam(RichFloat("WaveletTargetKG", float(wavelet_defaults.target_kg),
+                         "Target KG error (%) (Wavelet, Trajectory)",
                          "Rate control by error: each frame (Wavelet) or group of frames (Trajectory) gets the "
                          "fewest bits that keep the animation's KG error at or below this (Wavelet: down to "
                          "what the step allows). 0 = off for Wavelet, 0.3 % for Trajectory."));
@@ -134,6 +137,7 @@ Result<EncodeSettings> encodeSettingsFrom(const RichParameterList& par) {
   const int interval = par.getInt("IFrameInterval");
   if (interval < 0) return invalidArgument("the I-frame interval must be 0 or more");
   s.iframe_interval = uint32_t(interval);
+  s.threads = 0;  // every core, as animc: the bytes written are the same for any number
   ANIMC_RETURN_IF_ERROR(s.validate());
   return s;
 }

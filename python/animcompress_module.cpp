@@ -76,7 +76,7 @@ void setOption(EncoderOptions& options, const std::string& name, py::handle valu
   }
 }
 
-EncoderOptions encoderOptions(const std::string& codec, int64_t iframe_interval, double frame_rate,
+EncoderOptions encoderOptions(const std::string& codec, int64_t iframe_interval, double frame_rate, int64_t threads,
                               const py::kwargs& keywords) {
   if (iframe_interval < 0 || iframe_interval > int64_t(std::numeric_limits<uint32_t>::max()))
     throw py::value_error("iframe_interval must be in [0, 2^32 - 1]");
@@ -84,6 +84,7 @@ EncoderOptions encoderOptions(const std::string& codec, int64_t iframe_interval,
   options.codec = codec;
   options.iframe_interval = uint32_t(iframe_interval);
   options.frame_rate = frame_rate;
+  options.threads = threadCount(threads);
   for (auto [key, value] : keywords) {
     std::string name = key.cast<std::string>();
     for (char& c : name) c = c == '_' ? '-' : c;  // max_error -> max-error, as animc's flags
@@ -106,8 +107,8 @@ Status encodeFrames(const EncoderOptions& options, const std::vector<float>& fra
 }
 
 py::bytes encode(py::handle frames, py::handle faces, const std::string& codec, int64_t iframe_interval,
-                 double frame_rate, const py::kwargs& keywords) {
-  const EncoderOptions options = encoderOptions(codec, iframe_interval, frame_rate, keywords);
+                 double frame_rate, int64_t threads, const py::kwargs& keywords) {
+  const EncoderOptions options = encoderOptions(codec, iframe_interval, frame_rate, threads, keywords);
   const FloatArray xyz = framesArray(frames, "frames");
   // Owned copies: the coding runs without the GIL, while other threads could change arrays.
   const std::vector<float> owned(xyz.data(), xyz.data() + xyz.size());
@@ -183,8 +184,9 @@ PYBIND11_MODULE(animcompress, module) {
   module.attr("__version__") = animc::animcVersion();
   module.def("codecs", &animc::codecNames, "The codecs this build writes and reads, by name.");
   module.def("encode", &encode, py::arg("frames"), py::arg("faces"), py::arg("codec") = "affine-octree",
-             py::arg("iframe_interval") = 0, py::arg("frame_rate") = 25.0,
-             "The .ams bytes of frames (F, N, 3) over faces (T, 3); keyword options are the codec's "
+             py::arg("iframe_interval") = 0, py::arg("frame_rate") = 25.0, py::arg("threads") = 0,
+             "The .ams bytes of frames (F, N, 3) over faces (T, 3), coded on `threads` threads (0 = one per "
+             "core; the bytes are the same for any number); keyword options are the codec's "
              "(max_error=0.01 is animc encode's --max-error 0.01; True sets a switch). The codec is "
              "'affine-octree' unless codec= says otherwise, as in the C++ library and in 1.0; animc encode "
              "and the MeshLab filter default to 'auto', which writes the smallest files but encodes "

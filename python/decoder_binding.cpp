@@ -52,9 +52,9 @@ class PyDecoder {
 
 // max_output_bytes comes last: open()'s arguments may be given by position.
 std::unique_ptr<PyDecoder> openStream(py::handle path_or_bytes, py::object max_vertex_frames, int64_t max_bitplanes,
-                                      int64_t max_payload_bytes, py::object max_output_bytes) {
-  const DecoderOptions options =
-      decoderOptions(std::move(max_vertex_frames), std::move(max_output_bytes), max_bitplanes, max_payload_bytes);
+                                      int64_t max_payload_bytes, py::object max_output_bytes, int64_t threads) {
+  const DecoderOptions options = decoderOptions(std::move(max_vertex_frames), std::move(max_output_bytes),
+                                                max_bitplanes, max_payload_bytes, threads);
   std::unique_ptr<HeldBuffer> buffer;
   Decoder decoder = openDecoder(path_or_bytes, options, buffer);
   return std::make_unique<PyDecoder>(std::move(buffer), std::move(decoder));
@@ -110,7 +110,10 @@ bool isAscendingRun(const std::vector<int64_t>& indices) {
   return !indices.empty();
 }
 
+// An ascending run in one call (its groups decoded several at once), any other selection frame
+// by frame.
 Status decodeInto(Decoder& decoder, const std::vector<int64_t>& indices, float* out) {
+  if (isAscendingRun(indices)) return decoder.frames(indices.front(), indices.back() + 1, out);
   const size_t stride = 3 * size_t(decoder.info().vertices);
   for (size_t i = 0; i < indices.size(); ++i) {
     Status s = decoder.frame(indices[i], out + i * stride);
@@ -120,9 +123,9 @@ Status decodeInto(Decoder& decoder, const std::vector<int64_t>& indices, float* 
 }
 
 py::tuple decode(py::handle data, py::object frames, py::object max_vertex_frames, py::object max_output_bytes,
-                 int64_t max_bitplanes, int64_t max_payload_bytes) {
-  const DecoderOptions options =
-      decoderOptions(std::move(max_vertex_frames), std::move(max_output_bytes), max_bitplanes, max_payload_bytes);
+                 int64_t max_bitplanes, int64_t max_payload_bytes, int64_t threads) {
+  const DecoderOptions options = decoderOptions(std::move(max_vertex_frames), std::move(max_output_bytes),
+                                                max_bitplanes, max_payload_bytes, threads);
   std::unique_ptr<HeldBuffer> buffer;
   Decoder decoder = openDecoder(data, options, buffer);
   // Refused before the index list is made: a stream may announce billions of frames.
@@ -156,13 +159,16 @@ void bindDecoder(py::module_& module) {
 
   module.def("open", &openStream, py::arg("path_or_bytes"), py::arg("max_vertex_frames") = py::none(),
              py::arg("max_bitplanes") = 0, py::arg("max_payload_bytes") = 0, py::arg("max_output_bytes") = py::none(),
-             "A Decoder over an .ams file (str or path-like) or bytes (kept referenced while it lives).");
+             py::arg("threads") = 0,
+             "A Decoder over an .ams file (str or path-like) or bytes (kept referenced while it lives); threads: "
+             "those a frame may use (0 = one per core), the frames are the same for any number.");
   module.def("info", &streamInfo, py::arg("path_or_bytes"), "The header of an .ams file or bytes, as Decoder.info().");
   module.def("decode", &decode, py::arg("data"), py::arg("frames") = py::none(), py::kw_only(),
              py::arg("max_vertex_frames") = py::none(), py::arg("max_output_bytes") = py::none(),
-             py::arg("max_bitplanes") = 0, py::arg("max_payload_bytes") = 0,
+             py::arg("max_bitplanes") = 0, py::arg("max_payload_bytes") = 0, py::arg("threads") = 0,
              "(frames (F, N, 3) float32, faces (T, 3) uint32) of an .ams stream; `frames` selects frames by "
-             "index, slice or range (all when None).");
+             "index, slice or range (all when None). A run of frames decodes its groups on `threads` threads "
+             "at once (0 = one per core); the frames are the same for any number.");
 }
 
 }  // namespace animc::python

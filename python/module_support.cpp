@@ -69,9 +69,15 @@ int64_t integerValue(py::handle item) {
   return value;
 }
 
+uint32_t threadCount(int64_t threads) {
+  if (threads < 0 || threads > 1024) throw py::value_error("threads must be in [0, 1024] (0 = one per core)");
+  return uint32_t(threads);
+}
+
 DecoderOptions decoderOptions(py::object max_vertex_frames, py::object max_output_bytes, int64_t max_bitplanes,
-                              int64_t max_payload_bytes) {
+                              int64_t max_payload_bytes, int64_t threads) {
   DecoderOptions options;
+  options.threads = threadCount(threads);
   if (!max_vertex_frames.is_none())
     options.limits.max_vertex_frames = nonNegative(integerValue(max_vertex_frames), "max_vertex_frames");
   if (!max_output_bytes.is_none())

@@ -51,9 +51,12 @@ std::string pathText(py::handle object);
 // An integer as Python takes an index (int, NumPy integer; not a float), else TypeError.
 int64_t integerValue(py::handle item);
 
+// The threads= argument of encode(), decode() and open(): 0 = one per core, else at most 1024.
+uint32_t threadCount(int64_t threads);
+
 // DecoderOptions from the keyword arguments of open() and decode(); None keeps the default.
 DecoderOptions decoderOptions(py::object max_vertex_frames, py::object max_output_bytes, int64_t max_bitplanes,
-                              int64_t max_payload_bytes);
+                              int64_t max_payload_bytes, int64_t threads);
 
 // A decoder over a file or over a buffer that `buffer` holds (left empty for a file).
 Decoder openDecoder(py::handle path_or_bytes, const DecoderOptions& options, std::unique_ptr<HeldBuffer>& buffer);

@@ -57,7 +57,7 @@ struct Decoder::Impl {
   std::string name;  // of the stream, in messages
   DecoderLimits limits;
   unsigned threads = 1;
-  WaveletDecodeControl progressive;
+  DecoderOptions decoding;  // as opened: the group decoders of frames() are made with it
   std::unique_ptr<ContainerReader> reader;
   std::unique_ptr<FrameDecoder> codec;
   EncodeSettings settings;
@@ -163,7 +163,7 @@ Status Decoder::Impl::decodeGroups(int64_t first, int64_t last, float* xyz, cons
     size_t readable = 0;
     while (readable < count && (read_failure = readPayloads(g0 + readable, last, payloads[readable])).ok()) ++readable;
     while (group_codecs.size() < readable) {
-      ANIMC_ASSIGN_OR_RETURN(auto codec, settings.entry().makeDecoder(settings.options, reader->topology(), progressive,
+      ANIMC_ASSIGN_OR_RETURN(auto codec, settings.entry().makeDecoder(settings.options, reader->topology(), decoding,
                                                                       name, bestSimdPath()));
       group_codecs.push_back(std::move(codec));
     }
@@ -188,14 +188,14 @@ struct DecoderAccess {
     impl->name = name;
     impl->limits = options.limits;
     impl->threads = resolveThreads(options.threads);
-    impl->progressive = options.progressive;
+    impl->decoding = options;
     ANIMC_ASSIGN_OR_RETURN(impl->reader, ContainerReader::open(std::move(source), name, options.limits));
     auto settings = readSettings(impl->reader->info().header);
     if (!settings.ok()) return settings.status().withContext(name);
     impl->settings = settings.value();
-    ANIMC_ASSIGN_OR_RETURN(impl->codec,
-                           impl->settings.entry().makeDecoder(impl->settings.options, impl->reader->topology(),
-                                                              options.progressive, name, bestSimdPath()));
+    ANIMC_ASSIGN_OR_RETURN(
+        impl->codec, impl->settings.entry().makeDecoder(impl->settings.options, impl->reader->topology(), options, name,
+                                                        bestSimdPath()));
     impl->info = streamInfo(impl->reader->info(), impl->settings);
     // The first group is checked on opening (its CRC), as the container reader promises.
     ANIMC_RETURN_IF_ERROR(impl->enterGroupOf(0));

@@ -217,6 +217,11 @@ struct DecoderLimits {
   // Bytes one decode of a range may give (16 GiB): its frames as floats, 12 bytes a
   // vertex-frame, or what the caller says they take in its own form (a file, MeshLab layers).
   uint64_t max_output_bytes = uint64_t(1) << 34;
+  // Multiply-adds the reconstruction of one frame group may cost, where a codec's work grows
+  // with what its payload claims rather than with the frames it gives: a trajectory group
+  // costs 3 x components x vertices x frames, which a few KB can claim at 10^11. The default
+  // is above every group the encoder writes (it stays below 2^37).
+  uint64_t max_multiply_adds = uint64_t(1) << 37;
 };
 
 // Progressive decoding of streams whose frames can be cut (wavelet-coded with bitplanes):

@@ -141,6 +141,26 @@ def test_bytes_and_frames_equal_the_command_line(sequence, cli, tmp_path, codec,
     assert np.array_equal(animcompress.decode(data)[0], cli_frames)
 
 
+@pytest.mark.parametrize('codec, options', [
+    ('affine-octree', {'max_error': 0.01, 'iframe_interval': 40}),
+    ('trajectory', {'target_kg': 0.3, 'iframe_interval': 50}),
+    ('auto', {'max_error': 0.01}),
+])
+def test_threads_change_neither_bytes_nor_frames(sequence, codec, options):
+    args = (sequence['frames'], sequence['faces'])
+    one = animcompress.encode(*args, codec=codec, threads=1, **options)
+    assert animcompress.encode(*args, codec=codec, threads=2, **options) == one
+    assert animcompress.encode(*args, codec=codec, **options) == one  # threads=0: one per core
+    frames = animcompress.decode(one, threads=1)[0]
+    assert np.array_equal(animcompress.decode(one, threads=3)[0], frames)
+    assert np.array_equal(animcompress.decode(one, range(30, 120), threads=2)[0], frames[30:120])
+    assert np.array_equal(animcompress.open(one, threads=2)[77], frames[77])
+    with pytest.raises(ValueError, match='threads'):
+        animcompress.encode(*args, codec=codec, threads=-1, **options)
+    with pytest.raises(ValueError, match='threads'):
+        animcompress.decode(one, threads=5000)
+
+
 def test_a_false_switch_is_left_out(sequence):
     args = (sequence['frames'][:20], sequence['faces'])
     plain = animcompress.encode(*args, codec='wavelet', step=0.001)

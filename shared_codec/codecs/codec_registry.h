@@ -46,16 +46,15 @@ struct CodecEntry {
   Status (*checkMesh)(const Topology& topology);
   // The coders run the kernels of `path` (core/simd_math.h): chosen once, here, by the
   // caller (the API passes bestSimdPath()), and the same bytes and frames either way.
-  std::unique_ptr<FrameEncoder> (*makeEncoder)(const CodecOptions& options, const Topology& topology,
-                                               SimdPath path);
+  std::unique_ptr<FrameEncoder> (*makeEncoder)(const CodecOptions& options, const Topology& topology, SimdPath path);
   // For a codec that codes whole groups, instead of makeEncoder (which is then null).
   std::unique_ptr<GroupEncoder> (*makeGroupEncoder)(const CodecOptions& options, const Topology& topology,
                                                     SimdPath path);
-  // A decoder for the file's options; `file` names the file in messages (a partial `control`
-  // is refused for codecs and files that cannot be cut).
+  // A decoder for the file's options, within decoding's limits; `file` names the file in
+  // messages (progressive decoding is refused for codecs and files that cannot be cut).
   Result<std::unique_ptr<FrameDecoder>> (*makeDecoder)(const CodecOptions& options, const Topology& topology,
-                                                       const WaveletDecodeControl& control,
-                                                       const std::string& file, SimdPath path);
+                                                       const DecoderOptions& decoding, const std::string& file,
+                                                       SimdPath path);
 };
 
 // CodecEntry's validate, write and read for an options type with the members validate(),

@@ -261,6 +261,24 @@ expect_error output_limit "$ERRDIR/frames" "$ANIMC" decode "$AMS" -o "$ERRDIR/fr
 grep -q "would take about .*--max-output-bytes" "$TMP/output_limit.err" || check_failed "output_limit: $(cat "$TMP/output_limit.err")"
 run output_unlimited "$ANIMC" decode "$AMS" -o "$TMP/unlimited.pc2" --max-output-bytes 0
 expect_error test_work_limit "" "$ANIMC" test "$AMS" --max-vertex-frames 100
+# A trajectory group's reconstruction counted in multiply-adds (3 x components x vertices x frames).
+run traj_encode "$ANIMC" encode "$PC2" --mesh "$MESH" -o "$TMP/traj.ams" --codec trajectory
+expect_error multiply_add_limit "$ERRDIR/x.pc2" "$ANIMC" decode "$TMP/traj.ams" -o "$ERRDIR/x.pc2" --max-multiply-adds 1000
+grep -q "multiply-adds, above the limit of 1000.*--max-multiply-adds" "$TMP/multiply_add_limit.err" ||
+  check_failed "multiply_add_limit: $(cat "$TMP/multiply_add_limit.err")"
+expect_error test_multiply_add_limit "" "$ANIMC" test "$TMP/traj.ams" --max-multiply-adds 1000
+
+# --- --threads: the same bytes and frames for any number; a bad number is refused -----------
+for threads in 1 3; do
+  run "threads_encode_$threads" "$ANIMC" encode "$PC2" --mesh "$MESH" -o "$TMP/threads$threads.ams" \
+    --iframe-interval 10 --threads "$threads"
+  run "threads_decode_$threads" "$ANIMC" decode "$TMP/threads$threads.ams" -o "$TMP/threads$threads.pc2" \
+    --threads "$threads"
+  run "threads_test_$threads" "$ANIMC" test "$TMP/threads$threads.ams" --threads "$threads"
+done
+cmp -s "$TMP/threads1.ams" "$TMP/threads3.ams" || check_failed "threads: 1 and 3 threads wrote different bytes"
+cmp -s "$TMP/threads1.pc2" "$TMP/threads3.pc2" || check_failed "threads: 1 and 3 threads decoded different frames"
+expect_error bad_threads "$ERRDIR/x.ams" "$ANIMC" encode "$PC2" --mesh "$MESH" -o "$ERRDIR/x.ams" --threads -1
 
 # --- an output that is one of the inputs is refused, by identity; the inputs stay intact ---
 VICTIM=$TMP/victim

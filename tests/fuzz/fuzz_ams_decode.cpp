@@ -53,6 +53,7 @@ DecoderLimits fuzzLimits() {
   limits.max_triangles = 1 << 17;
   limits.max_frame_bytes = 1 << 22;
   limits.max_vertex_frames = 4 * kVertexBudget;  // bounds the frames a random access skips
+  limits.max_multiply_adds = uint64_t(1) << 28;  // a trajectory group's reconstruction
   return limits;
 }
 

@@ -155,5 +155,24 @@ TEST(DecoderThreads, FramesRefusesARangeOutsideTheStreamOrAboveTheLimits) {
   EXPECT_TRUE(decoder.value().frames(4, 7, xyz.data()).ok());
 }
 
+TEST(DecoderLimitsWork, ATrajectoryGroupCostingMoreMultiplyAddsIsRefused) {
+  const MemorySequence seq = gridSequence(14, 12, 40, 1.0, 1.0);
+  Mode trajectory{"trajectory", "trajectory", {{"target-kg", "0.3"}}, 0};
+  const Coded coded = encodeCollecting(seq, optionsOf(trajectory, 1));
+  std::vector<float> xyz(3 * size_t(seq.topology().vertex_count));
+  for (uint32_t threads : {1u, 2u}) {
+    DecoderOptions options;
+    options.threads = threads;
+    options.limits.max_multiply_adds = 3 * 168 * 40;  // one component's worth: the group has more
+    auto decoder = Decoder::openMemory(coded.bytes.data(), coded.bytes.size(), options);
+    ASSERT_TRUE(decoder.ok());
+    const Status refused = decoder.value().frame(5, xyz.data());
+    EXPECT_EQ(refused.code(), StatusCode::kLimitExceeded);
+    EXPECT_NE(refused.message().find("max_multiply_adds"), std::string::npos) << refused.message();
+    EXPECT_EQ(decoder.value().verify().code(), StatusCode::kLimitExceeded);
+  }
+  EXPECT_EQ(decodeAll(coded.bytes), coded.reconstructions);  // the default limits take it
+}
+
 }  // namespace
 }  // namespace animc

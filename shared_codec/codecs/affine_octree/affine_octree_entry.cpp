@@ -53,10 +53,11 @@ std::unique_ptr<FrameEncoder> makeEncoder(const CodecOptions& o, const Topology&
 }
 
 Result<std::unique_ptr<FrameDecoder>> makeDecoder(const CodecOptions& o, const Topology& topology,
-                                                  const WaveletDecodeControl& control, const std::string& file,
+                                                  const DecoderOptions& decoding, const std::string& file,
                                                   SimdPath path) {
-  if (control.partial())
-    return invalidArgument(file + ": progressive decoding (fewer bitplanes or bytes) needs a wavelet-coded "
+  if (decoding.progressive.partial())
+    return invalidArgument(file +
+                           ": progressive decoding (fewer bitplanes or bytes) needs a wavelet-coded "
                            "file; this one is affine-octree");
   return makeAffineOctreeDecoder(octree(o), topology, path);
 }

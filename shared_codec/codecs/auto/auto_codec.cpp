@@ -113,9 +113,9 @@ std::unique_ptr<GroupEncoder> makeAutoEncoder(const AutoOptions& options, const 
 }
 
 Result<std::unique_ptr<FrameDecoder>> makeAutoDecoder(const AutoOptions& options, const Topology& topology,
-                                                      const WaveletDecodeControl& control, const std::string& file,
+                                                      const DecoderOptions& decoding, const std::string& file,
                                                       SimdPath path) {
-  if (control.partial())
+  if (decoding.progressive.partial())
     return invalidArgument(file +
                            ": progressive decoding (fewer bitplanes or bytes) needs a wavelet-coded "
                            "file; this one is auto");
@@ -124,7 +124,7 @@ Result<std::unique_ptr<FrameDecoder>> makeAutoDecoder(const AutoOptions& options
     auto candidate = candidateOf(c);
     if (!candidate.ok()) return candidate.status().withContext(file);
     ANIMC_ASSIGN_OR_RETURN(
-        auto decoder, candidate.value().entry->makeDecoder(candidate.value().options, topology, control, file, path));
+        auto decoder, candidate.value().entry->makeDecoder(candidate.value().options, topology, decoding, file, path));
     decoders.push_back(std::move(decoder));
   }
   return std::unique_ptr<FrameDecoder>(std::make_unique<AutoDecoder>(std::move(decoders)));

@@ -8,7 +8,7 @@ namespace animc {
 
 std::unique_ptr<GroupEncoder> makeAutoEncoder(const AutoOptions& options, const Topology& topology, SimdPath path);
 Result<std::unique_ptr<FrameDecoder>> makeAutoDecoder(const AutoOptions& options, const Topology& topology,
-                                                      const WaveletDecodeControl& control, const std::string& file,
+                                                      const DecoderOptions& decoding, const std::string& file,
                                                       SimdPath path);
 
 namespace {
@@ -56,9 +56,9 @@ std::unique_ptr<GroupEncoder> makeEncoder(const CodecOptions& o, const Topology&
 }
 
 Result<std::unique_ptr<FrameDecoder>> makeDecoder(const CodecOptions& o, const Topology& topology,
-                                                  const WaveletDecodeControl& control, const std::string& file,
+                                                  const DecoderOptions& decoding, const std::string& file,
                                                   SimdPath path) {
-  return makeAutoDecoder(automatic(o), topology, control, file, path);
+  return makeAutoDecoder(automatic(o), topology, decoding, file, path);
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 
 #include "codecs/trajectory/options.h"
 #include "core/adjacency.h"
+#include "core/parallel.h"
 #include "entropy/classed_integer.h"
 #include "io/byte_writer.h"
 
@@ -139,7 +140,8 @@ void writeTrajectoryGroup(const TrajectoryGroup& g, const CodingOrder& order, st
   raw.appendTo(out);
 }
 
-Status readTrajectoryGroup(ByteReader payload, const CodingOrder& order, TrajectoryGroup& g) {
+Status readTrajectoryGroup(ByteReader payload, const CodingOrder& order, uint64_t max_multiply_adds,
+                           TrajectoryGroup& g) {
   const uint64_t n = order.vertex.size();
   ANIMC_ASSIGN_OR_RETURN(uint16_t frames, payload.u16("Frame_Count"));
   ANIMC_ASSIGN_OR_RETURN(uint16_t components, payload.u16("Component_Count"));
@@ -149,6 +151,16 @@ Status readTrajectoryGroup(ByteReader payload, const CodingOrder& order, Traject
   if (components > std::min<uint64_t>(n, uint64_t(3) * frames) || components * n > kMaxTrajectoryCoefficients)
     return corrupt("trajectory group of " + std::to_string(components) + " components for " + std::to_string(n) +
                    " vertices and " + std::to_string(frames) + " frames");
+  // Below 2^25 coefficients and 2^10 frames the product cannot wrap, and it stays below the
+  // default limit: every group the encoder writes decodes with the default limits.
+  static_assert(3 * kMaxTrajectoryCoefficients * kMaxTrajectoryGroupFrames <= DecoderLimits{}.max_multiply_adds,
+                "the largest group must be within the default limit");
+  const uint64_t work = uint64_t(3) * components * n * frames;
+  if (work > max_multiply_adds)
+    return limitExceeded("trajectory group of " + std::to_string(components) + " components, " + std::to_string(n) +
+                         " vertices and " + std::to_string(frames) + " frames costs " + std::to_string(work) +
+                         " multiply-adds, above the limit of " + std::to_string(max_multiply_adds) +
+                         "; raise it for a trusted file (DecoderLimits::max_multiply_adds, animc --max-multiply-adds)");
   g.frames = frames;
   g.components = components;
   ANIMC_ASSIGN_OR_RETURN(g.coefficient_step, payload.f32("Coefficient_Step"));
@@ -177,13 +189,13 @@ Status readTrajectoryGroup(ByteReader payload, const CodingOrder& order, Traject
   for (uint32_t p = 0; fits && p < n; ++p)
     for (uint32_t k = 0; k < components; ++k) {
       const Prediction pred = predict(order, g.coefficients.data(), components, p, k);
-      const int64_t v = pred.value + decodeClassed(rc, raw, models->coefficient[bandOf(k) * kPredictionKinds + pred.kind]);
+      const int64_t v =
+          pred.value + decodeClassed(rc, raw, models->coefficient[bandOf(k) * kPredictionKinds + pred.kind]);
       if (!fitsInt32(v)) fits = false;
       g.coefficients[size_t(p) * components + k] = int32_t(v);
     }
   const size_t coded_bytes = size_t(rc.position() - payload.cursor());
-  if (!fits || rc.overran() || raw.overran() ||
-      coded_bytes + raw.bytesUsed() > payload.remaining() + kFinishReadAhead)
+  if (!fits || rc.overran() || raw.overran() || coded_bytes + raw.bytesUsed() > payload.remaining() + kFinishReadAhead)
     return corrupt("trajectory group: coded data ends early or is damaged");
   return Status();
 }
@@ -236,15 +248,18 @@ __attribute__((always_inline)) inline void sumLanes(const float* coefficients, s
   }
 }
 
+// Vertices [v_begin, v_end) of kBatch frames from `first` (v_begin a multiple of kLanes): any
+// split of the vertices computes each lane alike, so threads may share them.
 __attribute__((always_inline)) inline void batchKernel(const float* coefficients, size_t stride, const float* basis,
                                                        const float* mean, uint32_t components, uint32_t frames,
-                                                       uint32_t vertices, uint32_t first, float* out) {
+                                                       uint32_t vertices, uint32_t v_begin, uint32_t v_end,
+                                                       uint32_t first, float* out) {
   constexpr uint32_t kBatch = GroupFrames::kBatch, kLanes = GroupFrames::kLanes;
   const uint32_t count = std::min(kBatch, frames - first);
-  for (uint32_t v0 = 0; v0 < vertices; v0 += kLanes) {
+  for (uint32_t v0 = v_begin; v0 < v_end; v0 += kLanes) {
     Floats8 sums[kBatch][3];
     sumLanes(coefficients, stride, v0, basis, components, frames, first, sums);
-    const uint32_t lanes = std::min(kLanes, vertices - v0);
+    const uint32_t lanes = std::min(kLanes, v_end - v0);
     for (uint32_t f = 0; f < count; ++f) {
       float* xyz = out + (size_t(f) * vertices + v0) * 3;
       for (uint32_t d = 0; d < 3; ++d) {
@@ -255,32 +270,42 @@ __attribute__((always_inline)) inline void batchKernel(const float* coefficients
   }
 }
 
-__attribute__((noinline)) void batchPortable(const float* c, size_t stride, const float* b, const float* m,
-                                             uint32_t k, uint32_t g, uint32_t n, uint32_t first, float* out) {
-  batchKernel(c, stride, b, m, k, g, n, first, out);
+__attribute__((noinline)) void batchPortable(const float* c, size_t stride, const float* b, const float* m, uint32_t k,
+                                             uint32_t g, uint32_t n, uint32_t v_begin, uint32_t v_end, uint32_t first,
+                                             float* out) {
+  batchKernel(c, stride, b, m, k, g, n, v_begin, v_end, first, out);
 }
 
 #ifndef ANIMC_NO_AVX2
 ANIMC_TARGET_AVX2 __attribute__((noinline)) void batchAvx2(const float* c, size_t stride, const float* b,
                                                            const float* m, uint32_t k, uint32_t g, uint32_t n,
-                                                           uint32_t first, float* out) {
-  batchKernel(c, stride, b, m, k, g, n, first, out);
+                                                           uint32_t v_begin, uint32_t v_end, uint32_t first,
+                                                           float* out) {
+  batchKernel(c, stride, b, m, k, g, n, v_begin, v_end, first, out);
 }
 #endif
+
+// Vertices a thread takes at a time when a batch is split.
+constexpr uint32_t kVerticesPerTask = 4096;
 
 }  // namespace
 
 void GroupFrames::computeBatch(uint32_t first) const {
+  const size_t tasks = (vertices_ + kVerticesPerTask - 1) / kVerticesPerTask;
+  const double task_cost = double(kVerticesPerTask) * components_ * kBatch * 3;
+  parallelFor(tasks, task_cost, [&](size_t i) {
+    const uint32_t v_begin = uint32_t(i) * kVerticesPerTask;
+    const uint32_t v_end = std::min(vertices_, v_begin + kVerticesPerTask);
 #ifndef ANIMC_NO_AVX2
-  if (path_ == SimdPath::kAvx2) {
-    batchAvx2(coefficients_.data(), padded_, basis_.data(), mean_.data(), components_, frames_, vertices_, first,
-              batch_.data());
-    batch_first_ = first;
-    return;
-  }
+    if (path_ == SimdPath::kAvx2) {
+      batchAvx2(coefficients_.data(), padded_, basis_.data(), mean_.data(), components_, frames_, vertices_, v_begin,
+                v_end, first, batch_.data());
+      return;
+    }
 #endif
-  batchPortable(coefficients_.data(), padded_, basis_.data(), mean_.data(), components_, frames_, vertices_, first,
-                batch_.data());
+    batchPortable(coefficients_.data(), padded_, basis_.data(), mean_.data(), components_, frames_, vertices_, v_begin,
+                  v_end, first, batch_.data());
+  });
   batch_first_ = first;
 }
 

@@ -17,21 +17,21 @@ namespace animc {
 // in it, the positions of the neighbours coded before it: they predict its coefficients.
 struct CodingOrder {
   explicit CodingOrder(const Topology& topology);
-  std::vector<uint32_t> vertex;       // vertex at each position
-  std::vector<uint32_t> first;        // earlier[first[p] .. first[p + 1]) for position p
-  std::vector<uint32_t> earlier;      // positions
+  std::vector<uint32_t> vertex;   // vertex at each position
+  std::vector<uint32_t> first;    // earlier[first[p] .. first[p + 1]) for position p
+  std::vector<uint32_t> earlier;  // positions
 };
 
 // The group as coded. Trajectory rows are 3G long: x over the G frames, then y, then z.
 struct TrajectoryGroup {
-  uint32_t frames = 0;               // G
-  uint32_t components = 0;           // K
+  uint32_t frames = 0;      // G
+  uint32_t components = 0;  // K
   float coefficient_step = 0;
   float mean_step = 0;
-  std::vector<int32_t> mean;         // 3G, in units of mean_step
-  std::vector<float> basis_step;     // K
-  std::vector<int32_t> basis;        // K rows of 3G, in units of their basis_step
-  std::vector<int32_t> coefficients; // per coding position, K values, in units of coefficient_step
+  std::vector<int32_t> mean;          // 3G, in units of mean_step
+  std::vector<float> basis_step;      // K
+  std::vector<int32_t> basis;         // K rows of 3G, in units of their basis_step
+  std::vector<int32_t> coefficients;  // per coding position, K values, in units of coefficient_step
 };
 
 // Frame_Type, the payload's first byte.
@@ -39,8 +39,10 @@ constexpr uint8_t kTrajectoryGroupFrame = 0;  // the group's first frame: the wh
 constexpr uint8_t kTrajectoryNextFrame = 1;   // the group's next frame: nothing else
 
 void writeTrajectoryGroup(const TrajectoryGroup& group, const CodingOrder& order, std::vector<uint8_t>& out);
-// Reads a group payload after its Frame_Type byte.
-Status readTrajectoryGroup(ByteReader payload, const CodingOrder& order, TrajectoryGroup& group);
+// Reads a group payload after its Frame_Type byte; a group whose reconstruction would cost more
+// than max_multiply_adds (3 x components x vertices x frames) is refused before any decoding.
+Status readTrajectoryGroup(ByteReader payload, const CodingOrder& order, uint64_t max_multiply_adds,
+                           TrajectoryGroup& group);
 
 // The decoded frames of a group: every decoder and the encoder compute them with these
 // float operations in this order, so that they agree to the bit (docs/format.md 12.4).
@@ -62,10 +64,10 @@ class GroupFrames {
   uint32_t frames_ = 0;
   uint32_t components_ = 0;
   uint32_t vertices_ = 0;
-  uint32_t padded_ = 0;              // vertices_ rounded up to kLanes
-  std::vector<float> mean_;          // 3G
-  std::vector<float> basis_;         // K rows of 3G
-  std::vector<float> coefficients_;  // K rows of padded_, vertex order, zeros after the last
+  uint32_t padded_ = 0;               // vertices_ rounded up to kLanes
+  std::vector<float> mean_;           // 3G
+  std::vector<float> basis_;          // K rows of 3G
+  std::vector<float> coefficients_;   // K rows of padded_, vertex order, zeros after the last
   mutable std::vector<float> batch_;  // frames batch_first_ .. + kBatch, 3N floats each
   mutable uint32_t batch_first_ = UINT32_MAX;
 };

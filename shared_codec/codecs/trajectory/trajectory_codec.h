@@ -4,6 +4,7 @@
 #pragma once
 #include <memory>
 
+#include "animc/animc.h"
 #include "codecs/frame_codec.h"
 #include "codecs/trajectory/options.h"
 #include "core/simd_math.h"
@@ -13,6 +14,9 @@ namespace animc {
 // `path` chooses the decoded frames' kernel (the same floats either way).
 std::unique_ptr<GroupEncoder> makeTrajectoryEncoder(const TrajectoryOptions& options, const Topology& topology,
                                                     SimdPath path);
-std::unique_ptr<FrameDecoder> makeTrajectoryDecoder(const Topology& topology, SimdPath path);
+// The decoder refuses a group whose reconstruction would cost more than
+// limits.max_multiply_adds, before decoding any of it.
+std::unique_ptr<FrameDecoder> makeTrajectoryDecoder(const Topology& topology, const DecoderLimits& limits,
+                                                    SimdPath path);
 
 }  // namespace animc

@@ -9,14 +9,15 @@ namespace {
 
 class TrajectoryDecoder final : public FrameDecoder {
  public:
-  TrajectoryDecoder(const Topology& topology, SimdPath path) : order_(topology), path_(path) {}
+  TrajectoryDecoder(const Topology& topology, uint64_t max_multiply_adds, SimdPath path)
+      : order_(topology), max_multiply_adds_(max_multiply_adds), path_(path) {}
 
   Status decodeFrame(ByteReader payload, std::vector<float>& xyz, bool* intra) override {
     ANIMC_ASSIGN_OR_RETURN(uint8_t type, payload.u8("Frame_Type"));
     if (type == kTrajectoryGroupFrame) {
       next_ = 0;
       frames_ = GroupFrames();  // a failed read leaves no group to continue
-      ANIMC_RETURN_IF_ERROR(readTrajectoryGroup(payload, order_, group_));
+      ANIMC_RETURN_IF_ERROR(readTrajectoryGroup(payload, order_, max_multiply_adds_, group_));
       frames_.reset(group_, order_, path_);
     } else if (type == kTrajectoryNextFrame) {
       if (payload.remaining() != 0) return corrupt("trajectory frame: bytes after the frame type");
@@ -39,6 +40,7 @@ class TrajectoryDecoder final : public FrameDecoder {
 
  private:
   CodingOrder order_;
+  uint64_t max_multiply_adds_;
   SimdPath path_;
   TrajectoryGroup group_;
   GroupFrames frames_;
@@ -47,8 +49,9 @@ class TrajectoryDecoder final : public FrameDecoder {
 
 }  // namespace
 
-std::unique_ptr<FrameDecoder> makeTrajectoryDecoder(const Topology& topology, SimdPath path) {
-  return std::make_unique<TrajectoryDecoder>(topology, path);
+std::unique_ptr<FrameDecoder> makeTrajectoryDecoder(const Topology& topology, const DecoderLimits& limits,
+                                                    SimdPath path) {
+  return std::make_unique<TrajectoryDecoder>(topology, limits.max_multiply_adds, path);
 }
 
 }  // namespace animc

@@ -10,6 +10,7 @@
 
 #include "codecs/trajectory/group_coding.h"
 #include "codecs/trajectory/trajectory_codec.h"
+#include "core/parallel.h"
 
 namespace animc {
 namespace {
@@ -33,6 +34,47 @@ struct Components {
   RowMatrix coefficients;   // N x K
 };
 
+// The products of a group's large matrices are cut into blocks of a fixed size that threads
+// share: the blocks, never the thread count, decide what each product computes.
+constexpr Eigen::Index kProductColumns = 64;
+constexpr Eigen::Index kProductRows = 1024;
+
+// The lower triangle of a^T a, all that the eigensolver reads (the rest is zero), a block of
+// columns at a time.
+template <class Matrix>
+Eigen::MatrixXd lowerGram(const Matrix& a) {
+  const Eigen::Index d = a.cols();
+  Eigen::MatrixXd gram = Eigen::MatrixXd::Zero(d, d);
+  const size_t blocks = size_t((d + kProductColumns - 1) / kProductColumns);
+  parallelFor(blocks, double(a.rows()) * double(d) * double(kProductColumns) / 2, [&](size_t b) {
+    const Eigen::Index j = Eigen::Index(b) * kProductColumns, w = std::min(kProductColumns, d - j);
+    gram.block(j, j, d - j, w).noalias() = a.middleCols(j, d - j).transpose() * a.middleCols(j, w);
+  });
+  return gram;
+}
+
+// a * b, a block of rows of a at a time.
+RowMatrix productByRows(const RowMatrix& a, const Eigen::MatrixXd& b) {
+  RowMatrix out(a.rows(), b.cols());
+  const size_t blocks = size_t((a.rows() + kProductRows - 1) / kProductRows);
+  parallelFor(blocks, double(kProductRows) * double(a.cols()) * double(b.cols()), [&](size_t i) {
+    const Eigen::Index r = Eigen::Index(i) * kProductRows, h = std::min(kProductRows, a.rows() - r);
+    out.middleRows(r, h).noalias() = a.middleRows(r, h) * b;
+  });
+  return out;
+}
+
+// a^T * b, a block of columns of b at a time.
+Eigen::MatrixXd transposedProductByColumns(const RowMatrix& a, const Eigen::MatrixXd& b) {
+  Eigen::MatrixXd out(a.cols(), b.cols());
+  const size_t blocks = size_t((b.cols() + kProductColumns - 1) / kProductColumns);
+  parallelFor(blocks, double(a.rows()) * double(a.cols()) * double(kProductColumns), [&](size_t i) {
+    const Eigen::Index j = Eigen::Index(i) * kProductColumns, w = std::min(kProductColumns, b.cols() - j);
+    out.middleCols(j, w).noalias() = a.transpose() * b.middleCols(j, w);
+  });
+  return out;
+}
+
 Components principalComponents(RowMatrix x, uint64_t max_components) {
   Components pc;
   pc.mean = x.colwise().mean();
@@ -40,7 +82,7 @@ Components principalComponents(RowMatrix x, uint64_t max_components) {
   const Eigen::Index n = x.rows(), row = x.cols();
   // The smaller of the two Gram matrices: trajectories (row x row) or vertices (n x n).
   const bool by_trajectory = row <= n;
-  Eigen::MatrixXd gram = by_trajectory ? Eigen::MatrixXd(x.transpose() * x) : Eigen::MatrixXd(x * x.transpose());
+  const Eigen::MatrixXd gram = by_trajectory ? lowerGram(x) : lowerGram(x.transpose());
   Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(gram);
   const Eigen::Index dim = gram.rows();
   const Eigen::Index k_count = std::min<Eigen::Index>(dim, Eigen::Index(max_components));
@@ -52,9 +94,9 @@ Components principalComponents(RowMatrix x, uint64_t max_components) {
   }
   if (by_trajectory) {
     pc.basis = vectors;
-    pc.coefficients = x * pc.basis;
+    pc.coefficients = productByRows(x, pc.basis);
   } else {
-    pc.basis = x.transpose() * vectors;
+    pc.basis = transposedProductByColumns(x, vectors);
     for (Eigen::Index k = 0; k < k_count; ++k) {
       if (pc.sigma[k] > 0) pc.basis.col(k) /= pc.sigma[k];
       vectors.col(k) *= pc.sigma[k];
@@ -165,8 +207,7 @@ class TrajectoryEncoder final : public GroupEncoder {
     std::function<bool(double)> acceptable;  // of a step; true for the steps below some bound
     bool larger_is_acceptable = false;
     switch (options_.rate) {
-      case TrajectoryRate::kStep:
-        return std::max(value * firstFrameDiagonal(), finest);
+      case TrajectoryRate::kStep: return std::max(value * firstFrameDiagonal(), finest);
       case TrajectoryRate::kTargetKg: {
         const double allowed = (value / 100) * (value / 100) * spread();
         acceptable = [&, allowed](double q) { return measure(quantised(pc, q)).squared <= allowed; };
@@ -204,28 +245,42 @@ class TrajectoryEncoder final : public GroupEncoder {
     g.coefficient_step = float(step);
     const double q = g.coefficient_step;
     const size_t row = size_t(3) * frame_count_;
-    // An error d in basis vector k moves the vertices by their coefficients times d, sigma_k
-    // in total, and one in the mean moves all N vertices by d: these steps make each cost
-    // the squared error of one coefficient's step.
+    // Each component is quantised and judged on its own, on any thread; the ones sent are
+    // then taken in order.
     const Eigen::Index k_all = pc.coefficients.cols();
-    std::vector<uint32_t> kept;
-    std::vector<std::vector<int32_t>> columns, rows;
-    std::vector<float> steps;
-    for (Eigen::Index k = 0; k < k_all; ++k) {
+    struct Quantised {
+      std::vector<int32_t> column, basis;
+      float basis_step = 0;
+    };
+    std::vector<Quantised> parts(static_cast<size_t>(k_all));
+    parallelFor(parts.size(), 20.0 * vertices_ + 10.0 * row, [&](size_t i) {
+      const Eigen::Index k = Eigen::Index(i);
+      Quantised& part = parts[i];
       std::vector<int32_t> column(vertices_);
       bool any = false;
       for (uint32_t p = 0; p < vertices_; ++p) {
         column[p] = quantiseCoefficient(pc.coefficients(order_.vertex[p], k), q);
         any |= column[p] != 0;
       }
-      if (!any) continue;
+      if (!any) return;
+      // An error d in basis vector k moves the vertices by their coefficients times d, sigma_k
+      // in total, and one in the mean moves all N vertices by d: these steps make each cost
+      // the squared error of one coefficient's step.
       const float basis_step = float(std::clamp(q / pc.sigma[k], 1.0 / kMaxQuantised, 2.0));
       std::vector<int32_t> basis(row);
-      for (size_t i = 0; i < row; ++i) basis[i] = quantise(pc.basis(Eigen::Index(i), k), basis_step);
-      if (!worthSending(pc, k, q, column, basis, basis_step)) continue;
-      columns.push_back(std::move(column));
-      rows.push_back(std::move(basis));
-      steps.push_back(basis_step);
+      for (size_t j = 0; j < row; ++j) basis[j] = quantise(pc.basis(Eigen::Index(j), k), basis_step);
+      if (!worthSending(pc, k, q, column, basis, basis_step)) return;
+      part.column = std::move(column);
+      part.basis = std::move(basis);
+      part.basis_step = basis_step;
+    });
+    std::vector<std::vector<int32_t>> columns, rows;
+    std::vector<float> steps;
+    for (Quantised& part : parts) {
+      if (part.column.empty()) continue;
+      columns.push_back(std::move(part.column));
+      rows.push_back(std::move(part.basis));
+      steps.push_back(part.basis_step);
     }
     const uint32_t used = uint32_t(columns.size());
     g.components = used;
@@ -292,7 +347,8 @@ class TrajectoryEncoder final : public GroupEncoder {
       double worst = 0;
       for (size_t v = 0; v < xyz.size(); v += 3) {
         double sq = 0;
-        for (int c = 0; c < 3; ++c) sq += (double(xyz[v + c]) - original[v + c]) * (double(xyz[v + c]) - original[v + c]);
+        for (int c = 0; c < 3; ++c)
+          sq += (double(xyz[v + c]) - original[v + c]) * (double(xyz[v + c]) - original[v + c]);
         e.squared += sq;
         worst = std::max(worst, sq);
       }
@@ -310,8 +366,8 @@ class TrajectoryEncoder final : public GroupEncoder {
   SimdPath path_;
   const float* original_ = nullptr;  // the group being coded
   uint32_t frame_count_ = 0;
-  std::vector<double> cube_sides_;    // of the group's frames (kMaxError)
-  GroupFrames frames_;                // the last group as decoded
+  std::vector<double> cube_sides_;  // of the group's frames (kMaxError)
+  GroupFrames frames_;              // the last group as decoded
 };
 
 }  // namespace

@@ -59,12 +59,13 @@ std::unique_ptr<GroupEncoder> makeEncoder(const CodecOptions& o, const Topology&
 }
 
 Result<std::unique_ptr<FrameDecoder>> makeDecoder(const CodecOptions&, const Topology& topology,
-                                                  const WaveletDecodeControl& control, const std::string& file,
+                                                  const DecoderOptions& decoding, const std::string& file,
                                                   SimdPath path) {
-  if (control.partial())
-    return invalidArgument(file + ": progressive decoding (fewer bitplanes or bytes) needs a wavelet-coded "
+  if (decoding.progressive.partial())
+    return invalidArgument(file +
+                           ": progressive decoding (fewer bitplanes or bytes) needs a wavelet-coded "
                            "file; this one is trajectory");
-  return makeTrajectoryDecoder(topology, path);
+  return makeTrajectoryDecoder(topology, decoding.limits, path);
 }
 
 }  // namespace

@@ -39,7 +39,9 @@ std::string describe(const CodecOptions& options) {
   char text[256];
   std::snprintf(text, sizeof text, "%s, step %g of the diagonal, parametric bits %d, %s%s", rate, w.step,
                 w.parametric_bits,
-                !w.temporal_prediction ? "I-frames only" : w.progressive_p_frames ? "progressive P-frames" : "P-frames",
+                !w.temporal_prediction   ? "I-frames only"
+                : w.progressive_p_frames ? "progressive P-frames"
+                                         : "P-frames",
                 w.local_frames ? ", details in local frames" : "");
   return text;
 }
@@ -66,16 +68,17 @@ std::unique_ptr<FrameEncoder> makeEncoder(const CodecOptions& o, const Topology&
 }
 
 Result<std::unique_ptr<FrameDecoder>> makeDecoder(const CodecOptions& o, const Topology& topology,
-                                                  const WaveletDecodeControl& control, const std::string& file,
+                                                  const DecoderOptions& decoding, const std::string& file,
                                                   SimdPath path) {
   // A P-frame decoded from part of its payload leaves the decoder's coding contexts different
   // from the encoder's unless the file was coded without them: every later frame of the group
   // would decode wrongly.
-  if (control.partial() && !wavelet(o).cuttable())
-    return invalidArgument(file + ": progressive decoding (fewer bitplanes or bytes) needs a file encoded with "
+  if (decoding.progressive.partial() && !wavelet(o).cuttable())
+    return invalidArgument(file +
+                           ": progressive decoding (fewer bitplanes or bytes) needs a file encoded with "
                            "animc encode --codec wavelet --progressive-p-frames or --i-frames-only; this one's "
                            "P-frames use the previous frame's coding contexts");
-  return makeWaveletDecoder(wavelet(o), topology, control, path);
+  return makeWaveletDecoder(wavelet(o), topology, decoding.progressive, path);
 }
 
 }  // namespace

@@ -1,0 +1,162 @@
+#!/usr/bin/python3
+# SPDX-License-Identifier: Apache-2.0
+"""Encoding and decoding on one thread and on two: `animc bench --threads N` at animc's default
+settings (auto, max error 1 %), on every sequence as one group (at most 512 frames) and cut into
+groups of 64 frames, and on a large sequence made here: the first 48 frames of the first
+sequence with every triangle cut into four (edge midpoints) until it has at least 500 000
+vertices, one group. Both thread counts must write the same bytes (the script checks) and the
+peak memory of the large case is measured. bench.py puts the returned Markdown lines into
+docs/benchmarks.md; run alone, this script replaces that section in place.
+
+usage: bench/bench_threads.py [--animc PATH] [--data DIR] [--runs R] [--out FILE]"""
+import filecmp
+import os
+import subprocess
+import tempfile
+
+import numpy as np
+
+import pc2
+from bench_common import log, num, run_bench, section_main, table
+from ply import read_ply_faces, write_ply
+
+HEADING = '## Threads'
+THREADS = (1, 2)
+GROUP_FRAMES = 64
+LARGE_FRAMES = 48
+LARGE_VERTICES = 500_000
+
+
+def subdivide(frames, faces):
+    """Every triangle cut into four at its edge midpoints: (frames [F, N', 3], faces [4T, 3])."""
+    corners = [(0, 1), (1, 2), (2, 0)]
+    edges = np.sort(np.concatenate([faces[:, c] for c in corners]), axis=1)
+    unique, inverse = np.unique(edges, axis=0, return_inverse=True)
+    inverse = inverse.reshape(-1)
+    n = frames.shape[1]
+    mid = (frames[:, unique[:, 0]] + frames[:, unique[:, 1]]) * np.float32(0.5)
+    m = (n + inverse).reshape(3, -1).T  # midpoint of edge 01, 12, 20 of each face
+    a, b, c = faces[:, 0], faces[:, 1], faces[:, 2]
+    new_faces = np.concatenate([np.stack(f, axis=1) for f in
+                                ((a, m[:, 0], m[:, 2]), (m[:, 0], b, m[:, 1]), (m[:, 2], m[:, 1], c),
+                                 (m[:, 0], m[:, 1], m[:, 2]))])
+    return np.concatenate([frames, mid], axis=1), new_faces.astype(np.uint32)
+
+
+def make_large(seq, work):
+    """seq's first LARGE_FRAMES frames subdivided to LARGE_VERTICES vertices or more, as
+    work/large.pc2 and work/large.ply; returns (pc2, ply, vertices)."""
+    frames, header = pc2.read_pc2(seq['pc2'], LARGE_FRAMES)
+    faces = read_ply_faces(seq['ply'])
+    while frames.shape[1] < LARGE_VERTICES:
+        frames, faces = subdivide(frames, faces)
+    out_pc2, out_ply = os.path.join(work, 'large.pc2'), os.path.join(work, 'large.ply')
+    with open(out_pc2, 'wb') as f:
+        f.write(pc2.pack_header(header._replace(points=frames.shape[1], frames=frames.shape[0])))
+        f.write(np.ascontiguousarray(frames, dtype='<f4').tobytes())
+    write_ply(out_ply, frames[0], faces)
+    return out_pc2, out_ply, frames.shape[1]
+
+
+def peak_rss_mib(cmd):
+    """Peak resident memory of a command, in MiB (the kernel's count for the child)."""
+    child = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    _, status, usage = os.wait4(child.pid, 0)
+    if status != 0:
+        raise RuntimeError(f'{" ".join(cmd)}: exit status {status}')
+    return usage.ru_maxrss / 1024
+
+
+def measure(animc, name, pc2_path, ply, extra, runs, work):
+    """A table row of both thread counts, or None when a run failed or the bytes differ."""
+    results, files = {}, {}
+    for threads in THREADS:
+        files[threads] = os.path.join(work, f'{name}.t{threads}.ams')
+        log(f'{name} {" ".join(extra)}: {threads} thread(s), {runs} run(s)')
+        r = run_bench(animc, pc2_path, ply, extra + ['--threads', str(threads), '-o', files[threads]], runs)
+        if 'error' in r:
+            return None
+        results[threads] = r
+    if not filecmp.cmp(files[1], files[2], shallow=False):
+        log(f'  {name}: the two thread counts wrote different bytes')
+        return None
+    one, two = results[1], results[2]
+    enc, dec = one['encode_seconds_median'] / two['encode_seconds_median'], \
+        one['decode_seconds_median'] / two['decode_seconds_median']
+    return [name, one['vertices'], one['frames'], num(one['bpvf'], 3),
+            num(one['encode_mvps']), num(two['encode_mvps']), num(enc) + '×',
+            num(one['decode_mvps']), num(two['decode_mvps']), num(dec) + '×'], enc, dec
+
+
+def amdahl(speedup, threads):
+    """(parallel fraction p from a speedup on 2 threads, projected speedup on `threads`)."""
+    p = min(1.0, max(0.0, 2 * (1 - 1 / speedup)))
+    return p, 1 / ((1 - p) + p / threads)
+
+
+def threads_section(animc, sequences, runs):
+    rows, failures, speedups = [], 0, []
+    with tempfile.TemporaryDirectory(prefix='animc_bench_threads_') as work:
+        cases = [(s['name'], s['pc2'], s['ply'], []) for s in sequences]
+        cases += [(s['name'] + f', groups of {GROUP_FRAMES}', s['pc2'], s['ply'],
+                   ['--iframe-interval', str(GROUP_FRAMES)]) for s in sequences]
+        large = None
+        if sequences:
+            log(f'making the large sequence from {sequences[0]["name"]}')
+            large = make_large(sequences[0], work)
+            cases.append((f'{sequences[0]["name"]} subdivided, {LARGE_FRAMES} frames', large[0], large[1], []))
+        for name, pc2_path, ply, extra in cases:
+            row = measure(animc, name, pc2_path, ply, extra, 1 if pc2_path == (large or [None])[0] else runs, work)
+            if row is None:
+                failures += 1
+                rows.append([name] + ['failed'] * 9)
+                continue
+            rows.append(row[0])
+            speedups.append((name, row[1], row[2]))
+        memory = []
+        if large:
+            raw_mib = large[2] * LARGE_FRAMES * 12 / 2**20
+            for threads in THREADS:
+                out = os.path.join(work, f'memory.t{threads}.ams')
+                log(f'peak memory of the large case, {threads} thread(s)')
+                mib = peak_rss_mib([animc, 'encode', large[0], '--mesh', large[1], '-o', out, '--threads', str(threads)])
+                memory.append([threads, f'{mib:.0f} MiB', num(mib / raw_mib) + '×'])
+    lines = [HEADING, '',
+             f'`animc bench IN --mesh M --threads N --runs {runs} --json` (`--runs 1` for the large sequence) '
+             'at animc\'s default settings (auto, max error 1 %): medians in million vertices (× frames) per '
+             'second; encoding includes the rate search, decoding reads the file in the runs of groups '
+             '`AmsSource` takes. Every pair of runs wrote identical bytes (checked). A sequence of at most '
+             '512 frames is one group: its work is split inside the group (the trajectory Gram matrix, '
+             'products and rate search; the frame reconstruction over vertex ranges), the eigensolver '
+             f'stays on one thread. With `--iframe-interval {GROUP_FRAMES}` the groups are coded and decoded '
+             'one a thread.', '']
+    lines += table(['sequence', 'vertices', 'frames', 'bpvf', 'encode 1 thread', 'encode 2 threads', 'speed-up',
+                    'decode 1 thread', 'decode 2 threads', 'speed-up'], rows) + ['']
+    if memory:
+        raw = large[2] * LARGE_FRAMES * 12 / 2**20
+        lines += [f'Peak memory of `animc encode` on the large sequence ({large[2]} vertices × {LARGE_FRAMES} '
+                  f'frames, one group; raw floats {raw:.0f} MiB), from the kernel\'s count for the process:', '']
+        lines += table(['threads', 'peak RSS', 'of the raw floats'], memory) + ['']
+    if speedups:
+        projected = []
+        for name, enc, dec in speedups:
+            pe, e4 = amdahl(enc, 4)
+            pd, d4 = amdahl(dec, 4)
+            projected.append([name, f'{100 * pe:.0f} %', num(e4) + '×', num(amdahl(enc, 8)[1]) + '×',
+                              f'{100 * pd:.0f} %', num(d4) + '×', num(amdahl(dec, 8)[1]) + '×'])
+        lines += ['More cores, estimated on paper: the parallel fraction p of each run follows from its '
+                  'speed-up S on two threads (Amdahl: S = 1 / ((1 − p) + p/2), so p = 2 (1 − 1/S)); the '
+                  'speed-up on n cores is then 1 / ((1 − p) + p/n). This assumes the serial part stays '
+                  'serial and memory bandwidth keeps up; it is an estimate, not a measurement.', '']
+        lines += table(['sequence', 'encode p', 'encode 4 cores', 'encode 8 cores', 'decode p', 'decode 4 cores',
+                        'decode 8 cores'], projected) + ['']
+    return lines, failures
+
+
+def main():
+    section_main(__doc__, HEADING, lambda args, sequences: threads_section(args.animc, sequences, args.runs),
+                 lambda p: p.add_argument('--runs', type=int, default=5))
+
+
+if __name__ == '__main__':
+    main()
