@@ -60,7 +60,7 @@ std::set<std::string> flagsOfEveryCodec(bool switches) {
 const std::set<std::string>& encodeOptions() {
   static const std::set<std::string> names = [] {
     std::set<std::string> names = flagsOfEveryCodec(false);
-    names.insert({"codec", "iframe-interval", "threads"});
+    names.insert({"codec", "iframe-interval", "threads", "frames"});
     return names;
   }();
   return names;
@@ -121,10 +121,67 @@ Result<DecoderLimits> decoderLimitsFrom(const Args& args) {
   return limits;
 }
 
+Status parseRange(const std::string& text, int64_t count, int64_t& first, int64_t& last) {
+  first = 0;
+  last = count;
+  if (text.empty()) return Status();
+  const size_t colon = text.find(':');
+  const std::string a = text.substr(0, colon);
+  std::string b = colon == std::string::npos ? "" : text.substr(colon + 1);
+  char* end = nullptr;
+  if (!a.empty()) first = std::strtoll(a.c_str(), &end, 10);
+  if (!a.empty() && *end) return invalidArgument("--frames: bad start '" + a + "'");
+  if (colon == std::string::npos) {
+    if (a.empty()) return invalidArgument("--frames: expected A:B");
+    last = first + 1;
+  } else if (!b.empty()) {
+    last = std::strtoll(b.c_str(), &end, 10);
+    if (*end) return invalidArgument("--frames: bad end '" + b + "'");
+  }
+  if (first < 0 || last > count || first >= last)
+    return invalidArgument("--frames " + text + " is empty or outside [0, " + std::to_string(count) + ")");
+  return Status();
+}
+
+namespace {
+
+// Frames [first, last) of another source, the ones before skipped as they are read.
+class FrameRangeSource final : public FrameSource {
+ public:
+  FrameRangeSource(std::unique_ptr<FrameSource> source, int64_t first, int64_t last)
+      : source_(std::move(source)), first_(first), last_(last) {}
+  const Topology& topology() const override { return source_->topology(); }
+  int64_t frameCount() const override { return last_ - first_; }
+  double frameRate() const override { return source_->frameRate(); }
+  std::string where() const override { return source_->where(); }
+  Result<bool> next(std::vector<float>& xyz) override {
+    for (; next_ < first_; ++next_) {
+      ANIMC_ASSIGN_OR_RETURN(bool more, source_->next(xyz));
+      if (!more) return false;
+    }
+    if (next_ >= last_) return false;
+    ++next_;
+    return source_->next(xyz);
+  }
+
+ private:
+  std::unique_ptr<FrameSource> source_;
+  int64_t first_, last_, next_ = 0;
+};
+
+}  // namespace
+
 Result<EncodeInput> openEncodeInput(const Args& args) {
   EncodeInput in;
   ANIMC_ASSIGN_OR_RETURN(in.settings, encodeSettingsFrom(args));
   ANIMC_ASSIGN_OR_RETURN(in.source, openSequence(args.positional()[0], args.get("mesh")));
+  if (args.has("frames")) {
+    const int64_t count = in.source->frameCount();
+    if (count < 0) return invalidArgument("--frames needs an input whose frame count is known before reading it");
+    int64_t first = 0, last = 0;
+    ANIMC_RETURN_IF_ERROR(parseRange(args.get("frames"), count, first, last));
+    in.source = std::make_unique<FrameRangeSource>(std::move(in.source), first, last);
+  }
   ANIMC_ASSIGN_OR_RETURN(std::vector<std::string> inputs, sequenceInputFiles(args.positional()[0], args.get("mesh")));
   ANIMC_RETURN_IF_ERROR(refuseOutputOverInput(args.get("output"), inputs));
   return in;

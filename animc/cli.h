@@ -59,6 +59,10 @@ Result<DecoderLimits> decoderLimitsFrom(const Args& args);
 ProgressFn progressLine(const char* label, bool force);
 void endProgressLine();
 
+// --frames "A:B" (frames A to B-1; either side may be omitted, "A" alone is frame A) of a
+// sequence of `count` frames: first and last, or why not.
+Status parseRange(const std::string& text, int64_t count, int64_t& first, int64_t& last);
+
 // Whether a path names an .ams file (by its extension), which compare and bench read as one.
 bool isAmsPath(const std::string& path);
 
@@ -76,5 +80,6 @@ int runInfo(const std::vector<std::string>& argv);
 int runTest(const std::vector<std::string>& argv);
 int runCompare(const std::vector<std::string>& argv);
 int runBench(const std::vector<std::string>& argv);
+int runJoin(const std::vector<std::string>& argv);
 
 }  // namespace animc::cli

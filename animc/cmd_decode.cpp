@@ -8,24 +8,6 @@
 namespace animc::cli {
 namespace {
 
-// "A:B" = frames A to B-1; either side may be omitted.
-Status parseRange(const std::string& text, int64_t count, int64_t& first, int64_t& last) {
-  first = 0;
-  last = count;
-  if (text.empty()) return Status();
-  const size_t colon = text.find(':');
-  const std::string a = text.substr(0, colon);
-  const std::string b = colon == std::string::npos ? std::to_string(std::stoll(a) + 1) : text.substr(colon + 1);
-  char* end = nullptr;
-  if (!a.empty()) first = std::strtoll(a.c_str(), &end, 10);
-  if (!a.empty() && *end) return invalidArgument("--frames: bad start '" + a + "'");
-  if (!b.empty()) last = std::strtoll(b.c_str(), &end, 10);
-  if (!b.empty() && *end) return invalidArgument("--frames: bad end '" + b + "'");
-  if (first < 0 || last > count || first >= last)
-    return invalidArgument("--frames " + text + " is empty or outside [0, " + std::to_string(count) + ")");
-  return Status();
-}
-
 // --bitplanes K / --max-bytes N: progressive decoding of a wavelet-coded file.
 Result<WaveletDecodeControl> progressiveControl(const Args& args) {
   WaveletDecodeControl c;
@@ -67,12 +49,7 @@ int runDecode(const std::vector<std::string>& argv) {
   if (!source.ok()) return fail(source.status());
   AmsSource& ams = *source.value();
   int64_t first = 0, last = 0;
-  try {
-    s = parseRange(args.get("frames"), ams.frameCount(), first, last);
-  } catch (const std::exception&) {
-    s = invalidArgument("--frames: expected A:B");
-  }
-  if (!s.ok()) return fail(s);
+  if (!(s = parseRange(args.get("frames"), ams.frameCount(), first, last)).ok()) return fail(s);
   const uint64_t output_bytes = sequenceOutputBytes(fmt.value(), ams.topology(), last - first);
   if (!(s = ams.checkDecodeWork(first, last, output_bytes)).ok()) return fail(s);
   if (!(s = ams.seek(first)).ok()) return fail(s);

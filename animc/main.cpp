@@ -30,6 +30,9 @@ std::string usageAfterEncode() {
          "         section's CRC and decodes\n"
          "         every frame, writes nothing\n"
          "  compare ORIGINAL RECONSTRUCTED|IN.ams [--mesh M] [--json] [--per-frame]\n"
+         "  join PART.ams... -o ALL.ams [--json]: one file of consecutive parts encoded with the\n"
+         "         same settings (encode --frames A:B); the bytes of the whole sequence's encode\n"
+         "         when every part but the last is a whole number of I-frame intervals\n"
          "  bench IN [--mesh M] [encode options] [--runs R] [--json]\n"
          "  bench IN [--mesh M] --read-only [--runs R] [--json]: reading the sequence only\n"
          "  bench IN.ams [--runs R] [--json] [--backwards]: decoding only, of that file\n"
@@ -47,7 +50,7 @@ std::string usage() {
     codecs += (codecs.empty() ? "" : "|") + std::string(codec->name);
   return "usage: animc <command> ...   (animc --version prints the release)\n"
          "  encode IN -o OUT.ams [--mesh M] [--codec " +
-         codecs + "] [--iframe-interval K]\n" +
+         codecs + "] [--iframe-interval K]\n" + "         [--frames A:B]: frames A to B-1 of IN only\n" +
          "         (the codec is auto by default, affine-octree when --profile, --bits or\n"
          "         --max-depth is given)\n" +
          animc::cli::codecUsage() + usageAfterEncode();
@@ -74,6 +77,7 @@ int main(int argc, char** argv) {
   if (command == "test") return runTest(rest);
   if (command == "compare") return runCompare(rest);
   if (command == "bench") return runBench(rest);
+  if (command == "join") return runJoin(rest);
   std::fprintf(stderr, "animc: unknown command '%s' (animc --help lists them)\n", command.c_str());
   return 2;
 }

@@ -124,6 +124,29 @@ py::bytes encode(py::handle frames, py::handle faces, const std::string& codec, 
   return py::bytes(reinterpret_cast<const char*>(bytes.data()), bytes.size());
 }
 
+// The bytes of one .ams stream joined from parts (paths or bytes), as animc join.
+py::bytes join(const py::sequence& parts) {
+  std::vector<std::unique_ptr<HeldBuffer>> held;
+  std::vector<StreamPart> refs;
+  for (size_t i = 0; i < parts.size(); ++i) {
+    py::handle part = parts[i];
+    if (isPath(part)) {
+      refs.push_back({pathText(part)});
+      continue;
+    }
+    held.push_back(std::make_unique<HeldBuffer>(part));
+    refs.push_back({"part " + std::to_string(i), held.back()->data(), held.back()->size()});
+  }
+  std::vector<uint8_t> bytes;
+  Result<uint64_t> joined = uint64_t(0);
+  {
+    py::gil_scoped_release unlocked;
+    joined = joinStreams(refs, memorySink(&bytes));
+  }
+  throwIfError(joined.status());
+  return py::bytes(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+}
+
 py::dict metricsDict(const SequenceMetrics& m) {
   py::array_t<double> rms(py::ssize_t(m.per_frame.size()));
   py::array_t<double> max(py::ssize_t(m.per_frame.size()));
@@ -191,6 +214,10 @@ PYBIND11_MODULE(animcompress, module) {
              "'affine-octree' unless codec= says otherwise, as in the C++ library and in 1.0; animc encode "
              "and the MeshLab filter default to 'auto', which writes the smallest files but encodes "
              "several times slower: pass codec='auto' to write what animc writes.");
+  module.def("join", &join, py::arg("parts"),
+             "The .ams bytes of consecutive parts of one sequence (files or bytes) encoded apart with the same "
+             "settings, as animc join: those of encoding the whole sequence at once when every part but the last "
+             "is a whole number of iframe_interval frames.");
   module.def("compare", &compare, py::arg("original"), py::arg("reconstructed"), py::arg("faces") = py::none(),
              "The error figures (KG, PSNR, max and RMS errors, per frame) of a reconstruction, as animc compare; "
              "with faces (T, 3), STED too (sted, sted_spatial, sted_temporal).");

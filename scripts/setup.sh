@@ -10,6 +10,7 @@ PACKAGES=(
   libgtest-dev                     # unit tests
   xz-utils python3 python3-numpy   # sample data, benchmark baseline, metrics cross-check
   pybind11-dev python3-pybind11 python3-dev python3-pytest  # the Python module and its tests
+  python3-distributed              # examples/dask_compress.py and its test (a Dask LocalCluster)
   clang libclang-rt-dev            # the libFuzzer harnesses (tests/fuzz) of CI's short campaign
   gnuplot-nox                      # bench/rd_plot.py (rate-distortion plot of the benchmarks)
   gltfpack                         # bench/bench_gltf.py (glTF sizes beside a web user's other choice)

@@ -304,6 +304,24 @@ class ANIMC_API Decoder {
   friend struct DecoderAccess;
 };
 
+// ---- Joining ------------------------------------------------------------------------------
+
+// One part of a sequence to join: an .ams file at `path`, or, when data is not null, `size`
+// bytes in memory (valid for the call) that `path` then names in messages.
+struct StreamPart {
+  std::string path;
+  const void* data = nullptr;
+  size_t size = 0;
+};
+
+// Joins .ams streams of consecutive parts of one sequence, encoded apart with the same codec
+// settings, mesh and frame rate (`animc encode --frames A:B` on each part), into one stream
+// written to `sink`: the parts' header and connectivity must be identical, and the groups of
+// each follow those of the one before, checked (CRC) as they are copied. The bytes are those of
+// the whole sequence encoded at once with the same settings when every part but the last is a
+// whole number of I-frame intervals long. Returns the frame count of the joined stream.
+ANIMC_API Result<uint64_t> joinStreams(const std::vector<StreamPart>& parts, std::unique_ptr<ByteSink> sink);
+
 // ---- Metrics ------------------------------------------------------------------------------
 // The project's one implementation of its quality figures (animc, the MeshLab plugins, the
 // benchmarks and the Python module all use it); definitions in docs/metrics.md.

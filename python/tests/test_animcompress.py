@@ -161,6 +161,20 @@ def test_threads_change_neither_bytes_nor_frames(sequence, codec, options):
         animcompress.decode(one, threads=5000)
 
 
+def test_join_equals_the_whole_encode(sequence, tmp_path):
+    frames, faces = sequence['frames'], sequence['faces']
+    whole = animcompress.encode(frames, faces, codec='auto', iframe_interval=40)
+    parts = [animcompress.encode(frames[a:b], faces, codec='auto', iframe_interval=40)
+             for a, b in ((0, 80), (80, 120), (120, len(frames)))]
+    assert animcompress.join(parts) == whole
+    first = tmp_path / 'part0.ams'
+    first.write_bytes(parts[0])
+    assert animcompress.join([first, bytearray(parts[1]), parts[2]]) == whole
+    other = animcompress.encode(frames[80:], faces, codec='trajectory', iframe_interval=40)
+    with pytest.raises(animcompress.Error, match='differ'):
+        animcompress.join([parts[0], other])
+
+
 def test_a_false_switch_is_left_out(sequence):
     args = (sequence['frames'][:20], sequence['faces'])
     plain = animcompress.encode(*args, codec='wavelet', step=0.001)

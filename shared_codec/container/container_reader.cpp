@@ -6,8 +6,8 @@
 #include <cmath>
 #include <cstring>
 
-#include "container/connectivity_coder.h"
 #include "codecs/codec_registry.h"
+#include "container/connectivity_coder.h"
 #include "container/crc32.h"
 #include "io/byte_reader.h"
 
@@ -32,8 +32,7 @@ Status ContainerReader::readAt(uint64_t offset, void* out, size_t size, const ch
   return source_->readAt(offset, out, size);
 }
 
-Result<std::vector<uint8_t>> ContainerReader::readSection(uint64_t offset, const char* tag,
-                                                          uint64_t max_bytes) {
+Result<std::vector<uint8_t>> ContainerReader::readSection(uint64_t offset, const char* tag, uint64_t max_bytes) {
   uint8_t head[12];
   ANIMC_RETURN_IF_ERROR(readAt(offset, head, 12, tag));
   if (std::memcmp(head, tag, 4) != 0) {
@@ -62,15 +61,13 @@ Result<std::vector<uint8_t>> ContainerReader::readSection(uint64_t offset, const
   return payload;
 }
 
-Result<std::unique_ptr<ContainerReader>> ContainerReader::open(const std::string& path,
-                                                               const DecoderLimits& limits) {
+Result<std::unique_ptr<ContainerReader>> ContainerReader::open(const std::string& path, const DecoderLimits& limits) {
   ANIMC_ASSIGN_OR_RETURN(std::unique_ptr<ByteSource> source, openFileSource(path));
   return open(std::move(source), path, limits);
 }
 
 Result<std::unique_ptr<ContainerReader>> ContainerReader::open(std::unique_ptr<ByteSource> source,
-                                                               const std::string& name,
-                                                               const DecoderLimits& limits) {
+                                                               const std::string& name, const DecoderLimits& limits) {
   std::unique_ptr<ContainerReader> r(new ContainerReader());
   r->limits_ = limits;
   r->source_ = std::move(source);
@@ -101,8 +98,8 @@ Status ContainerReader::openHeader() {
   ContainerHeader& hd = info_.header;
   ANIMC_ASSIGN_OR_RETURN(uint8_t codec, r.u8("Codec_Id"));
   if (findCodec(codec) == nullptr)
-    return unsupported("codec id " + std::to_string(codec) + " is not supported (this build reads " +
-                       knownCodecList() + "; a newer animcompress may read it)");
+    return unsupported("codec id " + std::to_string(codec) + " is not supported (this build reads " + knownCodecList() +
+                       "; a newer animcompress may read it)");
   hd.codec = CodecId(codec);
   ANIMC_ASSIGN_OR_RETURN(uint64_t params_bytes, r.varint("Codec_Params_Length"));
   if (params_bytes > r.remaining()) return r.truncatedAt("Codec_Params");
@@ -122,10 +119,9 @@ Status ContainerReader::openHeader() {
   if (!(hd.frame_rate > 0 && hd.frame_rate < 1e6)) return corrupt("Frame_Rate out of range");
 
   const uint64_t conn_offset = kFileHeaderBytes + kSectionOverhead + head.size();
-  ANIMC_ASSIGN_OR_RETURN(std::vector<uint8_t> conn,
-                         readSection(conn_offset, kTagConnectivity, kNoMaximum));
-  ANIMC_RETURN_IF_ERROR(decodeConnectivity(ByteReader(conn.data(), conn.size(), conn_offset + 12),
-                                           hd.vertex_count, hd.triangle_count, topology_));
+  ANIMC_ASSIGN_OR_RETURN(std::vector<uint8_t> conn, readSection(conn_offset, kTagConnectivity, kNoMaximum));
+  ANIMC_RETURN_IF_ERROR(decodeConnectivity(ByteReader(conn.data(), conn.size(), conn_offset + 12), hd.vertex_count,
+                                           hd.triangle_count, topology_));
   ANIMC_RETURN_IF_ERROR(openIndex(conn_offset + kSectionOverhead + conn.size()));
   return measureFirstFrame();
 }
@@ -138,8 +134,7 @@ Status ContainerReader::openIndex(uint64_t conn_end) {
   if (index_offset < conn_end || index_offset > end_offset)
     return corrupt("Index_Offset " + std::to_string(index_offset) + " outside the file's data");
   ANIMC_ASSIGN_OR_RETURN(std::vector<uint8_t> index, readSection(index_offset, kTagIndex, end_offset - index_offset));
-  if (index_offset + kSectionOverhead + index.size() != end_offset)
-    return corrupt("bytes between INDX and END");
+  if (index_offset + kSectionOverhead + index.size() != end_offset) return corrupt("bytes between INDX and END");
   ByteReader r(index.data(), index.size(), index_offset + 12);
   ANIMC_ASSIGN_OR_RETURN(info_.frame_count, r.u64("Frame_Count"));
   ANIMC_ASSIGN_OR_RETURN(uint32_t group_count, r.u32("Group_Count"));
@@ -155,8 +150,7 @@ Status ContainerReader::openIndex(uint64_t conn_end) {
     ANIMC_ASSIGN_OR_RETURN(groups_[g].offset, r.u64("Group_Offset"));
     ANIMC_ASSIGN_OR_RETURN(groups_[g].first_frame, r.u64("Group_First_Frame"));
     const uint64_t min_offset = g == 0 ? conn_end : groups_[g - 1].offset + kSectionOverhead + kGroupFieldBytes + 1;
-    const bool first_ok = g == 0 ? groups_[g].first_frame == 0
-                                 : groups_[g].first_frame > groups_[g - 1].first_frame;
+    const bool first_ok = g == 0 ? groups_[g].first_frame == 0 : groups_[g].first_frame > groups_[g - 1].first_frame;
     if ((g == 0 && groups_[g].offset != conn_end) || groups_[g].offset < min_offset ||
         groups_[g].offset >= index_offset || !first_ok || groups_[g].first_frame >= info_.frame_count)
       return corrupt("index entry " + std::to_string(g) + " is inconsistent");
@@ -253,6 +247,20 @@ Result<bool> ContainerReader::nextFrame(std::vector<uint8_t>& payload) {
   cursor_ = start + length;
   --frames_left_;
   return true;
+}
+
+Result<std::vector<uint8_t>> ContainerReader::startBytes() {
+  std::vector<uint8_t> bytes(size_t(groups_[0].offset));
+  ANIMC_RETURN_IF_ERROR(readAt(0, bytes.data(), bytes.size(), "HEAD and CONN"));
+  return bytes;
+}
+
+Result<std::vector<uint8_t>> ContainerReader::groupSection(size_t g) {
+  ANIMC_RETURN_IF_ERROR(beginGroup(g));
+  const Group& group = groups_[g];
+  std::vector<uint8_t> bytes(size_t(group.end - group.offset));
+  ANIMC_RETURN_IF_ERROR(readAt(group.offset, bytes.data(), bytes.size(), "GRUP"));
+  return bytes;
 }
 
 }  // namespace animc

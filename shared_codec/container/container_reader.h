@@ -28,7 +28,7 @@ struct ContainerInfo {
   ContainerHeader header;
   uint64_t frame_count = 0;
   uint64_t file_bytes = 0;
-  uint64_t static_bytes = 0;  // header, HEAD, CONN and the first frame: what motion does not pay
+  uint64_t static_bytes = 0;          // header, HEAD, CONN and the first frame: what motion does not pay
   std::vector<SectionInfo> sections;  // HEAD, CONN, each GRUP, INDX, END in file order
 
   uint64_t groupCount() const {
@@ -41,11 +41,10 @@ struct ContainerInfo {
 class ContainerReader {
  public:
   ~ContainerReader();
-  static Result<std::unique_ptr<ContainerReader>> open(const std::string& path,
-                                                       const DecoderLimits& limits = {});
+  static Result<std::unique_ptr<ContainerReader>> open(const std::string& path, const DecoderLimits& limits = {});
   // `name` stands for the source in messages.
-  static Result<std::unique_ptr<ContainerReader>> open(std::unique_ptr<ByteSource> source,
-                                                       const std::string& name, const DecoderLimits& limits);
+  static Result<std::unique_ptr<ContainerReader>> open(std::unique_ptr<ByteSource> source, const std::string& name,
+                                                       const DecoderLimits& limits);
 
   const ContainerInfo& info() const { return info_; }
   const Topology& topology() const { return topology_; }
@@ -55,6 +54,14 @@ class ContainerReader {
 
   // Verifies group g's CRC and makes nextFrame() return its frames in order.
   Status beginGroup(size_t group);
+  // The file's bytes before its first GRUP (File_Header, HEAD, CONN), as stored.
+  Result<std::vector<uint8_t>> startBytes();
+  // Group g's whole GRUP section as stored, its CRC and frame numbers verified first.
+  Result<std::vector<uint8_t>> groupSection(size_t group);
+  uint64_t groupFrameCount(size_t group) const {
+    return (group + 1 < groups_.size() ? groups_[group + 1].first_frame : info_.frame_count) -
+           groups_[group].first_frame;
+  }
   // The next frame's payload of the current group; false after its last frame.
   Result<bool> nextFrame(std::vector<uint8_t>& payload);
 

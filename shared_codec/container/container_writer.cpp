@@ -22,8 +22,7 @@ Status ContainerWriter::writeSection(const char* tag, const std::vector<uint8_t>
   return sink_->write(w.bytes().data(), w.size());
 }
 
-Status ContainerWriter::open(std::unique_ptr<ByteSink> sink, const ContainerHeader& header,
-                             const Topology& topology) {
+Status ContainerWriter::open(std::unique_ptr<ByteSink> sink, const ContainerHeader& header, const Topology& topology) {
   if (sink_) return invalidArgument("the container writer is already open");
   sink_ = std::move(sink);
   ByteWriter start;
@@ -43,6 +42,24 @@ Status ContainerWriter::open(std::unique_ptr<ByteSink> sink, const ContainerHead
   std::vector<uint8_t> conn;
   encodeConnectivity(topology, conn);
   return writeSection(kTagConnectivity, conn);
+}
+
+Status ContainerWriter::openCopy(std::unique_ptr<ByteSink> sink, const std::vector<uint8_t>& start) {
+  if (sink_) return invalidArgument("the container writer is already open");
+  sink_ = std::move(sink);
+  return sink_->write(start.data(), start.size());
+}
+
+Status ContainerWriter::addGroupSection(std::vector<uint8_t> section, uint32_t frame_count) {
+  if (!sink_) return invalidArgument("the container writer is not open");
+  ANIMC_RETURN_IF_ERROR(closeGroup());
+  if (section.size() < kSectionOverhead + kGroupFieldBytes) return invalidArgument("not a GRUP section");
+  ByteWriter first;
+  first.u64(frames_);
+  std::copy(first.bytes().begin(), first.bytes().end(), section.begin() + 12);
+  groups_.push_back({sink_->tell(), frames_});
+  frames_ += frame_count;
+  return sink_->write(section.data(), section.size());
 }
 
 Status ContainerWriter::addFrame(const std::vector<uint8_t>& payload, bool intra) {

@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "codecs/codec_ids.h"
 #include <memory>
+#include "codecs/codec_ids.h"
 #include "core/sequence.h"
 #include "core/status.h"
 
@@ -26,8 +26,14 @@ struct ContainerHeader {
 class ContainerWriter {
  public:
   Status open(std::unique_ptr<ByteSink> sink, const ContainerHeader& header, const Topology& topology);
+  // Opens with File_Header, HEAD and CONN as another file holds them (`start`, its bytes up to
+  // its first GRUP), for a file joined from parts.
+  Status openCopy(std::unique_ptr<ByteSink> sink, const std::vector<uint8_t>& start);
   // Appends one coded frame; intra frames start a new GRUP section.
   Status addFrame(const std::vector<uint8_t>& payload, bool intra);
+  // Appends a whole GRUP section of another file holding frame_count frames (its CRC stays
+  // valid: First_Frame, rewritten here, is outside it).
+  Status addGroupSection(std::vector<uint8_t> section, uint32_t frame_count);
   Status finish();
 
   // Bytes so far; after finish(), the size of the file.
@@ -40,7 +46,9 @@ class ContainerWriter {
 
   std::unique_ptr<ByteSink> sink_;
   uint64_t frames_ = 0;
-  struct GroupEntry { uint64_t offset, first_frame; };
+  struct GroupEntry {
+    uint64_t offset, first_frame;
+  };
   std::vector<GroupEntry> groups_;
   bool group_open_ = false;
   uint32_t group_frames_ = 0;

@@ -280,6 +280,17 @@ cmp -s "$TMP/threads1.ams" "$TMP/threads3.ams" || check_failed "threads: 1 and 3
 cmp -s "$TMP/threads1.pc2" "$TMP/threads3.pc2" || check_failed "threads: 1 and 3 threads decoded different frames"
 expect_error bad_threads "$ERRDIR/x.ams" "$ANIMC" encode "$PC2" --mesh "$MESH" -o "$ERRDIR/x.ams" --threads -1
 
+# --- encode --frames and join: parts of whole I-frame intervals join into the whole encode ---
+run join_whole "$ANIMC" encode "$PC2" --mesh "$MESH" -o "$TMP/join_whole.ams" --iframe-interval 10
+run join_part0 "$ANIMC" encode "$PC2" --mesh "$MESH" -o "$TMP/join0.ams" --iframe-interval 10 --frames 0:20
+run join_part1 "$ANIMC" encode "$PC2" --mesh "$MESH" -o "$TMP/join1.ams" --iframe-interval 10 --frames 20:
+run join "$ANIMC" join "$TMP/join0.ams" "$TMP/join1.ams" -o "$TMP/joined.ams" --json
+cmp -s "$TMP/join_whole.ams" "$TMP/joined.ams" || check_failed "join: the joined parts differ from the whole encode"
+json_check 'd["frames"] == 50 and d["parts"] == 2' "$TMP/join.out"
+expect_error join_mismatch "$ERRDIR/x.ams" "$ANIMC" join "$TMP/join0.ams" "$AMS" -o "$ERRDIR/x.ams"
+expect_error join_over_input "" "$ANIMC" join "$TMP/join0.ams" "$TMP/join1.ams" -o "$TMP/join1.ams"
+expect_error bad_frames "$ERRDIR/x.ams" "$ANIMC" encode "$PC2" --mesh "$MESH" -o "$ERRDIR/x.ams" --frames 40:60
+
 # --- an output that is one of the inputs is refused, by identity; the inputs stay intact ---
 VICTIM=$TMP/victim
 mkdir "$VICTIM"
