@@ -1,11 +1,12 @@
 #!/usr/bin/python3
 # SPDX-License-Identifier: Apache-2.0
-"""Encoding and decoding on one thread and on two: `animc bench --threads N` at animc's default
-settings (auto, max error 1 %), on every sequence as one group (at most 512 frames) and cut into
-groups of 64 frames, and on a large sequence made here: the first 48 frames of the first
-sequence with every triangle cut into four (edge midpoints) until it has at least 500 000
-vertices, one group. Both thread counts must write the same bytes (the script checks) and the
-peak memory of the large case is measured. bench.py puts the returned Markdown lines into
+"""Encoding and decoding on one thread and on two: `animc bench --threads N` (encoding) and
+`animc bench X.ams --threads N` (decoding) at animc's default settings (auto, max error 1 %), on
+every sequence as one group and cut into groups of 64 frames, and on a large single group made
+here: the first sequence with every triangle cut into four (edge midpoints) until it has at
+least 500 000 vertices, as many of its first frames as one group holds (2^25 / (3 × vertices)).
+Both thread counts must write the same bytes (the script checks) and the peak memory of the
+large case is measured. bench.py puts the returned Markdown lines into
 docs/benchmarks.md; run alone, this script replaces that section in place.
 
 usage: bench/bench_threads.py [--animc PATH] [--data DIR] [--runs R] [--out FILE]"""
@@ -17,14 +18,14 @@ import tempfile
 import numpy as np
 
 import pc2
-from bench_common import log, num, run_bench, section_main, table
+from bench_common import animc_json, log, num, run_bench, section_main, table
 from ply import read_ply_faces, write_ply
 
 HEADING = '## Threads'
 THREADS = (1, 2)
 GROUP_FRAMES = 64
-LARGE_FRAMES = 48
 LARGE_VERTICES = 500_000
+GROUP_VALUES = 2**25  # a trajectory group holds at most this many trajectory values (3 x frames x vertices)
 
 
 def subdivide(frames, faces):
@@ -44,18 +45,19 @@ def subdivide(frames, faces):
 
 
 def make_large(seq, work):
-    """seq's first LARGE_FRAMES frames subdivided to LARGE_VERTICES vertices or more, as
-    work/large.pc2 and work/large.ply; returns (pc2, ply, vertices)."""
-    frames, header = pc2.read_pc2(seq['pc2'], LARGE_FRAMES)
+    """seq subdivided to LARGE_VERTICES vertices or more, its first frames that fit one group, as
+    work/large.pc2 and work/large.ply; returns (pc2, ply, vertices, frames)."""
+    frames, header = pc2.read_pc2(seq['pc2'], 64)
     faces = read_ply_faces(seq['ply'])
     while frames.shape[1] < LARGE_VERTICES:
         frames, faces = subdivide(frames, faces)
+    frames = frames[:GROUP_VALUES // (3 * frames.shape[1])]
     out_pc2, out_ply = os.path.join(work, 'large.pc2'), os.path.join(work, 'large.ply')
     with open(out_pc2, 'wb') as f:
         f.write(pc2.pack_header(header._replace(points=frames.shape[1], frames=frames.shape[0])))
         f.write(np.ascontiguousarray(frames, dtype='<f4').tobytes())
     write_ply(out_ply, frames[0], faces)
-    return out_pc2, out_ply, frames.shape[1]
+    return out_pc2, out_ply, frames.shape[1], frames.shape[0]
 
 
 def peak_rss_mib(cmd):
@@ -68,24 +70,30 @@ def peak_rss_mib(cmd):
 
 
 def measure(animc, name, pc2_path, ply, extra, runs, work):
-    """A table row of both thread counts, or None when a run failed or the bytes differ."""
-    results, files = {}, {}
+    """(a table row of both thread counts, encode speed-up, decode speed-up), or None when a
+    run failed or the bytes differ."""
+    encoded, decoded, files = {}, {}, {}
     for threads in THREADS:
         files[threads] = os.path.join(work, f'{name}.t{threads}.ams')
         log(f'{name} {" ".join(extra)}: {threads} thread(s), {runs} run(s)')
         r = run_bench(animc, pc2_path, ply, extra + ['--threads', str(threads), '-o', files[threads]], runs)
         if 'error' in r:
             return None
-        results[threads] = r
+        encoded[threads] = r
     if not filecmp.cmp(files[1], files[2], shallow=False):
         log(f'  {name}: the two thread counts wrote different bytes')
         return None
-    one, two = results[1], results[2]
-    enc, dec = one['encode_seconds_median'] / two['encode_seconds_median'], \
-        one['decode_seconds_median'] / two['decode_seconds_median']
+    for threads in THREADS:  # decoding alone, of the same file, more runs: it takes milliseconds
+        decoded[threads] = animc_json([animc, 'bench', files[1], '--threads', str(threads), '--runs',
+                                       str(max(runs, 9)), '--json'])
+        if not decoded[threads]:
+            return None
+    one, two = encoded[1], encoded[2]
+    enc = one['encode_seconds_median'] / two['encode_seconds_median']
+    dec = decoded[2]['decode_mvps'] / decoded[1]['decode_mvps']
     return [name, one['vertices'], one['frames'], num(one['bpvf'], 3),
             num(one['encode_mvps']), num(two['encode_mvps']), num(enc) + '×',
-            num(one['decode_mvps']), num(two['decode_mvps']), num(dec) + '×'], enc, dec
+            num(decoded[1]['decode_mvps']), num(decoded[2]['decode_mvps']), num(dec) + '×'], enc, dec
 
 
 def amdahl(speedup, threads):
@@ -104,7 +112,7 @@ def threads_section(animc, sequences, runs):
         if sequences:
             log(f'making the large sequence from {sequences[0]["name"]}')
             large = make_large(sequences[0], work)
-            cases.append((f'{sequences[0]["name"]} subdivided, {LARGE_FRAMES} frames', large[0], large[1], []))
+            cases.append((f'{sequences[0]["name"]} subdivided, one group', large[0], large[1], []))
         for name, pc2_path, ply, extra in cases:
             row = measure(animc, name, pc2_path, ply, extra, 1 if pc2_path == (large or [None])[0] else runs, work)
             if row is None:
@@ -115,26 +123,28 @@ def threads_section(animc, sequences, runs):
             speedups.append((name, row[1], row[2]))
         memory = []
         if large:
-            raw_mib = large[2] * LARGE_FRAMES * 12 / 2**20
             for threads in THREADS:
                 out = os.path.join(work, f'memory.t{threads}.ams')
                 log(f'peak memory of the large case, {threads} thread(s)')
                 mib = peak_rss_mib([animc, 'encode', large[0], '--mesh', large[1], '-o', out, '--threads', str(threads)])
-                memory.append([threads, f'{mib:.0f} MiB', num(mib / raw_mib) + '×'])
+                memory.append([threads, f'{mib:.0f} MiB', num(mib / (large[2] * large[3] * 12 / 2**20)) + '×'])
     lines = [HEADING, '',
-             f'`animc bench IN --mesh M --threads N --runs {runs} --json` (`--runs 1` for the large sequence) '
-             'at animc\'s default settings (auto, max error 1 %): medians in million vertices (× frames) per '
-             'second; encoding includes the rate search, decoding reads the file in the runs of groups '
-             '`AmsSource` takes. Every pair of runs wrote identical bytes (checked). A sequence of at most '
-             '512 frames is one group: its work is split inside the group (the trajectory Gram matrix, '
-             'products and rate search; the frame reconstruction over vertex ranges), the eigensolver '
-             f'stays on one thread. With `--iframe-interval {GROUP_FRAMES}` the groups are coded and decoded '
-             'one a thread.', '']
+             f'Encoding: `animc bench IN --mesh M --threads N --runs {runs} --json` (`--runs 1` for the large '
+             'sequence) at animc\'s default settings (auto, max error 1 %), which includes the rate search; '
+             f'decoding: `animc bench X.ams --threads N --runs {max(runs, 9)} --json` of the file written, which '
+             'decodes in the runs of groups a reader takes (`decodeChunkEnd`). Medians in million vertices '
+             '(× frames) per second; both thread counts wrote identical bytes (checked). Without an I-frame '
+             'interval each of these sequences is one group: its work is split inside the group (the '
+             'trajectory Gram matrix, products and rate search; the frame reconstruction over ranges of 4096 '
+             'vertices, so not below that), the eigensolver stays on one thread. With '
+             f'`--iframe-interval {GROUP_FRAMES}` the groups are coded and decoded one a thread. The large '
+             'sequence is one group of as many frames as the trajectory codec puts in one '
+             '(2^25 / (3 × vertices)).', '']
     lines += table(['sequence', 'vertices', 'frames', 'bpvf', 'encode 1 thread', 'encode 2 threads', 'speed-up',
                     'decode 1 thread', 'decode 2 threads', 'speed-up'], rows) + ['']
     if memory:
-        raw = large[2] * LARGE_FRAMES * 12 / 2**20
-        lines += [f'Peak memory of `animc encode` on the large sequence ({large[2]} vertices × {LARGE_FRAMES} '
+        raw = large[2] * large[3] * 12 / 2**20
+        lines += [f'Peak memory of `animc encode` on the large sequence ({large[2]} vertices × {large[3]} '
                   f'frames, one group; raw floats {raw:.0f} MiB), from the kernel\'s count for the process:', '']
         lines += table(['threads', 'peak RSS', 'of the raw floats'], memory) + ['']
     if speedups:

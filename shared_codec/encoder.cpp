@@ -168,6 +168,8 @@ struct EncoderAccess {
     header.iframe_interval = settings.iframe_interval;
     ANIMC_RETURN_IF_ERROR(impl->writer.open(std::move(sink), header, impl->topology));
     const CodecEntry& codec = settings.entry();
+    // A group codec's first frame record carries the whole group: not static.
+    if (codec.makeGroupEncoder) impl->summary.static_bytes = impl->writer.bytesWritten();
     impl->threads = resolveThreads(settings.threads);
     if (codec.makeGroupEncoder || (impl->threads > 1 && settings.iframe_interval > 0)) {
       impl->group_coders.push_back(makeAnyGroupEncoder(codec, settings.options, impl->topology, bestSimdPath()));

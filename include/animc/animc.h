@@ -159,8 +159,10 @@ struct EncodeSummary {
   uint64_t triangles = 0;
   int64_t frames = 0;
   uint64_t intra_frames = 0;
-  uint64_t bytes = 0;         // of the whole stream
-  uint64_t static_bytes = 0;  // header, connectivity and the first frame
+  uint64_t bytes = 0;  // of the whole stream
+  // Header, connectivity and the first frame; for a codec that codes whole groups (trajectory,
+  // auto), whose first frame record carries its group's motion, header and connectivity only.
+  uint64_t static_bytes = 0;
   uint64_t cells = 0;         // affine-octree: octree leaves over all inter frames
   double encode_seconds = 0;  // in the codec, excluding the caller's time between frames
 };
@@ -260,7 +262,7 @@ struct StreamInfo {
   uint32_t iframe_interval = 0;
   uint64_t groups = 0;        // frame groups: random access starts decoding at a group's first frame
   uint64_t bytes = 0;         // of the stream
-  uint64_t static_bytes = 0;  // header, connectivity and the first frame
+  uint64_t static_bytes = 0;  // as EncodeSummary::static_bytes
 };
 
 class ANIMC_API Decoder {

@@ -168,7 +168,9 @@ Status ContainerReader::measureFirstFrame() {
   std::vector<uint8_t> payload;
   ANIMC_ASSIGN_OR_RETURN(bool got, nextFrame(payload));
   if (!got) return corrupt("first group has no frames");
-  info_.static_bytes = cursor_;  // everything up to the end of the first frame
+  // Everything up to the end of the first frame; for a codec that codes whole groups, whose
+  // first frame record carries its group's motion, up to the first group.
+  info_.static_bytes = findCodec(uint8_t(info_.header.codec))->makeGroupEncoder ? groups_[0].offset : cursor_;
   if (info_.header.vertex_count > kMaxVerticesPerIntraByte * (payload.size() + 16))
     return corrupt("Vertex_Count " + std::to_string(info_.header.vertex_count) + " cannot fit in a " +
                    std::to_string(payload.size()) + "-byte first frame");

@@ -28,7 +28,9 @@ struct ContainerInfo {
   ContainerHeader header;
   uint64_t frame_count = 0;
   uint64_t file_bytes = 0;
-  uint64_t static_bytes = 0;          // header, HEAD, CONN and the first frame: what motion does not pay
+  // Header, HEAD, CONN and the first frame (only up to the first GRUP for a codec that codes
+  // whole groups, whose first frame carries a group's motion): what motion does not pay.
+  uint64_t static_bytes = 0;
   std::vector<SectionInfo> sections;  // HEAD, CONN, each GRUP, INDX, END in file order
 
   uint64_t groupCount() const {

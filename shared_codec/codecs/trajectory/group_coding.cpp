@@ -212,13 +212,15 @@ void GroupFrames::reset(const TrajectoryGroup& g, const CodingOrder& order, Simd
   basis_.resize(components_ * row);
   for (uint32_t k = 0; k < components_; ++k)
     for (size_t i = 0; i < row; ++i) basis_[k * row + i] = float(g.basis[k * row + i]) * g.basis_step[k];
-  coefficients_.resize(size_t(components_) * padded_);
-  for (uint32_t k = 0; k < components_; ++k)  // the padding lanes: zeros, never output
-    std::fill_n(coefficients_.data() + size_t(k) * padded_ + vertices_, padded_ - vertices_, 0.0f);
-  for (uint32_t p = 0; p < vertices_; ++p)
+  // Panels of kLanes vertices: a kernel step reads one panel front to back (K x kLanes floats)
+  // instead of K rows far apart. The padding lanes are zeros, never output.
+  coefficients_.assign(size_t(components_) * padded_, 0.0f);
+  for (uint32_t p = 0; p < vertices_; ++p) {
+    const uint32_t v = order.vertex[p];
+    float* panel = coefficients_.data() + size_t(v / kLanes) * components_ * kLanes + v % kLanes;
     for (uint32_t k = 0; k < components_; ++k)
-      coefficients_[size_t(k) * padded_ + order.vertex[p]] =
-          float(g.coefficients[size_t(p) * components_ + k]) * g.coefficient_step;
+      panel[size_t(k) * kLanes] = float(g.coefficients[size_t(p) * components_ + k]) * g.coefficient_step;
+  }
   batch_.resize(size_t(kBatch) * 3 * vertices_);
   batch_first_ = UINT32_MAX;
 }
@@ -227,12 +229,12 @@ namespace {
 
 using Floats8 = float __attribute__((vector_size(32)));
 
-// The sums of kBatch frames (from `first`) for the vertices of one kernel step, component by
-// component: each lane does the same float multiply and add in the same order, whether the
-// compiler makes one AVX2 operation of the 8 lanes or two SSE ones.
-__attribute__((always_inline)) inline void sumLanes(const float* coefficients, size_t stride, uint32_t v0,
-                                                    const float* basis, uint32_t components, uint32_t frames,
-                                                    uint32_t first, Floats8 sums[][3]) {
+// The sums of kBatch frames (from `first`) for the vertices of one kernel step (its panel of
+// coefficients, components x 8), component by component: each lane does the same float multiply
+// and add in the same order, whether the compiler makes one AVX2 operation of the 8 lanes or two
+// SSE ones.
+__attribute__((always_inline)) inline void sumLanes(const float* panel, const float* basis, uint32_t components,
+                                                    uint32_t frames, uint32_t first, Floats8 sums[][3]) {
   constexpr uint32_t kBatch = GroupFrames::kBatch;
   uint32_t column[kBatch];  // frames past the group repeat its last one, and are not stored
   for (uint32_t f = 0; f < kBatch; ++f) column[f] = std::min(first + f, frames - 1);
@@ -241,7 +243,7 @@ __attribute__((always_inline)) inline void sumLanes(const float* coefficients, s
   const size_t row = size_t(3) * frames;
   for (uint32_t k = 0; k < components; ++k) {
     Floats8 c;
-    std::memcpy(&c, coefficients + k * stride + v0, sizeof c);  // an unaligned load
+    std::memcpy(&c, panel + size_t(k) * GroupFrames::kLanes, sizeof c);  // an unaligned load
     const float* b = basis + k * row;
     for (uint32_t f = 0; f < kBatch; ++f)
       for (uint32_t d = 0; d < 3; ++d) sums[f][d] += c * b[d * frames + column[f]];
@@ -250,15 +252,14 @@ __attribute__((always_inline)) inline void sumLanes(const float* coefficients, s
 
 // Vertices [v_begin, v_end) of kBatch frames from `first` (v_begin a multiple of kLanes): any
 // split of the vertices computes each lane alike, so threads may share them.
-__attribute__((always_inline)) inline void batchKernel(const float* coefficients, size_t stride, const float* basis,
-                                                       const float* mean, uint32_t components, uint32_t frames,
-                                                       uint32_t vertices, uint32_t v_begin, uint32_t v_end,
-                                                       uint32_t first, float* out) {
+__attribute__((always_inline)) inline void batchKernel(const float* coefficients, const float* basis, const float* mean,
+                                                       uint32_t components, uint32_t frames, uint32_t vertices,
+                                                       uint32_t v_begin, uint32_t v_end, uint32_t first, float* out) {
   constexpr uint32_t kBatch = GroupFrames::kBatch, kLanes = GroupFrames::kLanes;
   const uint32_t count = std::min(kBatch, frames - first);
   for (uint32_t v0 = v_begin; v0 < v_end; v0 += kLanes) {
     Floats8 sums[kBatch][3];
-    sumLanes(coefficients, stride, v0, basis, components, frames, first, sums);
+    sumLanes(coefficients + size_t(v0) * components, basis, components, frames, first, sums);
     const uint32_t lanes = std::min(kLanes, v_end - v0);
     for (uint32_t f = 0; f < count; ++f) {
       float* xyz = out + (size_t(f) * vertices + v0) * 3;
@@ -270,18 +271,16 @@ __attribute__((always_inline)) inline void batchKernel(const float* coefficients
   }
 }
 
-__attribute__((noinline)) void batchPortable(const float* c, size_t stride, const float* b, const float* m, uint32_t k,
-                                             uint32_t g, uint32_t n, uint32_t v_begin, uint32_t v_end, uint32_t first,
-                                             float* out) {
-  batchKernel(c, stride, b, m, k, g, n, v_begin, v_end, first, out);
+__attribute__((noinline)) void batchPortable(const float* c, const float* b, const float* m, uint32_t k, uint32_t g,
+                                             uint32_t n, uint32_t v_begin, uint32_t v_end, uint32_t first, float* out) {
+  batchKernel(c, b, m, k, g, n, v_begin, v_end, first, out);
 }
 
 #ifndef ANIMC_NO_AVX2
-ANIMC_TARGET_AVX2 __attribute__((noinline)) void batchAvx2(const float* c, size_t stride, const float* b,
-                                                           const float* m, uint32_t k, uint32_t g, uint32_t n,
-                                                           uint32_t v_begin, uint32_t v_end, uint32_t first,
-                                                           float* out) {
-  batchKernel(c, stride, b, m, k, g, n, v_begin, v_end, first, out);
+ANIMC_TARGET_AVX2 __attribute__((noinline)) void batchAvx2(const float* c, const float* b, const float* m, uint32_t k,
+                                                           uint32_t g, uint32_t n, uint32_t v_begin, uint32_t v_end,
+                                                           uint32_t first, float* out) {
+  batchKernel(c, b, m, k, g, n, v_begin, v_end, first, out);
 }
 #endif
 
@@ -298,13 +297,13 @@ void GroupFrames::computeBatch(uint32_t first) const {
     const uint32_t v_end = std::min(vertices_, v_begin + kVerticesPerTask);
 #ifndef ANIMC_NO_AVX2
     if (path_ == SimdPath::kAvx2) {
-      batchAvx2(coefficients_.data(), padded_, basis_.data(), mean_.data(), components_, frames_, vertices_, v_begin,
-                v_end, first, batch_.data());
+      batchAvx2(coefficients_.data(), basis_.data(), mean_.data(), components_, frames_, vertices_, v_begin, v_end,
+                first, batch_.data());
       return;
     }
 #endif
-    batchPortable(coefficients_.data(), padded_, basis_.data(), mean_.data(), components_, frames_, vertices_, v_begin,
-                  v_end, first, batch_.data());
+    batchPortable(coefficients_.data(), basis_.data(), mean_.data(), components_, frames_, vertices_, v_begin, v_end,
+                  first, batch_.data());
   });
   batch_first_ = first;
 }
