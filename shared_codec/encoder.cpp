@@ -17,6 +17,10 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+// The largest group of a frame-by-frame codec the encoder gathers to code groups on several
+// threads (its frames as floats).
+constexpr uint64_t kMaxGatheredGroupBytes = uint64_t(1) << 27;
+
 // A codec's options as its registry entry reads them from a command line.
 class MapOptionValues final : public OptionValues {
  public:
@@ -171,7 +175,13 @@ struct EncoderAccess {
     // A group codec's first frame record carries the whole group: not static.
     if (codec.makeGroupEncoder) impl->summary.static_bytes = impl->writer.bytesWritten();
     impl->threads = resolveThreads(settings.threads);
-    if (codec.makeGroupEncoder || (impl->threads > 1 && settings.iframe_interval > 0)) {
+    // A frame-by-frame codec gathers its groups for the threads only while a group's frames
+    // stay small: otherwise it streams, one frame at a time, as on one thread (the bytes are
+    // the same either way).
+    const uint64_t group_bytes = uint64_t(settings.iframe_interval) * 12 * impl->topology.vertex_count;
+    const bool batch_frames =
+        impl->threads > 1 && settings.iframe_interval > 0 && group_bytes <= kMaxGatheredGroupBytes;
+    if (codec.makeGroupEncoder || batch_frames) {
       impl->group_coders.push_back(makeAnyGroupEncoder(codec, settings.options, impl->topology, bestSimdPath()));
       impl->max_group_frames = impl->group_coders[0]->maxGroupFrames();
     } else {

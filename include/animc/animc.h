@@ -116,7 +116,8 @@ struct EncoderOptions {
   uint32_t iframe_interval = 0;  // an intra frame (a random-access point) every K frames; 0 = the first only
   double frame_rate = 25.0;      // stored in the stream for players
   // Threads the encoder may use: 0 = one per core, 1 = the calling thread only. Frame groups
-  // are coded several at once (one per thread, so memory grows to one group a thread), and
+  // are coded several at once (one per thread, so memory grows to one group a thread; the
+  // affine-octree and wavelet codecs only for groups of at most 128 MB of frames), and
   // the trajectory codec splits one group's work; the bytes written do not depend on it. The
   // default is 1, unlike animc's and DecoderOptions': with more threads, reconstruction()
   // knows a frame later (reconstructedFrames() says when), and a program written for 1.x that
