@@ -215,7 +215,7 @@ void GroupFrames::reset(const TrajectoryGroup& g, const CodingOrder& order, Simd
   // Panels of kLanes vertices: a kernel step reads one panel front to back (K x kLanes floats)
   // instead of K rows far apart. The padding lanes are zeros, never output.
   coefficients_.assign(size_t(components_) * padded_, 0.0f);
-  for (uint32_t p = 0; p < vertices_; ++p) {
+  for (uint32_t p = 0; components_ > 0 && p < vertices_; ++p) {  // no panels without components
     const uint32_t v = order.vertex[p];
     float* panel = coefficients_.data() + size_t(v / kLanes) * components_ * kLanes + v % kLanes;
     for (uint32_t k = 0; k < components_; ++k)
