@@ -55,9 +55,8 @@ Status decodePayload(FrameDecoder& codec, const std::vector<uint8_t>& payload, b
 
 struct Decoder::Impl {
   std::string name;  // of the stream, in messages
-  DecoderLimits limits;
   unsigned threads = 1;
-  DecoderOptions decoding;  // as opened: the group decoders of frames() are made with it
+  DecoderOptions decoding;  // as opened: its limits, and what the group decoders of frames() are made with
   std::unique_ptr<ContainerReader> reader;
   std::unique_ptr<FrameDecoder> codec;
   EncodeSettings settings;
@@ -186,7 +185,6 @@ struct DecoderAccess {
                               const DecoderOptions& options) {
     auto impl = std::make_unique<Decoder::Impl>();
     impl->name = name;
-    impl->limits = options.limits;
     impl->threads = resolveThreads(options.threads);
     impl->decoding = options;
     ANIMC_ASSIGN_OR_RETURN(impl->reader, ContainerReader::open(std::move(source), name, options.limits));
@@ -267,11 +265,11 @@ Status Decoder::frames(int64_t first, int64_t last, float* xyz) {
 Status Decoder::Impl::checkWork(int64_t first, int64_t last) const {
   const uint64_t start = reader->groupFirstFrame(reader->groupOf(uint64_t(first)));
   const uint64_t work = (uint64_t(last) - start) * info.vertices;
-  if (work <= limits.max_vertex_frames) return Status();
+  if (work <= decoding.limits.max_vertex_frames) return Status();
   return limitExceeded(name + ": decoding frames " + std::to_string(first) + " to " + std::to_string(last - 1) +
                        " costs " + std::to_string(work) + " vertex-frames (" + std::to_string(info.vertices) +
                        " vertices, from the start of their frame group), above the limit of " +
-                       std::to_string(limits.max_vertex_frames) +
+                       std::to_string(decoding.limits.max_vertex_frames) +
                        "; decode fewer frames or raise the limit (DecoderLimits::max_vertex_frames, "
                        "animc --max-vertex-frames)");
 }
@@ -289,10 +287,10 @@ Status Decoder::Impl::checkOutput(int64_t first, int64_t last, uint64_t output_b
     // Above 2^62 floats no limit could pass: saturate rather than wrap.
     output_bytes = vertex_frames > (UINT64_MAX / 12) ? UINT64_MAX : 12 * vertex_frames;
   }
-  if (output_bytes <= limits.max_output_bytes) return Status();
+  if (output_bytes <= decoding.limits.max_output_bytes) return Status();
   return limitExceeded(name + ": frames " + std::to_string(first) + " to " + std::to_string(last - 1) + " (" +
                        std::to_string(info.vertices) + " vertices each) would take about " + bytesText(output_bytes) +
-                       ", above the limit of " + bytesText(limits.max_output_bytes) +
+                       ", above the limit of " + bytesText(decoding.limits.max_output_bytes) +
                        "; decode fewer frames or raise the limit (DecoderLimits::max_output_bytes, "
                        "animc --max-output-bytes)");
 }
@@ -336,7 +334,8 @@ int64_t decodeChunkEnd(const Decoder& decoder, int64_t first) {
   // At most kChunkBytes of frames, and never more than the output limit allows.
   constexpr uint64_t kChunkBytes = uint64_t(1) << 27;
   const uint64_t frame_bytes = uint64_t(12) * std::max<uint32_t>(1, d.info.vertices);
-  const int64_t most = int64_t(std::max<uint64_t>(1, std::min(kChunkBytes, d.limits.max_output_bytes) / frame_bytes));
+  const int64_t most =
+      int64_t(std::max<uint64_t>(1, std::min(kChunkBytes, d.decoding.limits.max_output_bytes) / frame_bytes));
   const int64_t cap = std::min(d.info.frames, first + most);
   // The end of the group `threads` groups on, or failing that the last group boundary below
   // the cap; inside one group, the cap (the next chunk goes on from there).
