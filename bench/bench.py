@@ -53,6 +53,7 @@ from bench_readers import readers_section  # noqa: E402
 from bench_gltf import gltf_section  # noqa: E402
 from bench_trajectory import trajectory_section  # noqa: E402
 from bench_threads import threads_section  # noqa: E402
+from bench_encoder_speed import encoder_speed_section  # noqa: E402
 from bench_common import (log, run_bench, loglog_interp, num, pct, mib, table,  # noqa: E402
                           failed_cell, find_sequences, START)
 
@@ -494,6 +495,8 @@ def main():
     failures += trajectory_failures
     threads_lines, threads_failures = threads_section(args.animc, sequences, args.runs)
     failures += threads_failures
+    speed_lines, speed_failures = encoder_speed_section(args.animc, None, sequences, args.runs)
+    failures += speed_failures
     memory_rows = []
     if not args.quick:
         counts = sorted({min(LONG_FRAMES[0], args.long_frames), args.long_frames})
@@ -505,7 +508,7 @@ def main():
         plugin_lines = plugin_section(args.animc, args.data, args.runs, command_line()[0])
     elapsed = time.monotonic() - START
     write_report(args.out, args, sequences,
-                 trajectory_lines + threads_lines + wavelet_lines + paths_lines + readers_lines + gltf_lines,
+                 trajectory_lines + speed_lines + threads_lines + wavelet_lines + paths_lines + readers_lines + gltf_lines,
                  memory_rows, plugin_lines, elapsed)
     log(f'wrote {args.out} ({failures} failure(s)) in {elapsed / 60:.1f} min')
     sys.exit(1 if failures else 0)

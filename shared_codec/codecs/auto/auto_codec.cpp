@@ -2,6 +2,7 @@
 // `--codec auto` (docs/auto.md): every group coded by each candidate codec, the smallest
 // kept. Each frame payload is the index of its group's codec, then that codec's payload.
 #include <algorithm>
+#include <cstdint>
 #include <cstring>
 
 #include "codecs/codec_registry.h"
@@ -27,6 +28,14 @@ Result<Candidate> candidateOf(const AutoCandidate& c) {
   return out;
 }
 
+// Frames of a group a frame-by-frame candidate codes first, to estimate the whole group, and
+// how much smaller than that estimate a group codec's payload must be for that candidate to
+// be skipped.
+constexpr uint32_t kSampleRuns = 4;
+constexpr uint32_t kRunFrames = 4;
+constexpr uint32_t kSampleFrames = kSampleRuns * kRunFrames;
+constexpr double kSkipShare = 0.75;
+
 class AutoEncoder final : public GroupEncoder {
  public:
   AutoEncoder(const AutoOptions& options, const Topology& topology, SimdPath path)
@@ -48,18 +57,40 @@ class AutoEncoder final : public GroupEncoder {
     return frames;
   }
 
-  // Every candidate codes the group; the smallest is kept (the first of equal ones). With
-  // more than one thread the frame-by-frame candidates run on a thread of their own beside
-  // the group codecs, which keep the caller's threads (they do most of the work).
+  // Every candidate codes the group and the smallest is kept (the first of equal ones), but
+  // in a long group a frame-by-frame candidate first codes a sample of it: when the group
+  // codecs' best is well below the whole group's size estimated from the sample, that
+  // candidate is not run in full. With more than one thread the frame-by-frame candidates
+  // (sample or group) run on a thread of their own beside the group codecs, which keep the
+  // caller's threads.
   void encodeGroup(const float* frames, uint32_t frame_count, std::vector<std::vector<uint8_t>>& payloads) override {
-    auto code = [&](bool frame_by_frame) {
-      for (size_t i = 0; i < encoders_.size(); ++i)
-        if (frame_by_frame_[i] == frame_by_frame) encoders_[i]->encodeGroup(frames, frame_count, payloads_[i]);
+    const bool sampled = frame_count >= 2 * kSampleFrames;
+    std::vector<double> estimates(encoders_.size(), 0);
+    auto codeFrameByFrame = [&] {
+      for (size_t i = 0; i < encoders_.size(); ++i) {
+        if (!frame_by_frame_[i]) continue;
+        if (sampled)
+          estimates[i] = estimatedBytes(*encoders_[i], frames, frame_count);
+        else
+          encoders_[i]->encodeGroup(frames, frame_count, payloads_[i]);
+      }
     };
-    runBeside([&] { code(true); }, [&] { code(false); });
-    best_ = 0;
-    for (size_t i = 1; i < encoders_.size(); ++i)
-      if (bytes(payloads_[i]) < bytes(payloads_[best_])) best_ = i;
+    auto codeGroups = [&] {
+      for (size_t i = 0; i < encoders_.size(); ++i)
+        if (!frame_by_frame_[i]) encoders_[i]->encodeGroup(frames, frame_count, payloads_[i]);
+    };
+    runBeside(codeFrameByFrame, codeGroups);
+    size_t group_best = SIZE_MAX;
+    for (size_t i = 0; i < encoders_.size(); ++i)
+      if (!frame_by_frame_[i]) group_best = std::min(group_best, bytes(payloads_[i]));
+    best_ = SIZE_MAX;
+    for (size_t i = 0; i < encoders_.size(); ++i) {
+      if (frame_by_frame_[i] && sampled) {
+        if (double(group_best) <= kSkipShare * estimates[i]) continue;
+        encoders_[i]->encodeGroup(frames, frame_count, payloads_[i]);
+      }
+      if (best_ == SIZE_MAX || bytes(payloads_[i]) < bytes(payloads_[best_])) best_ = i;
+    }
     payloads = std::move(payloads_[best_]);
     for (auto& p : payloads) p.insert(p.begin(), index_[best_]);
   }
@@ -67,6 +98,20 @@ class AutoEncoder final : public GroupEncoder {
   void reconstruction(uint32_t k, float* xyz) const override { encoders_[best_]->reconstruction(k, xyz); }
 
  private:
+  // A group's bytes from runs of frames spread over it, each coded as a group of its own:
+  // the first run's intra frame, then the mean of the other frames.
+  double estimatedBytes(GroupEncoder& encoder, const float* frames, uint32_t frame_count) {
+    const size_t frame_floats = size_t(3) * topology_.vertex_count;
+    double intra = 0, others = 0;
+    for (uint32_t run = 0; run < kSampleRuns; ++run) {
+      const uint32_t first = uint32_t(uint64_t(frame_count - kRunFrames) * run / (kSampleRuns - 1));
+      encoder.encodeGroup(frames + first * frame_floats, kRunFrames, sample_);
+      if (run == 0) intra = double(sample_[0].size());
+      for (uint32_t k = 1; k < kRunFrames; ++k) others += double(sample_[k].size());
+    }
+    return intra + others / double(kSampleRuns * (kRunFrames - 1)) * (frame_count - 1);
+  }
+
   static size_t bytes(const std::vector<std::vector<uint8_t>>& payloads) {
     size_t n = 0;
     for (const auto& p : payloads) n += p.size();
@@ -78,7 +123,8 @@ class AutoEncoder final : public GroupEncoder {
   std::vector<std::unique_ptr<GroupEncoder>> encoders_;
   std::vector<bool> frame_by_frame_;
   std::vector<uint8_t> index_;                               // in the file's candidate list
-  std::vector<std::vector<std::vector<uint8_t>>> payloads_;  // of each candidate, for the last group
+  std::vector<std::vector<std::vector<uint8_t>>> payloads_;
+  std::vector<std::vector<uint8_t>> sample_;  // payloads of a run of frames  // of each candidate, for the last group
   size_t best_ = 0;                                          // the candidate kept for the last group
 };
 

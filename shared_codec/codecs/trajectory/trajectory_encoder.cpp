@@ -8,103 +8,25 @@
 #include <cmath>
 #include <functional>
 
+#include "codecs/trajectory/components.h"
 #include "codecs/trajectory/group_coding.h"
+#include "codecs/trajectory/step_search.h"
 #include "codecs/trajectory/trajectory_codec.h"
 #include "core/parallel.h"
 
 namespace animc {
 namespace {
 
-using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
-
-// The trajectories of one group held in double: at most this many values (256 MB). Since
+// The trajectories of one group: at most this many values (128 MB in float). Since
 // the components are at most 3 x frames, the coefficients then stay within the decoders'
 // kMaxTrajectoryCoefficients too.
 constexpr uint64_t kMaxGroupValues = uint64_t(1) << 25;
 static_assert(kMaxGroupValues <= kMaxTrajectoryCoefficients, "a group's coefficients must fit the format's limit");
 // Integers of the payload stay below 2^30 in magnitude (their differences below 2^31).
 constexpr double kMaxQuantised = double(1 << 29);
-
-// The principal components of a group's trajectories: the mean trajectory, unit basis
-// vectors by decreasing singular value, and every vertex's coefficients on them.
-struct Components {
-  Eigen::RowVectorXd mean;  // 3G
-  Eigen::MatrixXd basis;    // 3G x K, columns
-  Eigen::VectorXd sigma;    // K
-  RowMatrix coefficients;   // N x K
-};
-
-// The products of a group's large matrices are cut into blocks of a fixed size that threads
-// share: the blocks, never the thread count, decide what each product computes.
-constexpr Eigen::Index kProductColumns = 64;
-constexpr Eigen::Index kProductRows = 1024;
-
-// The lower triangle of a^T a, all that the eigensolver reads (the rest is zero), a block of
-// columns at a time.
-template <class Matrix>
-Eigen::MatrixXd lowerGram(const Matrix& a) {
-  const Eigen::Index d = a.cols();
-  Eigen::MatrixXd gram = Eigen::MatrixXd::Zero(d, d);
-  const size_t blocks = size_t((d + kProductColumns - 1) / kProductColumns);
-  parallelFor(blocks, double(a.rows()) * double(d) * double(kProductColumns) / 2, [&](size_t b) {
-    const Eigen::Index j = Eigen::Index(b) * kProductColumns, w = std::min(kProductColumns, d - j);
-    gram.block(j, j, d - j, w).noalias() = a.middleCols(j, d - j).transpose() * a.middleCols(j, w);
-  });
-  return gram;
-}
-
-// a * b, a block of rows of a at a time.
-RowMatrix productByRows(const RowMatrix& a, const Eigen::MatrixXd& b) {
-  RowMatrix out(a.rows(), b.cols());
-  const size_t blocks = size_t((a.rows() + kProductRows - 1) / kProductRows);
-  parallelFor(blocks, double(kProductRows) * double(a.cols()) * double(b.cols()), [&](size_t i) {
-    const Eigen::Index r = Eigen::Index(i) * kProductRows, h = std::min(kProductRows, a.rows() - r);
-    out.middleRows(r, h).noalias() = a.middleRows(r, h) * b;
-  });
-  return out;
-}
-
-// a^T * b, a block of columns of b at a time.
-Eigen::MatrixXd transposedProductByColumns(const RowMatrix& a, const Eigen::MatrixXd& b) {
-  Eigen::MatrixXd out(a.cols(), b.cols());
-  const size_t blocks = size_t((b.cols() + kProductColumns - 1) / kProductColumns);
-  parallelFor(blocks, double(a.rows()) * double(a.cols()) * double(kProductColumns), [&](size_t i) {
-    const Eigen::Index j = Eigen::Index(i) * kProductColumns, w = std::min(kProductColumns, b.cols() - j);
-    out.middleCols(j, w).noalias() = a.transpose() * b.middleCols(j, w);
-  });
-  return out;
-}
-
-Components principalComponents(RowMatrix x, uint64_t max_components) {
-  Components pc;
-  pc.mean = x.colwise().mean();
-  x.rowwise() -= pc.mean;
-  const Eigen::Index n = x.rows(), row = x.cols();
-  // The smaller of the two Gram matrices: trajectories (row x row) or vertices (n x n).
-  const bool by_trajectory = row <= n;
-  const Eigen::MatrixXd gram = by_trajectory ? lowerGram(x) : lowerGram(x.transpose());
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(gram);
-  const Eigen::Index dim = gram.rows();
-  const Eigen::Index k_count = std::min<Eigen::Index>(dim, Eigen::Index(max_components));
-  pc.sigma.resize(k_count);
-  Eigen::MatrixXd vectors(dim, k_count);
-  for (Eigen::Index k = 0; k < k_count; ++k) {  // the solver sorts ascending
-    pc.sigma[k] = std::sqrt(std::max(0.0, solver.eigenvalues()[dim - 1 - k]));
-    vectors.col(k) = solver.eigenvectors().col(dim - 1 - k);
-  }
-  if (by_trajectory) {
-    pc.basis = vectors;
-    pc.coefficients = productByRows(x, pc.basis);
-  } else {
-    pc.basis = transposedProductByColumns(x, vectors);
-    for (Eigen::Index k = 0; k < k_count; ++k) {
-      if (pc.sigma[k] > 0) pc.basis.col(k) /= pc.sigma[k];
-      vectors.col(k) *= pc.sigma[k];
-    }
-    pc.coefficients = vectors;
-  }
-  return pc;
-}
+// The components computed first, and the fewest computed more at a time.
+constexpr Eigen::Index kFirstComponents = 64;
+constexpr Eigen::Index kMinMoreComponents = 16;
 
 int32_t quantise(double value, double step) {
   return int32_t(std::clamp(std::nearbyint(value / step), -kMaxQuantised, kMaxQuantised));
@@ -134,11 +56,27 @@ class TrajectoryEncoder final : public GroupEncoder {
   void encodeGroup(const float* frames, uint32_t frame_count, std::vector<std::vector<uint8_t>>& payloads) override {
     original_ = frames;
     frame_count_ = frame_count;
-    cube_sides_.clear();  // measure() compares with them at every step the bisection tries
+    cube_sides_.clear();  // measure() compares with them at every step the search tries
     if (options_.rate == TrajectoryRate::kMaxError)
       for (uint32_t t = 0; t < frame_count; ++t) cube_sides_.push_back(cubeSide(t));
-    const Components pc = principalComponents(trajectories(), kMaxTrajectoryCoefficients / vertices_);
-    const TrajectoryGroup group = quantised(pc, chooseStep(pc));
+    spread_ = options_.rate == TrajectoryRate::kTargetKg ? spread() : 0;
+    const TrajectoryDecomposition decomposition(trajectories());
+    // The leading components only, as many as the step chosen might send: more while the
+    // weakest of them could still be worth its bits.
+    Components pc = decomposition.none();
+    Eigen::Index more = kFirstComponents;
+    double step = 0;
+    for (;;) {
+      decomposition.extend(pc, more, negligibleEnergy());
+      if (!pc.complete && clearlyTooFew(pc)) {
+        more = moreComponents(pc, 2 * predictedStep(pc));
+        continue;
+      }
+      step = chooseStep(pc);
+      if (pc.complete || carriesEnough(pc, step) || sendsNoneOfTheWeakest(pc, float(step))) break;
+      more = moreComponents(pc, step);
+    }
+    const TrajectoryGroup group = quantised(pc, step);
     payloads.assign(frame_count, std::vector<uint8_t>{kTrajectoryNextFrame});
     payloads[0].clear();
     writeTrajectoryGroup(group, order_, payloads[0]);
@@ -151,12 +89,14 @@ class TrajectoryEncoder final : public GroupEncoder {
  private:
   const float* vertexOf(uint32_t t, uint32_t v) const { return original_ + (size_t(t) * vertices_ + v) * 3; }
 
-  RowMatrix trajectories() const {
+  // A row a vertex, in coding order (so are the coefficients then), of 3G values: x over the
+  // frames, then y, then z.
+  RowMatrixF trajectories() const {
     const uint32_t g = frame_count_;
-    RowMatrix x(vertices_, 3 * g);
-    for (uint32_t t = 0; t < g; ++t)
-      for (uint32_t v = 0; v < vertices_; ++v)
-        for (uint32_t c = 0; c < 3; ++c) x(v, c * g + t) = vertexOf(t, v)[c];
+    RowMatrixF x(vertices_, 3 * g);
+    for (uint32_t p = 0; p < vertices_; ++p)
+      for (uint32_t t = 0; t < g; ++t)
+        for (uint32_t c = 0; c < 3; ++c) x(p, c * g + t) = vertexOf(t, order_.vertex[p])[c];
     return x;
   }
 
@@ -197,46 +137,191 @@ class TrajectoryEncoder final : public GroupEncoder {
     return sum;
   }
 
-  // The coefficient step of the rate mode: fixed, or found by bisection on its logarithm
-  // (the error grows and the size falls with the step).
-  double chooseStep(const Components& pc) const {
-    const double largest = pc.coefficients.size() ? pc.coefficients.cwiseAbs().maxCoeff() : 0.0;
-    const double scale = std::max({largest, firstFrameDiagonal(), 1e-30});
-    const double finest = std::max(largest / kMaxQuantised, scale * 1e-12);
-    const double value = options_.rate_value;
-    std::function<bool(double)> acceptable;  // of a step; true for the steps below some bound
-    bool larger_is_acceptable = false;
+  // Whether a component weaker than all of pc's would never be worth sending at step q: it
+  // would remove at most its energy, and cost at least the bits of a zero for each of its
+  // coefficients and basis values.
+  bool carriesEnough(const Components& pc, double q) const {
+    if (pc.sigma.size() == 0) return pc.complete;
+    const double weakest = pc.sigma[pc.sigma.size() - 1];
+    return weakest * weakest <= leastWorthSending(q);
+  }
+
+  // Whether pc cannot do, before any search: the energy it leaves out is more than the error
+  // allowed, or the model's step, even doubled (the model can be off by half), would send the
+  // weakest of pc's components.
+  bool clearlyTooFew(const Components& pc) const {
+    const double left_out = pc.energy - pc.sigma.squaredNorm();
+    if (options_.rate == TrajectoryRate::kTargetKg || options_.rate == TrajectoryRate::kMaxError) {
+      if (left_out > allowedAtMost()) return true;
+      if (left_out >= modelledAllowance()) return false;  // the model cannot tell
+    }
+    const double predicted = 2 * predictedStep(pc);
+    return !carriesEnough(pc, predicted) && !sendsNoneOfTheWeakest(pc, float(predicted));
+  }
+
+  // Whether none of the weakest eighth of pc's components is sent at step q: the components
+  // after them, weaker still, would not be either. (The bound above is safe but can ask for
+  // many more components that are not sent in the end.)
+  bool sendsNoneOfTheWeakest(const Components& pc, float q) const {
+    const Eigen::Index k = pc.sigma.size(), tail = std::max<Eigen::Index>(kMinMoreComponents / 2, k / 8);
+    for (Eigen::Index i = std::max<Eigen::Index>(0, k - tail); i < k; ++i)
+      if (!quantisedComponent(pc, i, q).column.empty()) return false;
+    return true;
+  }
+
+  double leastWorthSending(double q) const {
+    return kBitSlope * q * q * estimatedBits(0) * (vertices_ + 3.0 * frame_count_);
+  }
+
+  // How many more components step q probably needs, from the decay of the last half of
+  // pc's singular values: a quarter more than where they fall below what is worth sending.
+  Eigen::Index moreComponents(const Components& pc, double q) const {
+    const Eigen::Index k = pc.sigma.size();
+    const double weakest = pc.sigma[k - 1], middle = pc.sigma[k / 2];
+    const double decay = std::log(weakest / middle) / double(k - 1 - k / 2);  // per component
+    const double needed = std::log(std::sqrt(leastWorthSending(q)) / weakest) / decay;
+    if (!(decay < 0) || !(needed < double(k))) return k;
+    return std::max<Eigen::Index>(std::max(kMinMoreComponents, k / 2), Eigen::Index(1.25 * needed) + 1);
+  }
+
+  // The step the search will probably choose (a model's), or the fixed step; infinity for a
+  // budget (no prediction).
+  double predictedStep(const Components& pc) const {
     switch (options_.rate) {
-      case TrajectoryRate::kStep: return std::max(value * firstFrameDiagonal(), finest);
+      case TrajectoryRate::kTargetKg:
+      case TrajectoryRate::kMaxError: return std::exp2(modelledStep(pc, stepRange(pc)));
+      case TrajectoryRate::kStep: return chooseStep(pc);
+      case TrajectoryRate::kBitsPerVertexFrame: return HUGE_VAL;
+    }
+    return HUGE_VAL;
+  }
+
+  // The coefficient step of the rate mode: fixed, or searched on its logarithm (the error
+  // grows and the size falls with the step), starting from a model's prediction.
+  double chooseStep(const Components& pc) const {
+    const double value = options_.rate_value;
+    StepSearch search = stepRange(pc);
+    if (options_.rate == TrajectoryRate::kStep) return std::max(value * firstFrameDiagonal(), std::exp2(search.lowest));
+    std::function<double(double)> excess;
+    switch (options_.rate) {
       case TrajectoryRate::kTargetKg: {
-        const double allowed = (value / 100) * (value / 100) * spread();
-        acceptable = [&, allowed](double q) { return measure(quantised(pc, q)).squared <= allowed; };
+        search.guess = modelledStep(pc, search);
+        search.slope = 2;  // a squared error
+        const double allowed = allowedAtMost();
+        excess = [&, allowed](double u) {
+          return log2Ratio(measure(quantised(pc, std::exp2(u))).squared, allowed);
+        };
         break;
       }
       case TrajectoryRate::kMaxError:
-        acceptable = [&](double q) { return measure(quantised(pc, q)).within_max_error; };
+        search.guess = modelledStep(pc, search);
+        excess = [&](double u) { return log2Ratio(measure(quantised(pc, std::exp2(u))).worst, 1) / 2; };
         break;
       case TrajectoryRate::kBitsPerVertexFrame: {
+        // The size falls as the step grows: the search runs on -u.
         const double budget = value * vertices_ * frame_count_ / 8;
-        acceptable = [&, budget](double q) {
+        search = {-search.highest, -search.lowest, 8 - search.highest};
+        search.slope = 0.5;
+        excess = [&, budget](double v) {
           std::vector<uint8_t> payload;
-          writeTrajectoryGroup(quantised(pc, q), order_, payload);
-          return double(payload.size()) <= budget;
+          writeTrajectoryGroup(quantised(pc, std::exp2(-v)), order_, payload);
+          return log2Ratio(double(payload.size()), budget);
         };
-        larger_is_acceptable = true;
-        break;
+        return std::exp2(-searchStep(search, excess));
       }
+      case TrajectoryRate::kStep: break;
     }
-    // pass: the end of the range known to be acceptable (assumed for the finest step with an
-    // error bound, which meets any bound but float rounding; for a budget, the coarsest).
-    double pass = larger_is_acceptable ? std::log2(2 * scale) : std::log2(finest);
-    double fail = larger_is_acceptable ? std::log2(finest) : std::log2(2 * scale);
-    if (acceptable(std::exp2(fail))) return std::exp2(fail);
-    for (int i = 0; i < 24; ++i) {
-      const double mid = (pass + fail) / 2;
-      (acceptable(std::exp2(mid)) ? pass : fail) = mid;
+    return std::exp2(searchStep(search, excess));
+  }
+
+  // log2 of the finest step the payload allows, and of a step past any error.
+  StepSearch stepRange(const Components& pc) const {
+    const double largest = pc.coefficients.size() ? pc.coefficients.cwiseAbs().maxCoeff() : 0.0;
+    const double scale = std::max({largest, firstFrameDiagonal(), 1e-30});
+    StepSearch search;
+    search.lowest = std::log2(std::max(largest / kMaxQuantised, scale * 1e-12));
+    search.highest = std::log2(2 * scale);
+    return search;
+  }
+
+  static double log2Ratio(double value, double bound) {
+    if (value <= 0) return -HUGE_VAL;
+    return bound > 0 ? std::log2(value / bound) : HUGE_VAL;
+  }
+
+  // Energy whose loss hardly changes the step chosen: a hundredth of the error allowed.
+  double negligibleEnergy() const {
+    switch (options_.rate) {
+      case TrajectoryRate::kTargetKg:
+      case TrajectoryRate::kMaxError: return modelledAllowance() / 100;
+      case TrajectoryRate::kStep: {
+        const double q = options_.rate_value * firstFrameDiagonal();
+        return 3.0 * vertices_ * frame_count_ * q * q / 12 / 100;
+      }
+      case TrajectoryRate::kBitsPerVertexFrame: return 0;
     }
-    return std::exp2(pass);
+    return 0;
+  }
+
+  // The squared error over the group that a rate mode allows: the KG target's, or for a max
+  // error, every vertex at `share` of the bound.
+  double allowance(double share) const {
+    const double value = options_.rate_value;
+    if (options_.rate == TrajectoryRate::kTargetKg) return (value / 100) * (value / 100) * spread_;
+    double allowed = 0;
+    for (double side : cube_sides_) allowed += vertices_ * (share * value * side) * (share * value * side);
+    return allowed;
+  }
+  double allowedAtMost() const { return allowance(1); }
+  // For the model below: on the shared sequences the largest error was 8 to 11 times the root
+  // mean square at the boundary.
+  double modelledAllowance() const { return allowance(0.1); }
+
+  // log2 of the step at which a model of the squared error meets `allowed`: every component
+  // costs its energy or a uniform quantiser's error on each vertex, whichever is smaller
+  // (reverse water-filling), plus what the components computed leave out.
+  double modelledStep(const Components& pc, const StepSearch& range) const {
+    const double allowed = modelledAllowance();
+    const double left_out = std::max(0.0, pc.energy - pc.sigma.squaredNorm());
+    auto model = [&](double u) {
+      const double per_component = vertices_ * std::exp2(2 * u) / 12;
+      double e = left_out;
+      for (Eigen::Index k = 0; k < pc.sigma.size(); ++k) e += std::min(pc.sigma[k] * pc.sigma[k], per_component);
+      return e;
+    };
+    double lo = range.lowest, hi = range.highest;
+    for (int i = 0; i < 50; ++i) {
+      const double mid = (lo + hi) / 2;
+      (model(mid) <= allowed ? lo : hi) = mid;
+    }
+    return lo;
+  }
+
+  // Component k quantised at coefficient step q, or nothing when it is not worth sending.
+  struct QuantisedComponent {
+    std::vector<int32_t> column, basis;  // empty when not sent
+    float basis_step = 0;
+  };
+  QuantisedComponent quantisedComponent(const Components& pc, Eigen::Index k, double q) const {
+    QuantisedComponent out;
+    std::vector<int32_t> column(vertices_);
+    bool any = false;
+    for (uint32_t p = 0; p < vertices_; ++p) {
+      column[p] = quantiseCoefficient(pc.coefficients(p, k), q);
+      any |= column[p] != 0;
+    }
+    if (!any) return out;
+    // An error d in basis vector k moves the vertices by their coefficients times d, sigma_k
+    // in total, and one in the mean moves all N vertices by d: these steps make each cost
+    // the squared error of one coefficient's step.
+    const float basis_step = float(std::clamp(q / pc.sigma[k], 1.0 / kMaxQuantised, 2.0));
+    std::vector<int32_t> basis(size_t(3) * frame_count_);
+    for (size_t j = 0; j < basis.size(); ++j) basis[j] = quantise(pc.basis(Eigen::Index(j), k), basis_step);
+    if (!worthSending(pc, k, q, column, basis, basis_step)) return out;
+    out.column = std::move(column);
+    out.basis = std::move(basis);
+    out.basis_step = basis_step;
+    return out;
   }
 
   TrajectoryGroup quantised(const Components& pc, double step) const {
@@ -247,36 +332,12 @@ class TrajectoryEncoder final : public GroupEncoder {
     const size_t row = size_t(3) * frame_count_;
     // Each component is quantised and judged on its own, on any thread; the ones sent are
     // then taken in order.
-    const Eigen::Index k_all = pc.coefficients.cols();
-    struct Quantised {
-      std::vector<int32_t> column, basis;
-      float basis_step = 0;
-    };
-    std::vector<Quantised> parts(static_cast<size_t>(k_all));
-    parallelFor(parts.size(), 20.0 * vertices_ + 10.0 * row, [&](size_t i) {
-      const Eigen::Index k = Eigen::Index(i);
-      Quantised& part = parts[i];
-      std::vector<int32_t> column(vertices_);
-      bool any = false;
-      for (uint32_t p = 0; p < vertices_; ++p) {
-        column[p] = quantiseCoefficient(pc.coefficients(order_.vertex[p], k), q);
-        any |= column[p] != 0;
-      }
-      if (!any) return;
-      // An error d in basis vector k moves the vertices by their coefficients times d, sigma_k
-      // in total, and one in the mean moves all N vertices by d: these steps make each cost
-      // the squared error of one coefficient's step.
-      const float basis_step = float(std::clamp(q / pc.sigma[k], 1.0 / kMaxQuantised, 2.0));
-      std::vector<int32_t> basis(row);
-      for (size_t j = 0; j < row; ++j) basis[j] = quantise(pc.basis(Eigen::Index(j), k), basis_step);
-      if (!worthSending(pc, k, q, column, basis, basis_step)) return;
-      part.column = std::move(column);
-      part.basis = std::move(basis);
-      part.basis_step = basis_step;
-    });
+    std::vector<QuantisedComponent> parts(static_cast<size_t>(pc.coefficients.cols()));
+    parallelFor(parts.size(), 20.0 * vertices_ + 10.0 * row,
+                [&](size_t i) { parts[i] = quantisedComponent(pc, Eigen::Index(i), g.coefficient_step); });
     std::vector<std::vector<int32_t>> columns, rows;
     std::vector<float> steps;
-    for (Quantised& part : parts) {
+    for (QuantisedComponent& part : parts) {
       if (part.column.empty()) continue;
       columns.push_back(std::move(part.column));
       rows.push_back(std::move(part.basis));
@@ -305,7 +366,7 @@ class TrajectoryEncoder final : public GroupEncoder {
                     const std::vector<int32_t>& basis, float basis_step) const {
     double coded_error = 0, coded_energy = 0, bits = 0;
     for (uint32_t p = 0; p < vertices_; ++p) {
-      const double c = pc.coefficients(order_.vertex[p], k), chat = column[p] * q;
+      const double c = pc.coefficients(p, k), chat = column[p] * q;
       coded_error += (c - chat) * (c - chat);
       coded_energy += chat * chat;
       bits += estimatedBits(column[p]);
@@ -326,13 +387,19 @@ class TrajectoryEncoder final : public GroupEncoder {
 
   // Bits of a value through an adaptive classed model, roughly: zeros are the common case.
   static double estimatedBits(int64_t v) {
-    if (v == 0) return 0.3;
-    return 2 + 2 * std::log2(double(v < 0 ? -v : v));
+    static const std::array<double, 1024> small = [] {
+      std::array<double, 1024> bits{};
+      for (size_t i = 1; i < bits.size(); ++i) bits[i] = 2 + 2 * std::log2(double(i));
+      bits[0] = 0.3;
+      return bits;
+    }();
+    const uint64_t magnitude = uint64_t(v < 0 ? -v : v);
+    return magnitude < small.size() ? small[magnitude] : 2 + 2 * std::log2(double(magnitude));
   }
 
   struct GroupError {
-    double squared = 0;            // summed over the group's vertices and frames
-    bool within_max_error = true;  // every vertex within the max error (kMaxError)
+    double squared = 0;  // summed over the group's vertices and frames
+    double worst = 0;    // the largest squared distance over the max error's (kMaxError)
   };
 
   // The error of the frames the decoder will make of `group`.
@@ -354,7 +421,7 @@ class TrajectoryEncoder final : public GroupEncoder {
       }
       if (options_.rate == TrajectoryRate::kMaxError) {
         const double bound = options_.rate_value * cube_sides_[t];
-        e.within_max_error &= worst <= bound * bound;
+        e.worst = std::max(e.worst, worst / (bound * bound));
       }
     }
     return e;
@@ -367,6 +434,7 @@ class TrajectoryEncoder final : public GroupEncoder {
   const float* original_ = nullptr;  // the group being coded
   uint32_t frame_count_ = 0;
   std::vector<double> cube_sides_;  // of the group's frames (kMaxError)
+  double spread_ = 0;               // of the group (kTargetKg)
   GroupFrames frames_;              // the last group as decoded
 };
 

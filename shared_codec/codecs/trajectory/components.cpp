@@ -1,0 +1,207 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "codecs/trajectory/components.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+#include "core/parallel.h"
+
+namespace animc {
+namespace {
+
+// The products of a group's large matrices are cut into blocks of a fixed size that threads
+// share: the blocks, never the thread count, decide what each product computes.
+constexpr Eigen::Index kProductColumns = 64;
+constexpr Eigen::Index kProductRows = 1024;
+
+template <class Scalar>
+using Columns = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
+template <class Scalar>
+using Rows = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+// The lower triangle of a^T a in double, all that the eigensolver reads (the rest is zero):
+// a block of columns on each thread, summed over blocks of rows converted to double.
+template <class Matrix>
+Eigen::MatrixXd lowerGram(const Matrix& a) {
+  const Eigen::Index d = a.cols(), n = a.rows();
+  Eigen::MatrixXd gram = Eigen::MatrixXd::Zero(d, d);
+  const size_t blocks = size_t((d + kProductColumns - 1) / kProductColumns);
+  parallelFor(blocks, double(n) * double(d) * double(kProductColumns) / 2, [&](size_t b) {
+    const Eigen::Index j = Eigen::Index(b) * kProductColumns, w = std::min(kProductColumns, d - j);
+    for (Eigen::Index r = 0; r < n; r += kProductRows) {
+      const Eigen::MatrixXd tall = a.block(r, j, std::min(kProductRows, n - r), d - j).template cast<double>();
+      gram.block(j, j, d - j, w).noalias() += tall.transpose() * tall.leftCols(w);
+    }
+  });
+  return gram;
+}
+
+// a * b in b's precision, a block of rows of a at a time.
+template <class Scalar>
+Rows<Scalar> productByRows(const RowMatrixF& a, const Columns<Scalar>& b) {
+  Rows<Scalar> out(a.rows(), b.cols());
+  const size_t blocks = size_t((a.rows() + kProductRows - 1) / kProductRows);
+  parallelFor(blocks, double(kProductRows) * double(a.cols()) * double(b.cols()), [&](size_t i) {
+    const Eigen::Index r = Eigen::Index(i) * kProductRows, h = std::min(kProductRows, a.rows() - r);
+    out.middleRows(r, h).noalias() = a.middleRows(r, h).template cast<Scalar>() * b;
+  });
+  return out;
+}
+
+// a^T * b in float, a block of columns of b at a time.
+Eigen::MatrixXf transposedProductByColumns(const RowMatrixF& a, const Eigen::MatrixXf& b) {
+  Eigen::MatrixXf out(a.cols(), b.cols());
+  const size_t blocks = size_t((b.cols() + kProductColumns - 1) / kProductColumns);
+  parallelFor(blocks, double(a.rows()) * double(a.cols()) * double(kProductColumns), [&](size_t i) {
+    const Eigen::Index j = Eigen::Index(i) * kProductColumns, w = std::min(kProductColumns, b.cols() - j);
+    out.middleCols(j, w).noalias() = a.transpose() * b.middleCols(j, w);
+  });
+  return out;
+}
+
+// An orthonormal basis of the columns of a (Householder QR: the same bits on every run).
+Eigen::MatrixXf orthonormal(const Eigen::MatrixXf& a) {
+  Eigen::HouseholderQR<Eigen::MatrixXd> qr(a.cast<double>());
+  const Eigen::MatrixXd q = qr.householderQ() * Eigen::MatrixXd::Identity(a.rows(), a.cols());
+  return q.cast<float>();
+}
+
+// A fixed start for the subspace iteration: values in [-1, 1) from a hash of their index
+// (SplitMix64), the same on every platform.
+Eigen::MatrixXf fixedStart(Eigen::Index rows, Eigen::Index cols) {
+  Eigen::MatrixXf m(rows, cols);
+  uint64_t state = 0;
+  for (Eigen::Index j = 0; j < cols; ++j)
+    for (Eigen::Index i = 0; i < rows; ++i) {
+      uint64_t z = (state += 0x9E3779B97F4A7C15ull);
+      z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+      z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+      z ^= z >> 31;
+      m(i, j) = float(double(z >> 11) * 0x1.0p-52 - 1);
+    }
+  return m;
+}
+
+// Subspace iteration: the extra directions it carries beyond those asked for, and its passes
+// over the trajectories. The leading components converge as (sigma_extra / sigma_k)^(2p+1)
+// (Halko, Martinsson & Tropp 2011); those asked for are well inside the subspace.
+Eigen::Index extraDirections(Eigen::Index count) { return std::max<Eigen::Index>(16, count / 2); }
+constexpr int kMaxPowerIterations = 8;
+constexpr double kSettled = 1e-3;
+
+}  // namespace
+
+TrajectoryDecomposition::TrajectoryDecomposition(RowMatrixF x)
+    : mean_(x.cast<double>().colwise().mean()), centred_(std::move(x)) {
+  const Eigen::RowVectorXf mean = mean_.cast<float>();
+  centred_.rowwise() -= mean;
+  for (Eigen::Index v = 0; v < centred_.rows(); ++v) energy_ += centred_.row(v).cast<double>().squaredNorm();
+}
+
+Components TrajectoryDecomposition::none() const {
+  Components pc;
+  pc.mean = mean_;
+  pc.energy = energy_;
+  pc.basis.resize(centred_.cols(), 0);
+  pc.coefficients.resize(centred_.rows(), 0);
+  return pc;
+}
+
+void TrajectoryDecomposition::extend(Components& pc, Eigen::Index count, double negligible) const {
+  if (pc.complete) return;
+  // Near the rank, the full eigendecomposition of a Gram matrix costs less than iterating.
+  const Eigen::Index have = pc.sigma.size(), width = count + extraDirections(count);
+  if (4 * (have + width) >= 3 * rank()) {
+    pc = all();
+    return;
+  }
+  appendLeading(pc, count, width, negligible);
+}
+
+Components TrajectoryDecomposition::all() const {
+  Components pc;
+  pc.mean = mean_;
+  pc.energy = energy_;
+  pc.complete = true;
+  const RowMatrixF& x = centred_;
+  // The smaller of the two Gram matrices: trajectories (row x row) or vertices (n x n).
+  const bool by_trajectory = x.cols() <= x.rows();
+  const Eigen::MatrixXd gram = by_trajectory ? lowerGram(x) : lowerGram(x.transpose());
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(gram);
+  const Eigen::Index dim = gram.rows();
+  pc.sigma.resize(dim);
+  Eigen::MatrixXd vectors(dim, dim);
+  for (Eigen::Index k = 0; k < dim; ++k) {  // the solver sorts ascending
+    pc.sigma[k] = std::sqrt(std::max(0.0, solver.eigenvalues()[dim - 1 - k]));
+    vectors.col(k) = solver.eigenvectors().col(dim - 1 - k);
+  }
+  if (by_trajectory) {
+    pc.basis = vectors;
+    pc.coefficients = productByRows(x, pc.basis);
+  } else {
+    pc.basis = x.cast<double>().transpose() * vectors;  // x is small: fewer vertices than 3G
+    for (Eigen::Index k = 0; k < dim; ++k) {
+      if (pc.sigma[k] > 0) pc.basis.col(k) /= pc.sigma[k];
+      vectors.col(k) *= pc.sigma[k];
+    }
+    pc.coefficients = vectors;
+  }
+  return pc;
+}
+
+// The range finder of Halko, Martinsson & Tropp (2011) with power iterations, on the
+// trajectories less pc's components (deflation: r = x - c b^T, applied as two products), then
+// the components of r projected on the subspace found (Rayleigh-Ritz).
+void TrajectoryDecomposition::appendLeading(Components& pc, Eigen::Index count, Eigen::Index width,
+                                            double negligible) const {
+  const RowMatrixF& x = centred_;
+  const Eigen::MatrixXf basis = pc.basis.cast<float>();
+  const Eigen::MatrixXf coefficients = pc.coefficients.cast<float>();
+  auto residualTimes = [&](const Eigen::MatrixXf& z) {  // r z, N x width
+    Eigen::MatrixXf out = productByRows(x, z);
+    if (basis.cols() > 0) out.noalias() -= coefficients * (basis.transpose() * z);
+    return out;
+  };
+  auto residualTransposedTimes = [&](const Eigen::MatrixXf& q) {  // r^T q, 3G x width
+    Eigen::MatrixXf out = transposedProductByColumns(x, q);
+    if (basis.cols() > 0) out.noalias() -= basis * (coefficients.transpose() * q);
+    return out;
+  };
+  // Power iterations until the energy of the `count` leading Ritz values settles.
+  Eigen::MatrixXf q = orthonormal(residualTimes(fixedStart(x.cols(), width)));
+  Eigen::MatrixXd projected = residualTransposedTimes(q).cast<double>();  // r^T q, 3G x width
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(projected.transpose() * projected, Eigen::EigenvaluesOnly);
+  double captured = solver.eigenvalues().tail(count).sum();
+  for (int i = 0; i < kMaxPowerIterations; ++i) {
+    q = orthonormal(residualTimes(orthonormal(projected.cast<float>())));
+    projected = residualTransposedTimes(q).cast<double>();
+    solver.compute(projected.transpose() * projected, Eigen::EigenvaluesOnly);
+    const double before = captured;
+    captured = solver.eigenvalues().tail(count).sum();
+    if (captured - before <= std::max(negligible, kSettled * captured)) break;
+  }
+  solver.compute(projected.transpose() * projected);
+  const Eigen::Index have = pc.sigma.size();
+  pc.sigma.conservativeResize(have + count);
+  Eigen::MatrixXd rotation(width, count);
+  for (Eigen::Index k = 0; k < count; ++k) {  // the solver sorts ascending
+    pc.sigma[have + k] = std::sqrt(std::max(0.0, solver.eigenvalues()[width - 1 - k]));
+    rotation.col(k) = solver.eigenvectors().col(width - 1 - k);
+  }
+  Eigen::MatrixXd added = projected * rotation;
+  // The deflation in float leaves the new vectors a little of the earlier ones (their float
+  // error over the new, weaker singular values), which their coefficients would multiply by
+  // the earlier, strong singular values: project it out, twice (Gram-Schmidt), in double.
+  for (int pass = 0; pass < 2 && have > 0; ++pass) added -= pc.basis * (pc.basis.transpose() * added);
+  for (Eigen::Index k = 0; k < count; ++k) {
+    const double norm = added.col(k).norm();
+    if (norm > 0) added.col(k) /= norm;
+  }
+  pc.basis.conservativeResize(Eigen::NoChange, have + count);
+  pc.basis.rightCols(count) = added;
+  pc.coefficients.conservativeResize(Eigen::NoChange, have + count);
+  pc.coefficients.rightCols(count) = productByRows(x, Eigen::MatrixXf(added.cast<float>())).cast<double>();
+}
+
+}  // namespace animc

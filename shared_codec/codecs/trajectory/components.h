@@ -1,0 +1,48 @@
+// SPDX-License-Identifier: Apache-2.0
+// The principal components of a group's trajectories, for the trajectory encoder: all of them
+// from a Gram matrix, or the leading ones only by subspace iteration (docs/trajectory.md,
+// "Transform"). Large products are cut into blocks of a fixed size that threads share, so the
+// results never depend on the thread count.
+#pragma once
+#include <Eigen/Dense>
+
+namespace animc {
+
+using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+using RowMatrixF = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+// The mean trajectory, unit basis vectors by decreasing singular value, and the coefficients
+// of every trajectory (in the order of the rows given) on them.
+struct Components {
+  Eigen::RowVectorXd mean;  // 3G
+  Eigen::MatrixXd basis;    // 3G x K, columns
+  Eigen::VectorXd sigma;    // K
+  Eigen::MatrixXd coefficients;  // N x K, a component's contiguous
+  double energy = 0;        // sum of the squared centred trajectories: sigma's and the rest's
+  bool complete = false;    // every component there is (K = min(N, 3G)), none left out
+};
+
+class TrajectoryDecomposition {
+ public:
+  // x: one trajectory a row (N x 3G); the decomposition keeps it, less its mean. The large
+  // products run in float (the frames' own precision); what is solved, in double.
+  explicit TrajectoryDecomposition(RowMatrixF x);
+
+  // No component yet: the mean and the energy.
+  Components none() const;
+  // Appends the next `count` components to pc (the leading ones of what pc leaves out), or
+  // makes pc every component when they would be most of them. The iteration stops when it
+  // finds less than `negligible` more energy (or a thousandth of what it found).
+  void extend(Components& pc, Eigen::Index count, double negligible) const;
+
+ private:
+  Eigen::Index rank() const { return std::min(centred_.rows(), centred_.cols()); }
+  Components all() const;
+  void appendLeading(Components& pc, Eigen::Index count, Eigen::Index width, double negligible) const;
+
+  Eigen::RowVectorXd mean_;
+  RowMatrixF centred_;
+  double energy_ = 0;
+};
+
+}  // namespace animc

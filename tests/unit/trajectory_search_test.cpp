@@ -1,0 +1,117 @@
+// SPDX-License-Identifier: Apache-2.0
+// The trajectory encoder's parts: the leading components by subspace iteration equal the full
+// eigendecomposition's, also when added in several steps; the step search finds a boundary
+// within its tolerance in few trials, and ends when no step can be acceptable.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "codecs/trajectory/components.h"
+#include "codecs/trajectory/step_search.h"
+
+namespace animc {
+namespace {
+
+// Trajectories of a known spectrum: singular values 1000 * 0.9^k over `rank` components, a
+// fixed random basis on each side.
+RowMatrixF spectrumTrajectories(Eigen::Index rows, Eigen::Index cols, Eigen::Index rank) {
+  std::mt19937 random(7);
+  std::normal_distribution<double> normal;
+  auto gaussian = [&](Eigen::Index r, Eigen::Index c) {
+    Eigen::MatrixXd m(r, c);
+    for (Eigen::Index j = 0; j < c; ++j)
+      for (Eigen::Index i = 0; i < r; ++i) m(i, j) = normal(random);
+    return Eigen::MatrixXd(Eigen::HouseholderQR<Eigen::MatrixXd>(m).householderQ() * Eigen::MatrixXd::Identity(r, c));
+  };
+  const Eigen::MatrixXd u = gaussian(rows, rank), v = gaussian(cols, rank);
+  Eigen::VectorXd sigma(rank);
+  for (Eigen::Index k = 0; k < rank; ++k) sigma[k] = 1000 * std::pow(0.9, double(k));
+  return (u * sigma.asDiagonal() * v.transpose()).cast<float>();
+}
+
+// Every component of the same trajectories (the decomposition's full path).
+Components allOf(const RowMatrixF& x) {
+  TrajectoryDecomposition d(x);
+  Components pc = d.none();
+  d.extend(pc, x.cols(), 0);
+  return pc;
+}
+
+void expectSameLeading(const Components& got, const Components& all, Eigen::Index count) {
+  ASSERT_GE(got.sigma.size(), count);
+  for (Eigen::Index k = 0; k < count; ++k) {
+    EXPECT_NEAR(got.sigma[k], all.sigma[k], 1e-4 * all.sigma[0]) << "component " << k;
+    // The same vector up to its sign, and the coefficients with it.
+    const double sign = got.basis.col(k).dot(all.basis.col(k)) < 0 ? -1 : 1;
+    EXPECT_LT((got.basis.col(k) * sign - all.basis.col(k)).norm(), 1e-3) << "component " << k;
+    EXPECT_LT((got.coefficients.col(k) * sign - all.coefficients.col(k)).norm(), 1e-3 * all.sigma[0])
+        << "component " << k;
+  }
+}
+
+TEST(TrajectoryComponents, LeadingOnesEqualTheFullDecompositions) {
+  const RowMatrixF x = spectrumTrajectories(900, 600, 120);
+  const Components all = allOf(x);
+  EXPECT_TRUE(all.complete);
+  TrajectoryDecomposition d(x);
+  Components leading = d.none();
+  d.extend(leading, 24, 0);
+  EXPECT_FALSE(leading.complete);
+  ASSERT_EQ(leading.sigma.size(), 24);
+  expectSameLeading(leading, all, 24);
+  // Then 24 more, of what the first leave out: the same as the first 48 at once.
+  d.extend(leading, 24, 0);
+  expectSameLeading(leading, all, 48);
+  EXPECT_LE(leading.sigma.squaredNorm(), leading.energy * (1 + 1e-6));
+}
+
+TEST(TrajectoryComponents, NearTheRankEveryComponentIsComputed) {
+  const RowMatrixF x = spectrumTrajectories(50, 90, 40);
+  TrajectoryDecomposition d(x);
+  Components pc = d.none();
+  d.extend(pc, 40, 0);
+  EXPECT_TRUE(pc.complete);
+  EXPECT_EQ(pc.sigma.size(), 50);  // min(rows, columns)
+  EXPECT_NEAR(pc.sigma.squaredNorm(), pc.energy, 1e-6 * pc.energy);
+}
+
+TEST(StepSearch, FindsTheBoundaryWithinItsToleranceInFewTrials) {
+  for (const double boundary : {-7.3, -2.05, 0.4}) {
+    StepSearch s;
+    s.lowest = -30;
+    s.highest = 5;
+    s.guess = boundary + 1.5;  // a model off by a factor of almost 3
+    s.slope = 2;
+    int trials = 0;
+    // A squared error: slope 2, with a ripple the secant steps must live with.
+    const double u = searchStep(s, [&](double v) {
+      ++trials;
+      return 2 * (v - boundary) + 0.01 * std::sin(40 * v);
+    });
+    EXPECT_LE(u, boundary + 0.01) << boundary;
+    EXPECT_GE(u, boundary - s.tolerance - 0.01) << boundary;
+    EXPECT_LE(trials, 10) << boundary;
+  }
+}
+
+TEST(StepSearch, TakesAnEndWhenEveryOrNoStepIsAcceptable) {
+  StepSearch s;
+  s.lowest = -20;
+  s.highest = 3;
+  s.guess = -5;
+  EXPECT_EQ(searchStep(s, [](double) { return -1.0; }), s.highest);
+  int trials = 0;
+  // Finer steps that do not lower the error (too few components): the lowest, soon.
+  EXPECT_EQ(searchStep(s, [&](double v) {
+              ++trials;
+              return 0.5 + 0.001 * v;
+            }),
+            s.lowest);
+  EXPECT_LE(trials, 6);
+  // An error of zero everywhere (a static group) is acceptable at any step.
+  EXPECT_EQ(searchStep(s, [](double) { return -HUGE_VAL; }), s.highest);
+}
+
+}  // namespace
+}  // namespace animc
