@@ -211,9 +211,10 @@ PYBIND11_MODULE(animcompress, module) {
              "The .ams bytes of frames (F, N, 3) over faces (T, 3), coded on `threads` threads (0 = one per "
              "core; the bytes are the same for any number); keyword options are the codec's "
              "(max_error=0.01 is animc encode's --max-error 0.01; True sets a switch). The codec is "
-             "'affine-octree' unless codec= says otherwise, as in the C++ library and in 1.0; animc encode "
-             "and the MeshLab filter default to 'auto', which writes the smallest files but encodes "
-             "several times slower: pass codec='auto' to write what animc writes.");
+             "'affine-octree' unless codec= says otherwise, as in the C++ library and in 1.0, so that 1.0 "
+             "programs and their options (profile=, bits=) keep working; animc encode and the MeshLab filter "
+             "default to 'auto', the smallest files at about affine-octree's speed: pass codec='auto' to write "
+             "what animc writes.");
   module.def("join", &join, py::arg("parts"),
              "The .ams bytes of consecutive parts of one sequence (files or bytes) encoded apart with the same "
              "settings, as animc join: those of encoding the whole sequence at once when every part but the last "

@@ -52,7 +52,8 @@ const Topology& streamTopology(const Decoder& decoder);
 const std::string& streamName(const Decoder& decoder);
 // Where a run of frames from `first` that Decoder::frames() decodes at once, on every thread
 // the decoder has, should end: after the groups of one batch, within a bound on memory
-// (128 MB of frames, and the output limit); first + 1 with one thread.
+// (128 MB of frames, and the output limit); first + 1 with one thread, or when the run would
+// not reach past first's group.
 int64_t decodeChunkEnd(const Decoder& decoder, int64_t first);
 
 // Sees each original frame with its reconstruction as the decoder will produce it, so the

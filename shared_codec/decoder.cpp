@@ -342,7 +342,11 @@ int64_t decodeChunkEnd(const Decoder& decoder, int64_t first) {
   const size_t g = d.reader->groupOf(uint64_t(first));
   int64_t end = d.groupEnd(std::min(g + d.threads, d.reader->groupCount()) - 1);
   while (end > cap) end = int64_t(d.reader->groupFirstFrame(d.reader->groupOf(uint64_t(end - 1))));
-  return end > first ? end : cap;
+  if (end <= first) end = cap;
+  // Frames of one group come one at a time from the cursor anyway (its reconstruction is split
+  // over the threads inside): a larger run would only cost memory.
+  if (d.reader->groupOf(uint64_t(end - 1)) == g) return first + 1;
+  return end;
 }
 
 const ContainerInfo& containerInfo(const Decoder& decoder) { return DecoderAccess::impl(decoder).reader->info(); }

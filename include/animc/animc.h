@@ -108,9 +108,10 @@ using ProgressFn = std::function<bool(int percent, const char* what)>;
 // a switch is set with the value "1". An option the chosen codec does not have is an error.
 struct EncoderOptions {
   // "affine-octree" (the default), "wavelet", "trajectory" or "auto". `animc encode` and the
-  // MeshLab filter default to "auto", the smallest files; the library keeps 1.0's default, so
-  // that a program written for 1.0 writes the same codec, and because auto encodes several
-  // times slower (docs/benchmarks.md). Say codec = "auto" for what animc writes.
+  // MeshLab filter default to "auto", the smallest files at about affine-octree's speed
+  // (docs/benchmarks.md); the library keeps 1.0's default so that a program written for 1.0
+  // writes the same codec and its options ("profile", "bits") still apply. Say codec = "auto"
+  // for what animc writes.
   std::string codec = "affine-octree";
   std::map<std::string, std::string> values;
   uint32_t iframe_interval = 0;  // an intra frame (a random-access point) every K frames; 0 = the first only

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "animc/animc.h"
+#include "api.h"
 #include "core/parallel.h"
 #include "group_codec_support.h"
 #include "test_sequences.h"
@@ -153,6 +154,27 @@ TEST(DecoderThreads, FramesRefusesARangeOutsideTheStreamOrAboveTheLimits) {
   EXPECT_EQ(decoder.value().frames(4, 4, xyz.data()).code(), StatusCode::kInvalidArgument);
   EXPECT_EQ(decoder.value().frames(0, 4, xyz.data()).code(), StatusCode::kLimitExceeded);
   EXPECT_TRUE(decoder.value().frames(4, 7, xyz.data()).ok());
+}
+
+TEST(DecoderThreads, ReadersTakeSeveralGroupsAtOnceButOneGroupAFrameAtATime) {
+  const MemorySequence seq = gridSequence(12, 10, 20, 1.0, 1.0);
+  Mode groups{"groups", "affine-octree", {}, 4};
+  Mode one_group{"one group", "trajectory", {{"target-kg", "0.3"}}, 0};
+  const Coded grouped = encodeCollecting(seq, optionsOf(groups, 1));
+  const Coded whole = encodeCollecting(seq, optionsOf(one_group, 1));
+  DecoderOptions options;
+  options.threads = 2;
+  auto by_groups = Decoder::openMemory(grouped.bytes.data(), grouped.bytes.size(), options);
+  auto single = Decoder::openMemory(whole.bytes.data(), whole.bytes.size(), options);
+  ASSERT_TRUE(by_groups.ok() && single.ok());
+  // Two groups of 4 frames a run (one a thread), from a group's start or from inside one.
+  EXPECT_EQ(decodeChunkEnd(by_groups.value(), 0), 8);
+  EXPECT_EQ(decodeChunkEnd(by_groups.value(), 5), 12);
+  // Within one group (the last one here) the frames come from the cursor one by one: a run
+  // would only hold memory.
+  EXPECT_EQ(decodeChunkEnd(by_groups.value(), 17), 18);
+  EXPECT_EQ(decodeChunkEnd(single.value(), 0), 1);
+  EXPECT_EQ(decodeChunkEnd(single.value(), 13), 14);
 }
 
 TEST(DecoderLimitsWork, ATrajectoryGroupCostingMoreMultiplyAddsIsRefused) {
