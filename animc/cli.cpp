@@ -12,6 +12,7 @@
 
 #include "core/file_identity.h"
 #include "core/temp_registry.h"
+#include "report/json_writer.h"
 #include "seqio/sequence_io.h"
 
 namespace animc::cli {
@@ -212,6 +213,17 @@ void endProgressLine() {
 }
 
 bool isAmsPath(const std::string& path) { return path.size() > 4 && path.compare(path.size() - 4, 4, ".ams") == 0; }
+
+std::string groupCodecsText(const EncodeSettings& settings, const std::vector<GroupCodecCount>& counts) {
+  if (settings.codec() != CodecId::kAuto || counts.empty()) return "";
+  return " (" + describeGroupCodecs(counts) + ")";
+}
+
+std::string groupCodecsJson(const std::vector<GroupCodecCount>& counts) {
+  JsonObject o;
+  for (const GroupCodecCount& c : counts) o.add(c.codec, c.groups);
+  return o.str();
+}
 
 int fail(const Status& status) {
   endProgressLine();

@@ -69,6 +69,11 @@ bool isAmsPath(const std::string& path);
 // Prints "animc: <message>" on stderr and returns the exit status for the code.
 int fail(const Status& status);
 
+// Of an auto file's groups: " (trajectory 7, affine-octree 1)"; "" for other codecs, whose
+// groups are all theirs. And the counts as a JSON object: {"trajectory": 7, ...}.
+std::string groupCodecsText(const EncodeSettings& settings, const std::vector<GroupCodecCount>& counts);
+std::string groupCodecsJson(const std::vector<GroupCodecCount>& counts);
+
 // Makes SIGINT, SIGTERM and SIGHUP remove the temporaries of the outputs being written
 // (core/temp_registry.h), then end the process as the signal would have, so that the caller
 // still sees "killed by the signal". A signal ignored at start (nohup) stays ignored.

@@ -34,12 +34,13 @@ int runTest(const std::vector<std::string>& argv) {
     o.add("triangles", c.triangles);
     o.add("frames", c.frames);
     o.add("groups", c.groups);
+    o.addRaw("groups_by_codec", groupCodecsJson(c.groups_by_codec));
     o.add("file_bytes", c.file_bytes);
     std::printf("%s\n", o.str().c_str());
     return 0;
   }
-  std::printf("%s: OK, %lld frames of %u vertices, %llu groups\n", path.c_str(), (long long)c.frames, c.vertices,
-              (unsigned long long)c.groups);
+  std::printf("%s: OK, %lld frames of %u vertices, %llu groups%s\n", path.c_str(), (long long)c.frames, c.vertices,
+              (unsigned long long)c.groups, groupCodecsText(c.settings, c.groups_by_codec).c_str());
   return 0;
 }
 

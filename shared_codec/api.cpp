@@ -123,8 +123,16 @@ Result<AmsCheck> checkAmsFile(const std::string& path, const DecoderLimits& limi
   check.triangles = decoder.info().triangles;
   check.frames = decoder.info().frames;
   check.groups = decoder.info().groups;
+  ANIMC_ASSIGN_OR_RETURN(check.groups_by_codec, groupsByCodec(decoder));
   check.file_bytes = decoder.info().bytes;
   return check;
+}
+
+std::string describeGroupCodecs(const std::vector<GroupCodecCount>& counts) {
+  std::string text;
+  for (const GroupCodecCount& c : counts)
+    text += (text.empty() ? "" : ", ") + c.codec + " " + std::to_string(c.groups);
+  return text;
 }
 
 }  // namespace animc

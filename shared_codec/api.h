@@ -56,6 +56,17 @@ const std::string& streamName(const Decoder& decoder);
 // not reach past first's group.
 int64_t decodeChunkEnd(const Decoder& decoder, int64_t first);
 
+// How many of a stream's groups each codec coded: auto's candidates in the file's order
+// (from the index that starts each group's first frame: every group's section is read and its
+// CRC checked), or the file's codec for all of them.
+struct GroupCodecCount {
+  std::string codec;
+  uint64_t groups = 0;
+};
+Result<std::vector<GroupCodecCount>> groupsByCodec(Decoder& decoder);
+// "trajectory 7, affine-octree 1"
+std::string describeGroupCodecs(const std::vector<GroupCodecCount>& counts);
+
 // Sees each original frame with its reconstruction as the decoder will produce it, so the
 // caller can measure errors without decoding the file again.
 using FrameObserver = std::function<void(int64_t frame, const float* original, const float* reconstructed)>;
@@ -107,6 +118,7 @@ struct AmsCheck {
   uint64_t triangles = 0;
   int64_t frames = 0;
   uint64_t groups = 0;
+  std::vector<GroupCodecCount> groups_by_codec;
   uint64_t file_bytes = 0;
 };
 
