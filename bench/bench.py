@@ -54,7 +54,7 @@ from bench_gltf import gltf_section  # noqa: E402
 from bench_trajectory import trajectory_section  # noqa: E402
 from bench_threads import threads_section  # noqa: E402
 from bench_encoder_speed import encoder_speed_section  # noqa: E402
-from bench_common import (log, run_bench, loglog_interp, num, pct, mib, table,  # noqa: E402
+from bench_common import (log, run_bench, run_measured, loglog_interp, num, pct, mib, table,  # noqa: E402
                           failed_cell, find_sequences, START)
 
 PROFILES = ['paper', 'predictive']
@@ -164,28 +164,6 @@ def baseline_points(name, pc2, sha, entries, cache_path, baseline_hash):
 
 
 # ---------------------------------------------------------------- peak memory
-
-def run_measured(cmd):
-    """Run cmd; return (wall seconds, peak RSS in KiB or None, stdout). Uses
-    /usr/bin/time -v if present, else a Python child reporting RUSAGE_CHILDREN."""
-    t0 = time.monotonic()
-    if os.access('/usr/bin/time', os.X_OK):
-        p = subprocess.run(['/usr/bin/time', '-v'] + cmd, capture_output=True, text=True)
-        m = re.search(r'Maximum resident set size \(kbytes\): (\d+)', p.stderr)
-        rss = int(m.group(1)) if m else None
-    else:
-        wrapper = ('import resource, subprocess, sys\n'
-                   'r = subprocess.run(sys.argv[1:]).returncode\n'
-                   'print("maxrss", resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss, file=sys.stderr)\n'
-                   'sys.exit(r)\n')
-        p = subprocess.run([sys.executable, '-c', wrapper] + cmd, capture_output=True, text=True)
-        m = re.search(r'maxrss (\d+)', p.stderr)
-        rss = int(m.group(1)) if m else None  # Linux: KiB
-    seconds = time.monotonic() - t0
-    if p.returncode != 0:
-        raise RuntimeError(f'{shlex.join(cmd)} failed (exit {p.returncode}):\n{p.stderr.strip()}')
-    return seconds, rss, p.stdout
-
 
 def memory_test(animc, data_dir, tmp_root, frame_counts):
     """[{frames, pc2_bytes, ams_bytes, encode_s, encode_rss_kib, decode_s, decode_rss_kib}]

@@ -9,6 +9,7 @@ import datetime
 import json
 import math
 import os
+import re
 import shlex
 import subprocess
 import sys
@@ -166,3 +167,25 @@ def section_main(doc, heading, section, add_arguments=None):
         f.write(text)
     log(f'wrote the section to {args.out} ({failures} failure(s))')
     sys.exit(1 if failures else 0)
+
+
+def run_measured(cmd):
+    """Run cmd; return (wall seconds, peak RSS in KiB or None, stdout). Uses
+    /usr/bin/time -v if present, else a Python child reporting RUSAGE_CHILDREN."""
+    t0 = time.monotonic()
+    if os.access('/usr/bin/time', os.X_OK):
+        p = subprocess.run(['/usr/bin/time', '-v'] + cmd, capture_output=True, text=True)
+        m = re.search(r'Maximum resident set size \(kbytes\): (\d+)', p.stderr)
+        rss = int(m.group(1)) if m else None
+    else:
+        wrapper = ('import resource, subprocess, sys\n'
+                   'r = subprocess.run(sys.argv[1:]).returncode\n'
+                   'print("maxrss", resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss, file=sys.stderr)\n'
+                   'sys.exit(r)\n')
+        p = subprocess.run([sys.executable, '-c', wrapper] + cmd, capture_output=True, text=True)
+        m = re.search(r'maxrss (\d+)', p.stderr)
+        rss = int(m.group(1)) if m else None  # Linux: KiB
+    seconds = time.monotonic() - t0
+    if p.returncode != 0:
+        raise RuntimeError(f'{shlex.join(cmd)} failed (exit {p.returncode}):\n{p.stderr.strip()}')
+    return seconds, rss, p.stdout

@@ -18,7 +18,7 @@ import tempfile
 import numpy as np
 
 import pc2
-from bench_common import animc_json, log, num, run_bench, section_main, table
+from bench_common import animc_json, log, num, run_bench, run_measured, section_main, table
 from ply import read_ply_faces, write_ply
 
 HEADING = '## Threads'
@@ -58,15 +58,6 @@ def make_large(seq, work):
         f.write(np.ascontiguousarray(frames, dtype='<f4').tobytes())
     write_ply(out_ply, frames[0], faces)
     return out_pc2, out_ply, frames.shape[1], frames.shape[0]
-
-
-def peak_rss_mib(cmd):
-    """Peak resident memory of a command, in MiB (the kernel's count for the child)."""
-    child = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    _, status, usage = os.wait4(child.pid, 0)
-    if status != 0:
-        raise RuntimeError(f'{" ".join(cmd)}: exit status {status}')
-    return usage.ru_maxrss / 1024
 
 
 def measure(animc, name, pc2_path, ply, extra, runs, work):
@@ -126,7 +117,11 @@ def threads_section(animc, sequences, runs):
             for threads in THREADS:
                 out = os.path.join(work, f'memory.t{threads}.ams')
                 log(f'peak memory of the large case, {threads} thread(s)')
-                mib = peak_rss_mib([animc, 'encode', large[0], '--mesh', large[1], '-o', out, '--threads', str(threads)])
+                # Measured from a process of its own (GNU time, or a small Python): this script's
+                # own memory, which holds the large sequence, would otherwise count.
+                _, kib, _ = run_measured([animc, 'encode', large[0], '--mesh', large[1], '-o', out,
+                                          '--threads', str(threads)])
+                mib = kib / 1024
                 memory.append([threads, f'{mib:.0f} MiB', num(mib / (large[2] * large[3] * 12 / 2**20)) + '×'])
     lines = [HEADING, '',
              f'Encoding: `animc bench IN --mesh M --threads N --runs {runs} --json` (`--runs 1` for the large '
