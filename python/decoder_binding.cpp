@@ -52,9 +52,10 @@ class PyDecoder {
 
 // max_output_bytes comes last: open()'s arguments may be given by position.
 std::unique_ptr<PyDecoder> openStream(py::handle path_or_bytes, py::object max_vertex_frames, int64_t max_bitplanes,
-                                      int64_t max_payload_bytes, py::object max_output_bytes, int64_t threads) {
+                                      int64_t max_payload_bytes, py::object max_output_bytes, int64_t threads,
+                                      py::object max_multiply_adds) {
   const DecoderOptions options = decoderOptions(std::move(max_vertex_frames), std::move(max_output_bytes),
-                                                max_bitplanes, max_payload_bytes, threads);
+                                                max_bitplanes, max_payload_bytes, threads, std::move(max_multiply_adds));
   std::unique_ptr<HeldBuffer> buffer;
   Decoder decoder = openDecoder(path_or_bytes, options, buffer);
   return std::make_unique<PyDecoder>(std::move(buffer), std::move(decoder));
@@ -123,9 +124,9 @@ Status decodeInto(Decoder& decoder, const std::vector<int64_t>& indices, float* 
 }
 
 py::tuple decode(py::handle data, py::object frames, py::object max_vertex_frames, py::object max_output_bytes,
-                 int64_t max_bitplanes, int64_t max_payload_bytes, int64_t threads) {
+                 int64_t max_bitplanes, int64_t max_payload_bytes, int64_t threads, py::object max_multiply_adds) {
   const DecoderOptions options = decoderOptions(std::move(max_vertex_frames), std::move(max_output_bytes),
-                                                max_bitplanes, max_payload_bytes, threads);
+                                                max_bitplanes, max_payload_bytes, threads, std::move(max_multiply_adds));
   std::unique_ptr<HeldBuffer> buffer;
   Decoder decoder = openDecoder(data, options, buffer);
   // Refused before the index list is made: a stream may announce billions of frames.
@@ -159,13 +160,16 @@ void bindDecoder(py::module_& module) {
 
   module.def("open", &openStream, py::arg("path_or_bytes"), py::arg("max_vertex_frames") = py::none(),
              py::arg("max_bitplanes") = 0, py::arg("max_payload_bytes") = 0, py::arg("max_output_bytes") = py::none(),
-             py::arg("threads") = 0,
+             py::arg("threads") = 0, py::arg("max_multiply_adds") = py::none(),
              "A Decoder over an .ams file (str or path-like) or bytes (kept referenced while it lives); threads: "
-             "those a frame may use (0 = one per core), the frames are the same for any number.");
+             "those a frame may use (0 = one per core), the frames are the same for any number. The max_ "
+             "limits refuse larger work or output (animc decode's --max-vertex-frames, --max-output-bytes, "
+             "--max-multiply-adds); None keeps the library's default.");
   module.def("info", &streamInfo, py::arg("path_or_bytes"), "The header of an .ams file or bytes, as Decoder.info().");
   module.def("decode", &decode, py::arg("data"), py::arg("frames") = py::none(), py::kw_only(),
              py::arg("max_vertex_frames") = py::none(), py::arg("max_output_bytes") = py::none(),
              py::arg("max_bitplanes") = 0, py::arg("max_payload_bytes") = 0, py::arg("threads") = 0,
+             py::arg("max_multiply_adds") = py::none(),
              "(frames (F, N, 3) float32, faces (T, 3) uint32) of an .ams stream; `frames` selects frames by "
              "index, slice or range (all when None). A run of frames decodes its groups on `threads` threads "
              "at once (0 = one per core); the frames are the same for any number.");

@@ -75,13 +75,15 @@ uint32_t threadCount(int64_t threads) {
 }
 
 DecoderOptions decoderOptions(py::object max_vertex_frames, py::object max_output_bytes, int64_t max_bitplanes,
-                              int64_t max_payload_bytes, int64_t threads) {
+                              int64_t max_payload_bytes, int64_t threads, py::object max_multiply_adds) {
   DecoderOptions options;
   options.threads = threadCount(threads);
   if (!max_vertex_frames.is_none())
     options.limits.max_vertex_frames = nonNegative(integerValue(max_vertex_frames), "max_vertex_frames");
   if (!max_output_bytes.is_none())
     options.limits.max_output_bytes = nonNegative(integerValue(max_output_bytes), "max_output_bytes");
+  if (!max_multiply_adds.is_none())
+    options.limits.max_multiply_adds = nonNegative(integerValue(max_multiply_adds), "max_multiply_adds");
   if (max_bitplanes > std::numeric_limits<int>::max()) throw py::value_error("max_bitplanes is too large");
   options.progressive.max_bitplanes = int(nonNegative(max_bitplanes, "max_bitplanes"));
   options.progressive.max_payload_bytes = nonNegative(max_payload_bytes, "max_payload_bytes");

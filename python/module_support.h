@@ -56,7 +56,7 @@ uint32_t threadCount(int64_t threads);
 
 // DecoderOptions from the keyword arguments of open() and decode(); None keeps the default.
 DecoderOptions decoderOptions(py::object max_vertex_frames, py::object max_output_bytes, int64_t max_bitplanes,
-                              int64_t max_payload_bytes, int64_t threads);
+                              int64_t max_payload_bytes, int64_t threads, py::object max_multiply_adds);
 
 // A decoder over a file or over a buffer that `buffer` holds (left empty for a file).
 Decoder openDecoder(py::handle path_or_bytes, const DecoderOptions& options, std::unique_ptr<HeldBuffer>& buffer);

@@ -328,6 +328,18 @@ def test_every_selection_is_bounded_by_the_output_limit(grouped):
         animcompress.decode(grouped, max_output_bytes=-1)
 
 
+def test_a_trajectory_group_costing_more_multiply_adds_is_refused(sequence):
+    # A trajectory group costs 3 x components x vertices x frames multiply-adds to rebuild.
+    frames = sequence['frames'][:20]
+    data = animcompress.encode(frames, sequence['faces'], codec='trajectory', target_kg=0.3)
+    vertices = frames.shape[1]
+    assert animcompress.decode(data, max_multiply_adds=3 * vertices * vertices * 20)[0].shape == frames.shape
+    raises_status('limit exceeded', animcompress.decode, data, max_multiply_adds=3 * vertices * 20 - 1)
+    raises_status('limit exceeded', lambda: animcompress.open(data, max_multiply_adds=1)[0])
+    with pytest.raises(ValueError):
+        animcompress.decode(data, max_multiply_adds=-1)
+
+
 def test_progressive_decoding_is_coarser(sequence):
     # Cuts need frames that do not code against the previous frame's contexts.
     data = animcompress.encode(sequence['frames'][:30], sequence['faces'], codec='wavelet', i_frames_only=True)
