@@ -76,7 +76,10 @@ class TrajectoryEncoder final : public GroupEncoder {
       if (pc.complete || carriesEnough(pc, step) || sendsNoneOfTheWeakest(pc, float(step))) break;
       more = moreComponents(pc, step);
     }
-    const TrajectoryGroup group = quantised(pc, step);
+    TrajectoryGroup group;
+    quantiseGroup(pc, step, group);
+    trial_group_ = TrajectoryGroup();
+    trial_frames_ = GroupFrames();
     payloads.assign(frame_count, std::vector<uint8_t>{kTrajectoryNextFrame});
     payloads[0].clear();
     writeTrajectoryGroup(group, order_, payloads[0]);
@@ -209,13 +212,13 @@ class TrajectoryEncoder final : public GroupEncoder {
         search.slope = 2;  // a squared error
         const double allowed = allowedAtMost();
         excess = [&, allowed](double u) {
-          return log2Ratio(measure(quantised(pc, std::exp2(u))).squared, allowed);
+          return log2Ratio(measure(trial(pc, std::exp2(u))).squared, allowed);
         };
         break;
       }
       case TrajectoryRate::kMaxError:
         search.guess = modelledStep(pc, search);
-        excess = [&](double u) { return log2Ratio(measure(quantised(pc, std::exp2(u))).worst, 1) / 2; };
+        excess = [&](double u) { return log2Ratio(measure(trial(pc, std::exp2(u))).worst, 1) / 2; };
         break;
       case TrajectoryRate::kBitsPerVertexFrame: {
         // The size falls as the step grows: the search runs on -u.
@@ -224,7 +227,7 @@ class TrajectoryEncoder final : public GroupEncoder {
         search.slope = 0.5;
         excess = [&, budget](double v) {
           std::vector<uint8_t> payload;
-          writeTrajectoryGroup(quantised(pc, std::exp2(-v)), order_, payload);
+          writeTrajectoryGroup(trial(pc, std::exp2(-v)), order_, payload);
           return log2Ratio(double(payload.size()), budget);
         };
         return std::exp2(-searchStep(search, excess));
@@ -324,8 +327,9 @@ class TrajectoryEncoder final : public GroupEncoder {
     return out;
   }
 
-  TrajectoryGroup quantised(const Components& pc, double step) const {
-    TrajectoryGroup g;
+  // The group as quantised at step: into g, whose buffers the search's trials reuse (a large
+  // group's would otherwise be new pages at every trial).
+  void quantiseGroup(const Components& pc, double step, TrajectoryGroup& g) const {
     g.frames = frame_count_;
     g.coefficient_step = float(step);
     const double q = g.coefficient_step;
@@ -355,7 +359,12 @@ class TrajectoryEncoder final : public GroupEncoder {
     g.mean_step = float(std::max(q / std::sqrt(double(vertices_)), mean_reach / kMaxQuantised + 1e-30));
     g.mean.resize(row);
     for (size_t i = 0; i < row; ++i) g.mean[i] = quantise(pc.mean[Eigen::Index(i)], g.mean_step);
-    return g;
+  }
+
+  // A trial of the search: the group at step q in trial_group_.
+  const TrajectoryGroup& trial(const Components& pc, double q) const {
+    quantiseGroup(pc, q, trial_group_);
+    return trial_group_;
   }
 
   // Rate-distortion choice of a component: sent when the squared error it removes (its
@@ -404,7 +413,7 @@ class TrajectoryEncoder final : public GroupEncoder {
 
   // The error of the frames the decoder will make of `group`.
   GroupError measure(const TrajectoryGroup& group) const {
-    GroupFrames decoded;
+    GroupFrames& decoded = trial_frames_;
     decoded.reset(group, order_, path_);
     std::vector<float> xyz(size_t(3) * vertices_);
     GroupError e;
@@ -436,6 +445,9 @@ class TrajectoryEncoder final : public GroupEncoder {
   std::vector<double> cube_sides_;  // of the group's frames (kMaxError)
   double spread_ = 0;               // of the group (kTargetKg)
   GroupFrames frames_;              // the last group as decoded
+  // The search's trials, their buffers kept from one trial to the next.
+  mutable TrajectoryGroup trial_group_;
+  mutable GroupFrames trial_frames_;
 };
 
 }  // namespace
