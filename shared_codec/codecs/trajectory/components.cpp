@@ -37,14 +37,17 @@ Eigen::MatrixXd lowerGram(const Matrix& a) {
   return gram;
 }
 
-// a * b in b's precision, a block of rows of a at a time.
+// a * b in b's precision, a block of rows of a at a time, each computed in rows of its own
+// (one block's memory) and stored by columns, as the callers keep it.
 template <class Scalar>
-Rows<Scalar> productByRows(const RowMatrixF& a, const Columns<Scalar>& b) {
-  Rows<Scalar> out(a.rows(), b.cols());
+Columns<Scalar> productByRows(const RowMatrixF& a, const Columns<Scalar>& b) {
+  Columns<Scalar> out(a.rows(), b.cols());
   const size_t blocks = size_t((a.rows() + kProductRows - 1) / kProductRows);
   parallelFor(blocks, double(kProductRows) * double(a.cols()) * double(b.cols()), [&](size_t i) {
     const Eigen::Index r = Eigen::Index(i) * kProductRows, h = std::min(kProductRows, a.rows() - r);
-    out.middleRows(r, h).noalias() = a.middleRows(r, h).template cast<Scalar>() * b;
+    Rows<Scalar> block(h, b.cols());
+    block.noalias() = a.middleRows(r, h).template cast<Scalar>() * b;
+    out.middleRows(r, h) = block;
   });
   return out;
 }

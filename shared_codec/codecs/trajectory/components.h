@@ -34,6 +34,8 @@ class TrajectoryDecomposition {
   // makes pc every component when they would be most of them. The iteration stops when it
   // finds less than `negligible` more energy (or a thousandth of what it found).
   void extend(Components& pc, Eigen::Index count, double negligible) const;
+  // Frees the trajectories, once a Components is complete: extend() has no more to do.
+  void release() { centred_ = RowMatrixF(); }
 
  private:
   Eigen::Index rank() const { return std::min(centred_.rows(), centred_.cols()); }

@@ -60,7 +60,7 @@ class TrajectoryEncoder final : public GroupEncoder {
     if (options_.rate == TrajectoryRate::kMaxError)
       for (uint32_t t = 0; t < frame_count; ++t) cube_sides_.push_back(cubeSide(t));
     spread_ = options_.rate == TrajectoryRate::kTargetKg ? spread() : 0;
-    const TrajectoryDecomposition decomposition(trajectories());
+    TrajectoryDecomposition decomposition(trajectories());
     // The leading components only, as many as the step chosen might send: more while the
     // weakest of them could still be worth its bits.
     Components pc = decomposition.none();
@@ -72,6 +72,7 @@ class TrajectoryEncoder final : public GroupEncoder {
         more = moreComponents(pc, 2 * predictedStep(pc));
         continue;
       }
+      if (pc.complete) decomposition.release();  // the search's memory, on a large group
       step = chooseStep(pc);
       if (pc.complete || carriesEnough(pc, step) || sendsNoneOfTheWeakest(pc, float(step))) break;
       more = moreComponents(pc, step);
