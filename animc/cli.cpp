@@ -216,7 +216,9 @@ bool isAmsPath(const std::string& path) { return path.size() > 4 && path.compare
 
 std::string groupCodecsText(const EncodeSettings& settings, const std::vector<GroupCodecCount>& counts) {
   if (settings.codec() != CodecId::kAuto || counts.empty()) return "";
-  return " (" + describeGroupCodecs(counts) + ")";
+  std::string text;
+  for (const GroupCodecCount& c : counts) text += (text.empty() ? " (" : ", ") + c.codec + " " + std::to_string(c.groups);
+  return text + ")";
 }
 
 std::string groupCodecsJson(const std::vector<GroupCodecCount>& counts) {

@@ -128,11 +128,4 @@ Result<AmsCheck> checkAmsFile(const std::string& path, const DecoderLimits& limi
   return check;
 }
 
-std::string describeGroupCodecs(const std::vector<GroupCodecCount>& counts) {
-  std::string text;
-  for (const GroupCodecCount& c : counts)
-    text += (text.empty() ? "" : ", ") + c.codec + " " + std::to_string(c.groups);
-  return text;
-}
-
 }  // namespace animc

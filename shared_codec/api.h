@@ -57,15 +57,13 @@ const std::string& streamName(const Decoder& decoder);
 int64_t decodeChunkEnd(const Decoder& decoder, int64_t first);
 
 // How many of a stream's groups each codec coded: auto's candidates in the file's order
-// (from the index that starts each group's first frame: every group's section is read and its
-// CRC checked), or the file's codec for all of them.
+// (from the index that starts each group's first frame, a few bytes a group; their CRCs are
+// verify()'s to check), or the file's codec for all of them.
 struct GroupCodecCount {
   std::string codec;
   uint64_t groups = 0;
 };
-Result<std::vector<GroupCodecCount>> groupsByCodec(Decoder& decoder);
-// "trajectory 7, affine-octree 1"
-std::string describeGroupCodecs(const std::vector<GroupCodecCount>& counts);
+Result<std::vector<GroupCodecCount>> groupsByCodec(const Decoder& decoder);
 
 // Sees each original frame with its reconstruction as the decoder will produce it, so the
 // caller can measure errors without decoding the file again.

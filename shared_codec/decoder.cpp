@@ -200,7 +200,6 @@ struct DecoderAccess {
     return Decoder(std::move(impl));
   }
   static const Decoder::Impl& impl(const Decoder& d) { return *d.impl_; }
-  static Decoder::Impl& impl(Decoder& d) { return *d.impl_; }
 };
 
 Result<Decoder> Decoder::openFile(const std::string& path, const DecoderOptions& options) {
@@ -350,22 +349,20 @@ int64_t decodeChunkEnd(const Decoder& decoder, int64_t first) {
   return end;
 }
 
-Result<std::vector<GroupCodecCount>> groupsByCodec(Decoder& decoder) {
-  Decoder::Impl& d = DecoderAccess::impl(decoder);
+Result<std::vector<GroupCodecCount>> groupsByCodec(const Decoder& decoder) {
+  const Decoder::Impl& d = DecoderAccess::impl(decoder);
   if (d.settings.codec() != CodecId::kAuto)
     return std::vector<GroupCodecCount>{{d.settings.entry().name, d.reader->groupCount()}};
   std::vector<GroupCodecCount> counts;
   for (const AutoCandidate& c : std::get<AutoOptions>(d.settings.options).candidates)
     counts.push_back({codecName(c.codec), 0});
-  d.positioned = false;  // the reader's cursor moves
-  std::vector<uint8_t> payload;
   for (size_t g = 0; g < d.reader->groupCount(); ++g) {
-    ANIMC_RETURN_IF_ERROR(d.reader->beginGroup(g).withContext(d.name));
-    ANIMC_ASSIGN_OR_RETURN(bool any, d.reader->nextFrame(payload));
     // Each group's first frame starts with the index of its candidate (format.md, section 13).
-    if (!any || payload.empty() || payload[0] >= counts.size())
+    auto index = d.reader->firstPayloadByte(g);
+    if (!index.ok()) return index.status().withContext(d.name);
+    if (index.value() >= counts.size())
       return corrupt(d.name + ": group " + std::to_string(g) + " names no candidate codec");
-    ++counts[payload[0]].groups;
+    ++counts[index.value()].groups;
   }
   return counts;
 }

@@ -191,7 +191,7 @@ size_t ContainerReader::groupOf(uint64_t frame) const {
 
 namespace animc {
 
-Status ContainerReader::beginGroup(size_t g) {
+Status ContainerReader::checkGroupHead(size_t g, uint64_t& frames_begin, uint64_t& frames_end) {
   if (g >= groups_.size()) return invalidArgument("no frame group " + std::to_string(g));
   const Group& group = groups_[g];
   uint8_t head[12 + kGroupFieldBytes];
@@ -201,14 +201,19 @@ Status ContainerReader::beginGroup(size_t g) {
   ANIMC_ASSIGN_OR_RETURN(uint64_t length, r.u64("Section_Length"));
   ANIMC_ASSIGN_OR_RETURN(uint64_t first_frame, r.u64("First_Frame"));
   ANIMC_ASSIGN_OR_RETURN(uint32_t frame_count, r.u32("Frame_Count"));
-  const uint64_t next_first = g + 1 < groups_.size() ? groups_[g + 1].first_frame : info_.frame_count;
   if (length < kGroupFieldBytes || group.offset + kSectionOverhead + length != group.end)
     return corrupt("GRUP section" + at(group.offset) + ": length does not match the index");
-  if (first_frame != group.first_frame || frame_count != next_first - first_frame)
+  if (first_frame != group.first_frame || frame_count != groupFrameCount(g))
     return corrupt("GRUP section" + at(group.offset) + ": frame numbers do not match the index");
+  frames_begin = group.offset + 12 + kGroupFieldBytes;
+  frames_end = group.offset + 12 + length;
+  return Status();
+}
+
+Status ContainerReader::beginGroup(size_t g) {
+  uint64_t frames_begin = 0, frames_end = 0;
+  ANIMC_RETURN_IF_ERROR(checkGroupHead(g, frames_begin, frames_end));
   // Verify the CRC before decoding anything, streaming so memory stays small.
-  const uint64_t frames_begin = group.offset + 12 + kGroupFieldBytes;
-  const uint64_t frames_end = group.offset + 12 + length;
   std::vector<uint8_t> block(std::min<uint64_t>(frames_end - frames_begin, 1 << 20));
   uint32_t crc = 0;
   for (uint64_t pos = frames_begin; pos < frames_end;) {
@@ -221,11 +226,26 @@ Status ContainerReader::beginGroup(size_t g) {
   ANIMC_RETURN_IF_ERROR(readAt(frames_end, stored, 4, "GRUP CRC"));
   ByteReader c(stored, 4, frames_end);
   ANIMC_ASSIGN_OR_RETURN(uint32_t expected, c.u32("Section_CRC"));
-  if (crc != expected) return corrupt("GRUP section" + at(group.offset) + ": CRC mismatch");
+  if (crc != expected) return corrupt("GRUP section" + at(groups_[g].offset) + ": CRC mismatch");
   cursor_ = frames_begin;
   frames_end_ = frames_end;
-  frames_left_ = frame_count;
+  frames_left_ = groupFrameCount(g);
   return Status();
+}
+
+Result<uint64_t> ContainerReader::frameRecord(uint64_t position, uint64_t frames_end, uint64_t& payload_start) {
+  uint8_t len_bytes[10];
+  const size_t avail = size_t(std::min<uint64_t>(10, frames_end - position));
+  ANIMC_RETURN_IF_ERROR(readAt(position, len_bytes, avail, "Frame_Length"));
+  ByteReader r(len_bytes, avail, position);
+  ANIMC_ASSIGN_OR_RETURN(uint64_t length, r.varint("Frame_Length"));
+  payload_start = position + r.position();
+  if (length > limits_.max_frame_bytes)
+    return limitExceeded("Frame_Length " + std::to_string(length) + at(position) + " above the limit of " +
+                         std::to_string(limits_.max_frame_bytes));
+  if (length > frames_end - payload_start)
+    return corrupt("Frame_Length " + std::to_string(length) + at(position) + " runs past its group");
+  return length;
 }
 
 Result<bool> ContainerReader::nextFrame(std::vector<uint8_t>& payload) {
@@ -233,22 +253,24 @@ Result<bool> ContainerReader::nextFrame(std::vector<uint8_t>& payload) {
     if (cursor_ != frames_end_) return corrupt("GRUP has bytes after its last frame" + at(cursor_));
     return false;
   }
-  uint8_t len_bytes[10];
-  const size_t avail = size_t(std::min<uint64_t>(10, frames_end_ - cursor_));
-  ANIMC_RETURN_IF_ERROR(readAt(cursor_, len_bytes, avail, "Frame_Length"));
-  ByteReader r(len_bytes, avail, cursor_);
-  ANIMC_ASSIGN_OR_RETURN(uint64_t length, r.varint("Frame_Length"));
-  const uint64_t start = cursor_ + r.position();
-  if (length > limits_.max_frame_bytes)
-    return limitExceeded("Frame_Length " + std::to_string(length) + at(cursor_) + " above the limit of " +
-                         std::to_string(limits_.max_frame_bytes));
-  if (length > frames_end_ - start)
-    return corrupt("Frame_Length " + std::to_string(length) + at(cursor_) + " runs past its group");
+  uint64_t start = 0;
+  ANIMC_ASSIGN_OR_RETURN(uint64_t length, frameRecord(cursor_, frames_end_, start));
   payload.resize(size_t(length));
   ANIMC_RETURN_IF_ERROR(readAt(start, payload.data(), payload.size(), "frame"));
   cursor_ = start + length;
   --frames_left_;
   return true;
+}
+
+Result<uint8_t> ContainerReader::firstPayloadByte(size_t g) {
+  uint64_t frames_begin = 0, frames_end = 0, start = 0;
+  ANIMC_RETURN_IF_ERROR(checkGroupHead(g, frames_begin, frames_end));
+  if (frames_begin == frames_end) return corrupt("GRUP section" + at(groups_[g].offset) + ": no frame");
+  ANIMC_ASSIGN_OR_RETURN(uint64_t length, frameRecord(frames_begin, frames_end, start));
+  if (length == 0) return corrupt("empty frame" + at(frames_begin));
+  uint8_t byte = 0;
+  ANIMC_RETURN_IF_ERROR(readAt(start, &byte, 1, "frame"));
+  return byte;
 }
 
 Result<std::vector<uint8_t>> ContainerReader::startBytes() {

@@ -66,6 +66,9 @@ class ContainerReader {
   }
   // The next frame's payload of the current group; false after its last frame.
   Result<bool> nextFrame(std::vector<uint8_t>& payload);
+  // The first byte of group g's first frame payload, the group's header checked but not its
+  // CRC (a caller that needs that has checked the group already); the cursor does not move.
+  Result<uint8_t> firstPayloadByte(size_t group);
 
  private:
   ContainerReader() = default;
@@ -74,6 +77,10 @@ class ContainerReader {
   Status openHeader();
   Status openIndex(uint64_t conn_end);
   Status measureFirstFrame();
+  // Group g's header against the index (tag, length, frame numbers): its frame records' bytes.
+  Status checkGroupHead(size_t group, uint64_t& frames_begin, uint64_t& frames_end);
+  // The length of the frame record at `position` (before frames_end), its payload's start.
+  Result<uint64_t> frameRecord(uint64_t position, uint64_t frames_end, uint64_t& payload_start);
 
   struct Group {
     uint64_t offset, first_frame, end;  // end: offset of whatever follows the section

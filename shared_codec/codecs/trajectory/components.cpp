@@ -86,6 +86,19 @@ Eigen::MatrixXf fixedStart(Eigen::Index rows, Eigen::Index cols) {
   return m;
 }
 
+// The `count` largest eigenvalues of a Gram matrix as singular values, largest first, and
+// their eigenvectors (the solver sorts ascending).
+void leadingPairs(const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>& solver, Eigen::Index count,
+                  Eigen::VectorXd& sigma, Eigen::MatrixXd& vectors) {
+  const Eigen::Index dim = solver.eigenvalues().size();
+  sigma.resize(count);
+  vectors.resize(dim, count);
+  for (Eigen::Index k = 0; k < count; ++k) {
+    sigma[k] = std::sqrt(std::max(0.0, solver.eigenvalues()[dim - 1 - k]));
+    vectors.col(k) = solver.eigenvectors().col(dim - 1 - k);
+  }
+}
+
 // Subspace iteration: the extra directions it carries beyond those asked for, and its passes
 // over the trajectories. The leading components converge as (sigma_extra / sigma_k)^(2p+1)
 // (Halko, Martinsson & Tropp 2011); those asked for are well inside the subspace.
@@ -131,14 +144,9 @@ Components TrajectoryDecomposition::all() const {
   // The smaller of the two Gram matrices: trajectories (row x row) or vertices (n x n).
   const bool by_trajectory = x.cols() <= x.rows();
   const Eigen::MatrixXd gram = by_trajectory ? lowerGram(x) : lowerGram(x.transpose());
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(gram);
   const Eigen::Index dim = gram.rows();
-  pc.sigma.resize(dim);
-  Eigen::MatrixXd vectors(dim, dim);
-  for (Eigen::Index k = 0; k < dim; ++k) {  // the solver sorts ascending
-    pc.sigma[k] = std::sqrt(std::max(0.0, solver.eigenvalues()[dim - 1 - k]));
-    vectors.col(k) = solver.eigenvectors().col(dim - 1 - k);
-  }
+  Eigen::MatrixXd vectors;
+  leadingPairs(Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(gram), dim, pc.sigma, vectors);
   if (by_trajectory) {
     pc.basis = vectors;
     pc.coefficients = productByRows(x, pc.basis);
@@ -186,12 +194,11 @@ void TrajectoryDecomposition::appendLeading(Components& pc, Eigen::Index count, 
   }
   solver.compute(projected.transpose() * projected);
   const Eigen::Index have = pc.sigma.size();
+  Eigen::VectorXd sigma;
+  Eigen::MatrixXd rotation;
+  leadingPairs(solver, count, sigma, rotation);
   pc.sigma.conservativeResize(have + count);
-  Eigen::MatrixXd rotation(width, count);
-  for (Eigen::Index k = 0; k < count; ++k) {  // the solver sorts ascending
-    pc.sigma[have + k] = std::sqrt(std::max(0.0, solver.eigenvalues()[width - 1 - k]));
-    rotation.col(k) = solver.eigenvectors().col(width - 1 - k);
-  }
+  pc.sigma.tail(count) = sigma;
   Eigen::MatrixXd added = projected * rotation;
   // The deflation in float leaves the new vectors a little of the earlier ones (their float
   // error over the new, weaker singular values), which their coefficients would multiply by

@@ -68,8 +68,10 @@ class TrajectoryEncoder final : public GroupEncoder {
     double step = 0;
     for (;;) {
       decomposition.extend(pc, more, negligibleEnergy());
-      if (!pc.complete && clearlyTooFew(pc)) {
-        more = moreComponents(pc, 2 * predictedStep(pc));
+      // The model's step can be off by half: pc is judged at twice it before any search.
+      const double optimistic = 2 * predictedStep(pc);
+      if (!pc.complete && clearlyTooFew(pc, optimistic)) {
+        more = moreComponents(pc, optimistic);
         continue;
       }
       if (pc.complete) decomposition.release();  // the search's memory, on a large group
@@ -151,16 +153,14 @@ class TrajectoryEncoder final : public GroupEncoder {
   }
 
   // Whether pc cannot do, before any search: the energy it leaves out is more than the error
-  // allowed, or the model's step, even doubled (the model can be off by half), would send the
-  // weakest of pc's components.
-  bool clearlyTooFew(const Components& pc) const {
+  // allowed, or step q (the model's, doubled) would send the weakest of pc's components.
+  bool clearlyTooFew(const Components& pc, double q) const {
     const double left_out = pc.energy - pc.sigma.squaredNorm();
     if (options_.rate == TrajectoryRate::kTargetKg || options_.rate == TrajectoryRate::kMaxError) {
       if (left_out > allowedAtMost()) return true;
       if (left_out >= modelledAllowance()) return false;  // the model cannot tell
     }
-    const double predicted = 2 * predictedStep(pc);
-    return !carriesEnough(pc, predicted) && !sendsNoneOfTheWeakest(pc, float(predicted));
+    return !carriesEnough(pc, q) && !sendsNoneOfTheWeakest(pc, float(q));
   }
 
   // Whether none of the weakest eighth of pc's components is sent at step q: the components
