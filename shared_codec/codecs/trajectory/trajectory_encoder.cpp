@@ -277,8 +277,8 @@ class TrajectoryEncoder final : public GroupEncoder {
     return allowed;
   }
   double allowedAtMost() const { return allowance(1); }
-  // For the model below: on the shared sequences the largest error was 8 to 11 times the root
-  // mean square at the boundary.
+  // For the model below, a guess the trials correct: on the shared sequences the largest error
+  // was 5 to 20 times the root mean square (docs/trajectory.md, "Rate control").
   double modelledAllowance() const { return allowance(0.1); }
 
   // log2 of the step at which a model of the squared error meets `allowed`: every component
