@@ -15,6 +15,8 @@ PACKAGES=(
   gnuplot-nox                      # bench/rd_plot.py (rate-distortion plot of the benchmarks)
   gltfpack                         # bench/bench_gltf.py (glTF sizes beside a web user's other choice)
   blender                          # the Blender add-on's tests (blender/io_anim_ams), headless
+  emscripten                       # the WebAssembly decoder (scripts/build_web.sh, web/)
+  chromium                         # the player's browser test (web/test/player_browser.mjs), headless
   meshlab qtbase5-dev libqt5opengl5-dev libglew-dev  # MeshLab 2020.09 and what its headers need
   mesa-common-dev libglu1-mesa-dev
   xvfb xauth                       # meshlabserver and meshlab need an X server, even headless
@@ -24,7 +26,8 @@ source "$(dirname "$0")/host_setup.sh"
 install_missing_packages setup "${PACKAGES[@]}"
 echo "setup: all packages present"
 
-# The glTF validator the tests run with node, from npm into the cache.
+# The node packages the tests run (the glTF validator, three.js, puppeteer-core), from npm into
+# the cache.
 bash "$(dirname "$0")/setup_node_tools.sh" >/dev/null
 
 # MeshLab's headers come from Debian's source package, into a cache outside the tree.

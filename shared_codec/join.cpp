@@ -1,8 +1,12 @@
 // SPDX-License-Identifier: Apache-2.0
 // joinStreams (animc/animc.h): the GRUP sections of consecutive parts copied after one HEAD and
 // CONN, with their First_Frame numbered anew, then one INDX and END.
+#include <cstring>
+
 #include "api.h"
 #include "container/container_writer.h"
+#include "container/format.h"
+#include "io/byte_reader.h"
 
 namespace animc {
 namespace {
@@ -11,6 +15,21 @@ Result<std::unique_ptr<ContainerReader>> openPart(const StreamPart& part) {
   if (part.data == nullptr) return ContainerReader::open(part.path);
   return ContainerReader::open(memorySource(part.data, part.size), part.path, DecoderLimits());
 }
+
+// A section's tag and length at `offset`, or false when those 12 bytes or the whole section do
+// not lie in the first `size` bytes.
+struct SectionFrame {
+  char tag[4];
+  uint64_t length;
+};
+bool sectionAt(const uint8_t* data, size_t size, uint64_t offset, SectionFrame& frame) {
+  if (offset > size || size - offset < kSectionOverhead) return false;
+  ByteReader r(data + offset + 4, 8);
+  std::memcpy(frame.tag, data + offset, 4);
+  frame.length = r.u64("Length").value();
+  return frame.length <= size - offset - kSectionOverhead;
+}
+bool hasTag(const SectionFrame& frame, const char* tag) { return std::memcmp(frame.tag, tag, 4) == 0; }
 
 }  // namespace
 
@@ -41,6 +60,37 @@ Result<uint64_t> joinStreams(const std::vector<StreamPart>& parts, std::unique_p
       if (!section.ok()) return section.status().withContext(name);
       ANIMC_RETURN_IF_ERROR(writer.addGroupSection(std::move(section).value(), uint32_t(reader->groupFrameCount(g))));
     }
+  }
+  ANIMC_RETURN_IF_ERROR(writer.finish());
+  return frames;
+}
+
+Result<uint64_t> wholeGroupsOf(const void* data, size_t size, std::unique_ptr<ByteSink> sink) {
+  if (!sink) return invalidArgument("no sink to write to");
+  const auto* bytes = static_cast<const uint8_t*>(data);
+  if (size >= 4 && std::memcmp(bytes, kMagic, 4) != 0) return corrupt("not an .ams stream (no magic number)");
+  SectionFrame frame;
+  uint64_t offset = kFileHeaderBytes;
+  for (const char* tag : {kTagHead, kTagConnectivity}) {
+    if (!sectionAt(bytes, size, offset, frame)) return uint64_t(0);
+    if (!hasTag(frame, tag)) return corrupt(std::string("expected section ") + tag + " at offset " + std::to_string(offset));
+    offset += kSectionOverhead + frame.length;
+  }
+  const uint64_t groups_start = offset;
+  std::vector<uint64_t> group_offsets;
+  while (sectionAt(bytes, size, offset, frame) && hasTag(frame, kTagGroup) && frame.length >= kGroupFieldBytes) {
+    group_offsets.push_back(offset);
+    offset += kSectionOverhead + frame.length;
+  }
+  if (group_offsets.empty()) return uint64_t(0);
+  ContainerWriter writer;
+  ANIMC_RETURN_IF_ERROR(writer.openCopy(std::move(sink), std::vector<uint8_t>(bytes, bytes + groups_start)));
+  uint64_t frames = 0;
+  for (size_t g = 0; g < group_offsets.size(); ++g) {
+    const uint64_t begin = group_offsets[g], end = g + 1 < group_offsets.size() ? group_offsets[g + 1] : offset;
+    const uint32_t count = ByteReader(bytes + begin + 20, 4).u32("Frame_Count").value();
+    frames += count;
+    ANIMC_RETURN_IF_ERROR(writer.addGroupSection(std::vector<uint8_t>(bytes + begin, bytes + end), count));
   }
   ANIMC_RETURN_IF_ERROR(writer.finish());
   return frames;

@@ -326,6 +326,15 @@ struct StreamPart {
 // whole number of I-frame intervals long. Returns the frame count of the joined stream.
 ANIMC_API Result<uint64_t> joinStreams(const std::vector<StreamPart>& parts, std::unique_ptr<ByteSink> sink);
 
+// The whole frame groups at the start of a stream still arriving (`size` bytes of an .ams
+// stream, perhaps all of it), as a stream of their own written to `sink`: the header, the
+// connectivity and each GRUP section that lies wholly in those bytes, then a new INDX and END.
+// A player opens it with Decoder::openMemory() to show those frames while the rest arrives; of
+// a whole stream it writes the same bytes. Returns the frames of those groups: 0, with nothing
+// written, while the bytes do not hold one whole group yet. Only the sections' frame is read
+// here: the decoder checks the rest (CRCs, the index) when it opens and decodes the result.
+ANIMC_API Result<uint64_t> wholeGroupsOf(const void* data, size_t size, std::unique_ptr<ByteSink> sink);
+
 // ---- Metrics ------------------------------------------------------------------------------
 // The project's one implementation of its quality figures (animc, the MeshLab plugins, the
 // benchmarks and the Python module all use it); definitions in docs/metrics.md.

@@ -373,5 +373,25 @@ TEST_F(ContainerErrors, FrameLimitsReportLimitExceeded) {
   EXPECT_EQ(s.code(), StatusCode::kLimitExceeded) << s.message();
 }
 
+
+// The check value of the CRC-32 of ISO-HDLC, and continuing a CRC from any split point gives
+// the CRC of the whole (the eight-byte steps and the byte steps agree).
+TEST(Crc32, CheckValueAndContinuation) {
+  const std::string check = "123456789";
+  EXPECT_EQ(crc32Update(0, reinterpret_cast<const uint8_t*>(check.data()), check.size()), 0xCBF43926u);
+  EXPECT_EQ(crc32Update(0, nullptr, 0), 0u);
+  Bytes data(1000);
+  for (size_t i = 0; i < data.size(); ++i) data[i] = uint8_t(i * 37 + (i >> 3));
+  uint32_t bitwise = 0xFFFFFFFFu;
+  for (uint8_t b : data) {
+    bitwise ^= b;
+    for (int k = 0; k < 8; ++k) bitwise = (bitwise >> 1) ^ (0xEDB88320u & (0u - (bitwise & 1u)));
+  }
+  bitwise = ~bitwise;
+  for (size_t split : {0, 1, 7, 8, 9, 500, 999, 1000})
+    EXPECT_EQ(crc32Update(crc32Update(0, data.data(), split), data.data() + split, data.size() - split), bitwise)
+        << split;
+}
+
 }  // namespace
 }  // namespace animc

@@ -4,6 +4,7 @@
 // do not belong together, or a damaged one, are refused and nothing is written.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -108,6 +109,52 @@ TEST(Join, PartsThatDoNotBelongTogetherAreRefused) {
   damaged[damaged.size() - 200] ^= 0x40;  // in the last group's frames
   EXPECT_EQ(join({a, damaged}).status().code(), StatusCode::kCorrupt);
   EXPECT_EQ(join({}).status().code(), StatusCode::kInvalidArgument);
+}
+
+
+// A stream still arriving: each prefix opens as the whole groups it holds, whose frames are
+// the whole stream's first frames; the whole stream gives itself back.
+TEST(WholeGroupsOf, EveryPrefixOpensAsItsWholeGroups) {
+  const MemorySequence seq = gridSequence(14, 12, 23, 1.0, 1.0);
+  const std::vector<uint8_t> whole = encodeCollecting(seq, optionsFor("affine-octree", 5)).bytes;
+  const size_t floats = seq.frames()[0].size();
+  auto full = Decoder::openMemory(whole.data(), whole.size());
+  ASSERT_TRUE(full.ok());
+  std::vector<float> expected(floats * 23);
+  ASSERT_TRUE(full.value().frames(0, 23, expected.data()).ok());
+  uint64_t previous = 0;
+  for (size_t size = 0; size <= whole.size(); size += 7) {
+    std::vector<uint8_t> out;
+    auto frames = wholeGroupsOf(whole.data(), size, memorySink(&out));
+    ASSERT_TRUE(frames.ok()) << size << ": " << frames.status().message();
+    ASSERT_GE(frames.value(), previous);
+    ASSERT_TRUE(frames.value() % 5 == 0 || frames.value() == 23) << "whole groups only: " << frames.value();
+    previous = frames.value();
+    if (frames.value() == 0) {
+      EXPECT_TRUE(out.empty());
+      continue;
+    }
+    auto part = Decoder::openMemory(out.data(), out.size());
+    ASSERT_TRUE(part.ok()) << size << ": " << part.status().message();
+    const int64_t n = part.value().info().frames;
+    ASSERT_EQ(uint64_t(n), frames.value());
+    std::vector<float> got(floats * size_t(n));
+    ASSERT_TRUE(part.value().frames(0, n, got.data()).ok());
+    EXPECT_TRUE(std::equal(got.begin(), got.end(), expected.begin())) << size;
+  }
+  EXPECT_EQ(previous, 23u);
+  // INDX (16 + 12 + 16 per group) and END (24) follow the last group.
+  const size_t last_group_end = whole.size() - (16 + 12 + 16 * 5) - 24;
+  std::vector<uint8_t> five_groups, four_groups;
+  EXPECT_EQ(wholeGroupsOf(whole.data(), last_group_end, memorySink(&five_groups)).value(), 23u);
+  EXPECT_EQ(wholeGroupsOf(whole.data(), last_group_end - 1, memorySink(&four_groups)).value(), 20u);
+  std::vector<uint8_t> again;
+  ASSERT_EQ(wholeGroupsOf(whole.data(), whole.size(), memorySink(&again)).value(), 23u);
+  EXPECT_EQ(again, whole);
+  std::vector<uint8_t> bad = whole;
+  bad[1] = 'X';
+  std::vector<uint8_t> none;
+  EXPECT_EQ(wholeGroupsOf(bad.data(), bad.size(), memorySink(&none)).status().code(), StatusCode::kCorrupt);
 }
 
 }  // namespace

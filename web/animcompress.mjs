@@ -1,0 +1,172 @@
+// SPDX-License-Identifier: Apache-2.0
+// animcompress for JavaScript: .ams streams decoded by the library's own decoder compiled to
+// WebAssembly (dist/animc.wasm, src/animc_web.cpp), in Node ≥ 18 and in browsers.
+//
+//   import { AnimStream } from 'animcompress';
+//   const a = await AnimStream.open(bytes);          // ArrayBuffer or Uint8Array
+//   a.vertexCount; a.frameCount; a.frameRate;
+//   a.triangles();                                   // Uint32Array, 3 per triangle
+//   a.frame(k);                                      // Float32Array, x y z per vertex
+//   a.close();
+//
+// Each stream has its own WebAssembly instance (its own memory), so a stream that fails
+// cannot disturb another. Errors are Errors with .code: 'truncated', 'corrupt', 'unsupported',
+// 'limit' (DecoderLimits) or 'invalid' (a bad argument).
+
+const CODE_NAMES = { 2: 'invalid', 3: 'io', 4: 'bad-input', 5: 'truncated', 6: 'corrupt', 7: 'unsupported', 8: 'limit' };
+
+// DecoderLimits (include/animc/animc.h) in the order animc_open() reads them.
+export const LIMIT_NAMES = ['maxVertices', 'maxTriangles', 'maxFrames', 'maxFrameBytes', 'maxVertexFrames',
+  'maxOutputBytes', 'maxMultiplyAdds'];
+
+let compiled = null;
+
+function animError(code, message) {
+  const error = new Error(message);
+  error.code = code;
+  return error;
+}
+
+async function wasmBytes(source) {
+  if (source instanceof ArrayBuffer || ArrayBuffer.isView(source)) return source;
+  const url = source ? new URL(source, import.meta.url) : new URL('./dist/animc.wasm', import.meta.url);
+  if (url.protocol === 'file:') {  // Node: fetch() refuses file URLs
+    const { readFile } = await import('node:fs/promises');
+    return readFile(url);
+  }
+  const response = await fetch(url);
+  if (!response.ok) throw animError('io', `animcompress: cannot load ${url}: HTTP ${response.status}`);
+  return response.arrayBuffer();
+}
+
+// Where the .wasm comes from when not beside this file (a bundler's asset URL, or its bytes).
+// Call before the first open().
+export function setWasmSource(source) {
+  compiled = wasmBytes(source).then((bytes) => WebAssembly.compile(bytes));
+}
+
+// The decoder imports nothing it needs from its host: the standalone build asks for a few
+// WASI calls (exit, clocks, a console), answered here as unavailable; an exit is a trap.
+function importsFor(module) {
+  const imports = {};
+  for (const { module: name, name: field } of WebAssembly.Module.imports(module)) {
+    imports[name] ??= {};
+    imports[name][field] = field === 'proc_exit'
+      ? (status) => { throw animError('corrupt', `animcompress: the decoder exited (${status})`); }
+      : () => 52;  // ENOSYS
+  }
+  return imports;
+}
+
+async function instantiate() {
+  if (!compiled) setWasmSource();
+  const module = await compiled;
+  const instance = await WebAssembly.instantiate(module, importsFor(module));
+  instance.exports._initialize?.();
+  return instance.exports;
+}
+
+function asBytes(bytes) {
+  if (bytes instanceof Uint8Array) return bytes;
+  if (bytes instanceof ArrayBuffer) return new Uint8Array(bytes);
+  if (ArrayBuffer.isView(bytes)) return new Uint8Array(bytes.buffer, bytes.byteOffset, bytes.byteLength);
+  throw animError('invalid', 'animcompress: open() takes an ArrayBuffer or a Uint8Array');
+}
+
+function readString(wasm, pointer) {
+  const memory = new Uint8Array(wasm.memory.buffer);
+  let end = pointer;
+  while (memory[end] !== 0) ++end;
+  return new TextDecoder().decode(memory.subarray(pointer, end));
+}
+
+function lastError(wasm) {
+  const code = wasm.animc_error_code();
+  return animError(CODE_NAMES[code] ?? 'corrupt', `animcompress: ${readString(wasm, wasm.animc_error_message())}`);
+}
+
+// Runs a call into the decoder: a trap (memory exhausted: the library aborts where it would
+// throw std::bad_alloc) becomes a 'limit' Error and leaves the instance unusable.
+function guarded(stream, call) {
+  if (!stream.wasm) throw animError('invalid', 'animcompress: the stream is closed');
+  try {
+    return call(stream.wasm);
+  } catch (error) {
+    if (!(error instanceof WebAssembly.RuntimeError)) throw error;
+    stream.wasm = null;
+    throw animError('limit', `animcompress: the decoder ran out of WebAssembly memory (${error.message})`);
+  }
+}
+
+export class AnimStream {
+  // bytes: a whole .ams stream. options: DecoderLimits by LIMIT_NAMES (numbers), and
+  // `partial: true` when bytes are the start of a stream still arriving: the stream opened is
+  // then the frames of its whole groups, and the promise gives null while there is none yet.
+  static async open(bytes, options = {}) {
+    const data = asBytes(bytes);
+    const stream = new AnimStream(await instantiate());
+    const handle = guarded(stream, (wasm) => {
+      const pointer = wasm.animc_alloc(Math.max(1, data.length));
+      new Uint8Array(wasm.memory.buffer, pointer, data.length).set(data);
+      const limits = wasm.animc_alloc(8 * LIMIT_NAMES.length);
+      new Float64Array(wasm.memory.buffer, limits, LIMIT_NAMES.length).set(LIMIT_NAMES.map((n) => options[n] ?? 0));
+      const opened = wasm.animc_open(pointer, data.length, options.partial ? 1 : 0, limits);
+      wasm.animc_free(limits);
+      return opened;
+    });
+    if (!handle) {
+      if (options.partial && stream.wasm.animc_error_code() === 0) return null;
+      throw lastError(stream.wasm);
+    }
+    stream.handle = handle;
+    const w = stream.wasm;
+    stream.vertexCount = w.animc_vertex_count(handle);
+    stream.triangleCount = w.animc_triangle_count(handle);
+    stream.frameCount = w.animc_frame_count(handle);
+    stream.frameRate = w.animc_frame_rate(handle);
+    stream.groupCount = w.animc_group_count(handle);
+    stream.byteLength = w.animc_stream_bytes(handle);
+    stream.codec = readString(w, w.animc_codec(handle));
+    return stream;
+  }
+
+  constructor(wasm) {
+    this.wasm = wasm;
+    this.handle = 0;
+    this.framePointer = 0;
+  }
+
+  // The vertex indices, 3 per triangle.
+  triangles() {
+    return guarded(this, (w) =>
+      new Uint32Array(w.memory.buffer, w.animc_triangles(this.handle), 3 * this.triangleCount).slice());
+  }
+
+  // Frame k (0 ≤ k < frameCount), in any order: x, y, z per vertex. Into `out` (a Float32Array
+  // of 3 × vertexCount) when given, else a new array. The frame after the last one decoded
+  // costs one frame; any other costs the frames from the start of its group.
+  frame(k, out) {
+    if (!Number.isInteger(k) || k < 0 || k >= this.frameCount)
+      throw animError('invalid', `animcompress: frame ${k} is outside 0..${this.frameCount - 1}`);
+    const floats = 3 * this.vertexCount;
+    if (out && out.length !== floats) throw animError('invalid', `animcompress: out must hold ${floats} floats`);
+    return guarded(this, (w) => {
+      if (!this.framePointer) this.framePointer = w.animc_alloc(4 * Math.max(1, floats));
+      if (w.animc_frame(this.handle, k, this.framePointer) !== 0) throw lastError(w);
+      const decoded = new Float32Array(w.memory.buffer, this.framePointer, floats);
+      if (!out) return decoded.slice();
+      out.set(decoded);
+      return out;
+    });
+  }
+
+  // Frees the decoder's memory; the stream cannot be used afterwards.
+  close() {
+    if (this.wasm && this.handle) {
+      this.wasm.animc_close(this.handle);
+      if (this.framePointer) this.wasm.animc_free(this.framePointer);
+    }
+    this.wasm = null;
+    this.handle = 0;
+  }
+}
