@@ -8,7 +8,7 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { createHash } from 'node:crypto';
 import { execFileSync } from 'node:child_process';
-import { mkdtempSync, readFileSync, readdirSync, rmSync } from 'node:fs';
+import { mkdtempSync, readFileSync, readdirSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
@@ -123,4 +123,26 @@ test('a stream still arriving opens as the frames of its whole groups', async ()
   assert.ok(seen > 0);
   const all = await AnimStream.open(sample, { partial: true });
   assert.equal(all.frameCount, whole.frameCount);
+});
+
+test('npm pack makes a package that imports as animcompress', async () => {
+  const dir = mkdtempSync(join(tmpdir(), 'animc-pack-'));
+  try {
+    const webDir = fileURLToPath(new URL('..', import.meta.url));
+    const tarball = execFileSync('npm', ['pack', '--silent', '--pack-destination', dir], { cwd: webDir, encoding: 'utf8' }).trim();
+    const installed = join(dir, 'node_modules', 'animcompress');
+    execFileSync('mkdir', ['-p', installed]);
+    execFileSync('tar', ['-xzf', join(dir, tarball), '-C', installed, '--strip-components=1']);
+    // A module beside node_modules imports the package by its name, through its "exports".
+    writeFileSync(join(dir, 'probe.mjs'), "export { AnimStream } from 'animcompress';\nexport { WorkerStream } from 'animcompress/worker';\n");
+    const { AnimStream: Packed, WorkerStream } = await import(join(dir, 'probe.mjs'));
+    assert.equal(typeof WorkerStream.open, 'function');
+    const stream = await Packed.open(sample);
+    assert.equal(stream.frame(0).length, 3 * stream.vertexCount);
+    const files = execFileSync('find', ['.', '-type', 'f'], { cwd: installed, encoding: 'utf8' }).split('\n').filter(Boolean).sort();
+    assert.deepEqual(files, ['./README.md', './animcompress.mjs', './decode_worker.mjs', './dist/animc.wasm', './package.json',
+      './worker_stream.mjs']);
+  } finally {
+    rmSync(dir, { recursive: true, force: true });
+  }
 });
