@@ -54,6 +54,7 @@ from bench_gltf import gltf_section  # noqa: E402
 from bench_trajectory import trajectory_section  # noqa: E402
 from bench_threads import threads_section  # noqa: E402
 from bench_encoder_speed import encoder_speed_section  # noqa: E402
+from bench_web import web_section  # noqa: E402
 from bench_common import (log, run_bench, run_measured, loglog_interp, num, pct, mib, table,  # noqa: E402
                           failed_cell, find_sequences, START)
 
@@ -442,6 +443,20 @@ def parse_args():
     return args
 
 
+# The report's sections after its own tables, in their order: each gives its Markdown lines
+# and its failures from (args, sequences).
+SECTIONS = (
+    lambda a, s: trajectory_section(a.animc, s, a.runs),
+    lambda a, s: encoder_speed_section(a.animc, None, s, a.runs),
+    lambda a, s: threads_section(a.animc, s, a.runs),
+    lambda a, s: wavelet_section(a.animc, s, a.runs, os.path.dirname(os.path.abspath(a.out))),
+    lambda a, s: decode_paths_section(a.animc, s, a.runs),
+    lambda a, s: readers_section(a.animc, s, a.runs),
+    lambda a, s: gltf_section(a.animc, shutil.which('gltfpack'), s),
+    lambda a, s: web_section(a.animc, s, a.runs),
+)
+
+
 def main():
     args = parse_args()
     baseline_hash = file_sha256(os.path.join(REPO, 'bench', 'baseline.py'))
@@ -460,21 +475,11 @@ def main():
                           'vertices': vertices, 'frames': frames, 'pc2': pc2, 'ply': ply})
     if not sequences:
         sys.exit(f'no sequence folders (NAME/NAME.pc2.xz + NAME/NAME.ply) in {args.data}')
-    wavelet_lines, wavelet_failures = wavelet_section(args.animc, sequences, args.runs,
-                                                      os.path.dirname(os.path.abspath(args.out)))
-    failures += wavelet_failures
-    paths_lines, paths_failures = decode_paths_section(args.animc, sequences, args.runs)
-    failures += paths_failures
-    readers_lines, readers_failures = readers_section(args.animc, sequences, args.runs)
-    failures += readers_failures
-    gltf_lines, gltf_failures = gltf_section(args.animc, shutil.which('gltfpack'), sequences)
-    failures += gltf_failures
-    trajectory_lines, trajectory_failures = trajectory_section(args.animc, sequences, args.runs)
-    failures += trajectory_failures
-    threads_lines, threads_failures = threads_section(args.animc, sequences, args.runs)
-    failures += threads_failures
-    speed_lines, speed_failures = encoder_speed_section(args.animc, None, sequences, args.runs)
-    failures += speed_failures
+    section_lines = []
+    for section in SECTIONS:
+        lines, section_failures = section(args, sequences)
+        section_lines += lines
+        failures += section_failures
     memory_rows = []
     if not args.quick:
         counts = sorted({min(LONG_FRAMES[0], args.long_frames), args.long_frames})
@@ -486,7 +491,7 @@ def main():
         plugin_lines = plugin_section(args.animc, args.data, args.runs, command_line()[0])
     elapsed = time.monotonic() - START
     write_report(args.out, args, sequences,
-                 trajectory_lines + speed_lines + threads_lines + wavelet_lines + paths_lines + readers_lines + gltf_lines,
+                 section_lines,
                  memory_rows, plugin_lines, elapsed)
     log(f'wrote {args.out} ({failures} failure(s)) in {elapsed / 60:.1f} min')
     sys.exit(1 if failures else 0)

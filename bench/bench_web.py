@@ -4,12 +4,16 @@
 native decoder's on one core. Each shared sequence is encoded with each codec at its default
 settings; the native decoder is timed by `animc bench F.ams --threads 1 --runs R --json` (from
 memory: open and every frame in order), the WebAssembly one by `node
-bench/web_decode_speed.mjs F.ams R` (the same work in Node), in the same run. bench.py puts
+bench/web_decode_speed.mjs F.ams R` (the same work in Node, after a second of it untimed, while
+V8 swaps optimised code in), in the same run; each file's frames
+from both decoders must be the same bytes (SHA-256 against `animc decode --format pc2`), else
+its row says so and the script fails. bench.py puts
 the returned Markdown lines into docs/benchmarks.md; run alone, this script replaces that
 section in place. Needs web/dist/animc.wasm (scripts/build_web.sh).
 
 usage: bench/bench_web.py [--animc PATH] [--data DIR] [--runs R] [--out FILE]"""
 import gzip
+import hashlib
 import json
 import os
 import subprocess
@@ -37,6 +41,13 @@ def size_lines():
         table(['file', 'bytes', 'gzip'], rows)
 
 
+def native_frames_sha256(animc, ams, work):
+    pc2 = os.path.join(work, 'native.pc2')
+    subprocess.run([animc, 'decode', ams, '-o', pc2, '--format', 'pc2', '--replace'], check=True, capture_output=True)
+    with open(pc2, 'rb') as f:
+        return hashlib.sha256(f.read()[32:]).hexdigest()
+
+
 def web_speed(ams, runs):
     p = subprocess.run(['node', os.path.join(REPO, 'bench', 'web_decode_speed.mjs'), ams, str(runs)],
                        capture_output=True, text=True)
@@ -56,9 +67,9 @@ def speed_rows(animc, sequences, runs, work):
                                   '--json'])
             native = encoded and animc_json([animc, 'bench', ams, '--threads', '1', '--runs', str(runs), '--json'])
             web = native and web_speed(ams, runs)
-            if not web:
+            if not web or web['frames_sha256'] != native_frames_sha256(animc, ams, work):
                 failures += 1
-                rows.append([seq['name'], codec, 'failed', '', '', ''])
+                rows.append([seq['name'], codec, 'failed' if not web else 'frames differ', '', '', ''])
                 continue
             rows.append([seq['name'], codec, num(encoded['bpvf'], 3), num(native['decode_memory_mvps'], 1),
                          num(web['decode_mvps'], 1), num(native['decode_memory_mvps'] / web['decode_mvps'], 2)])
@@ -66,13 +77,19 @@ def speed_rows(animc, sequences, runs, work):
 
 
 def web_section(animc, sequences, runs):
+    if not os.path.isfile(os.path.join(REPO, 'web', PACKAGE_FILES[0])):
+        log('no web/dist/animc.wasm: the WebAssembly decoder is not measured (scripts/build_web.sh builds it)')
+        return [HEADING, '', 'Not measured: no `web/dist/animc.wasm` (`bash scripts/build_web.sh` builds it).', ''], 0
     with tempfile.TemporaryDirectory() as work:
         rows, failures = speed_rows(animc, sequences, runs, work)
     node = subprocess.run(['node', '--version'], capture_output=True, text=True).stdout.strip()
     lines = [HEADING, '', *size_lines(), '',
              f'Decoding on one core, median of {runs} runs, in millions of vertices a second (M v/s): the '
-             f'native decoder (`animc bench --threads 1`, from memory) and the WebAssembly one in Node {node}; '
-             'the last column is how many times slower the WebAssembly decoder is.', '',
+             f'native decoder (`animc bench --threads 1`, from memory) and the WebAssembly one in Node {node}, '
+             'after a second of untimed decoding (until then V8 runs code from its baseline compiler: a '
+             'page\'s first second of decoding is slower); '
+             'the last column is how many times slower the WebAssembly decoder is. Every file\'s frames are the '
+             'same bytes from both.', '',
              *table(['sequence', 'codec', 'bpvf', 'native M v/s', 'WASM M v/s', 'native / WASM'], rows)]
     return lines, failures
 

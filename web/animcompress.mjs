@@ -9,8 +9,8 @@
 //   a.frame(k);                                      // Float32Array, x y z per vertex
 //   a.close();
 //
-// Each stream has its own WebAssembly instance (its own memory), so a stream that fails
-// cannot disturb another. Errors are Errors with .code: 'truncated', 'corrupt', 'unsupported',
+// Each open stream has its own WebAssembly instance (its own memory), so a stream that fails
+// cannot disturb another; closed streams leave small instances for the next ones to reuse. Errors are Errors with .code: 'truncated', 'corrupt', 'unsupported',
 // 'limit' (DecoderLimits) or 'invalid' (a bad argument).
 
 const CODE_NAMES = { 2: 'invalid', 3: 'io', 4: 'bad-input', 5: 'truncated', 6: 'corrupt', 7: 'unsupported', 8: 'limit' };
@@ -20,6 +20,11 @@ export const LIMIT_NAMES = ['maxVertices', 'maxTriangles', 'maxFrames', 'maxFram
   'maxOutputBytes', 'maxMultiplyAdds'];
 
 let compiled = null;
+// Instances of closed streams, for the next open(): instantiating costs more than decoding a
+// small file. Only a few, with little memory each (a WebAssembly memory never shrinks).
+const idleInstances = [];
+const MAX_IDLE_INSTANCES = 2;
+const MAX_IDLE_MEMORY = 64 << 20;
 
 function animError(code, message) {
   const error = new Error(message);
@@ -59,6 +64,7 @@ function importsFor(module) {
 }
 
 async function instantiate() {
+  if (idleInstances.length) return idleInstances.pop();
   if (!compiled) setWasmSource();
   const module = await compiled;
   const instance = await WebAssembly.instantiate(module, importsFor(module));
@@ -115,8 +121,10 @@ export class AnimStream {
       return opened;
     });
     if (!handle) {
-      if (options.partial && stream.wasm.animc_error_code() === 0) return null;
-      throw lastError(stream.wasm);
+      const error = options.partial && stream.wasm.animc_error_code() === 0 ? null : lastError(stream.wasm);
+      stream.close();
+      if (error) throw error;
+      return null;
     }
     stream.handle = handle;
     const w = stream.wasm;
@@ -162,10 +170,13 @@ export class AnimStream {
 
   // Frees the decoder's memory; the stream cannot be used afterwards.
   close() {
-    if (this.wasm && this.handle) {
-      this.wasm.animc_close(this.handle);
-      if (this.framePointer) this.wasm.animc_free(this.framePointer);
+    const w = this.wasm;
+    if (w && this.handle) {
+      w.animc_close(this.handle);
+      if (this.framePointer) w.animc_free(this.framePointer);
     }
+    if (w && idleInstances.length < MAX_IDLE_INSTANCES && w.memory.buffer.byteLength <= MAX_IDLE_MEMORY)
+      idleInstances.push(w);
     this.wasm = null;
     this.handle = 0;
   }
