@@ -165,8 +165,21 @@ function concat(chunks, size) {
   return out;
 }
 
+// Forgets the stream shown, before another file is opened.
+function forgetStream() {
+  setPlaying(false);
+  stream?.close();
+  stream = null;
+  geometry.deleteAttribute('position');
+  geometry.deleteAttribute('color');
+  geometry.setIndex(null);
+  Object.assign(state, { frame: 0, frameCount: 0, complete: false, error: '', bytes: 0, shownHash: '' });
+  errorScale = 0;
+}
+
 async function open(source) {
   try {
+    forgetStream();
     message('Loading…');
     if (typeof source === 'string') {
       const response = await fetch(source);
