@@ -159,6 +159,8 @@ struct EncoderAccess {
                                 std::unique_ptr<ByteSink> sink) {
     ANIMC_RETURN_IF_ERROR(settings.validate());
     ANIMC_RETURN_IF_ERROR(checkTopology(topology, settings.entry()));
+    if (!settings.entry().makeEncoder && !settings.entry().makeGroupEncoder)
+      return unsupported("this build of the library only decodes (ANIMC_DECODER_ONLY)");
     if (!sink) return invalidArgument("no sink to write to");
     auto impl = std::make_unique<Encoder::Impl>();
     impl->settings = settings;

@@ -22,6 +22,14 @@
 
 namespace animc {
 
+// An entry's encoder factory, or null in a decoder-only build (ANIMC_DECODER_ONLY: the
+// WebAssembly decoder of web/), which then links no encoder.
+#ifdef ANIMC_DECODER_ONLY
+#define ANIMC_ENCODER(factory) nullptr
+#else
+#define ANIMC_ENCODER(factory) factory
+#endif
+
 struct CodecEntry {
   CodecId id;
   const char* name;  // on the command line and in reports: "affine-octree"

@@ -48,7 +48,8 @@ std::vector<SettingValue> settings(const CodecOptions& options) {
 
 Status checkMesh(const Topology&) { return Status(); }
 
-std::unique_ptr<FrameEncoder> makeEncoder(const CodecOptions& o, const Topology& topology, SimdPath path) {
+[[maybe_unused]] std::unique_ptr<FrameEncoder> makeEncoder(const CodecOptions& o, const Topology& topology,
+                                                           SimdPath path) {
   return makeAffineOctreeEncoder(octree(o), topology, path);
 }
 
@@ -78,7 +79,7 @@ const CodecEntry kAffineOctreeEntry = {
     describe,
     settings,
     checkMesh,
-    makeEncoder,
+    ANIMC_ENCODER(makeEncoder),
     nullptr,
     makeDecoder,
 };

@@ -51,7 +51,8 @@ std::vector<SettingValue> settings(const CodecOptions& options) {
 
 Status checkMesh(const Topology&) { return Status(); }
 
-std::unique_ptr<GroupEncoder> makeEncoder(const CodecOptions& o, const Topology& topology, SimdPath path) {
+[[maybe_unused]] std::unique_ptr<GroupEncoder> makeEncoder(const CodecOptions& o, const Topology& topology,
+                                                           SimdPath path) {
   return makeAutoEncoder(automatic(o), topology, path);
 }
 
@@ -79,7 +80,7 @@ const CodecEntry kAutoEntry = {
     settings,
     checkMesh,
     nullptr,
-    makeEncoder,
+    ANIMC_ENCODER(makeEncoder),
     makeDecoder,
 };
 

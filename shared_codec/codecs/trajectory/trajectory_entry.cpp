@@ -54,7 +54,8 @@ std::vector<SettingValue> settings(const CodecOptions& options) {
 
 Status checkMesh(const Topology&) { return Status(); }
 
-std::unique_ptr<GroupEncoder> makeEncoder(const CodecOptions& o, const Topology& topology, SimdPath path) {
+[[maybe_unused]] std::unique_ptr<GroupEncoder> makeEncoder(const CodecOptions& o, const Topology& topology,
+                                                           SimdPath path) {
   return makeTrajectoryEncoder(trajectory(o), topology, path);
 }
 
@@ -89,7 +90,7 @@ const CodecEntry kTrajectoryEntry = {
     settings,
     checkMesh,
     nullptr,
-    makeEncoder,
+    ANIMC_ENCODER(makeEncoder),
     makeDecoder,
 };
 

@@ -63,7 +63,8 @@ Status checkMesh(const Topology& topology) {
   return Status();
 }
 
-std::unique_ptr<FrameEncoder> makeEncoder(const CodecOptions& o, const Topology& topology, SimdPath path) {
+[[maybe_unused]] std::unique_ptr<FrameEncoder> makeEncoder(const CodecOptions& o, const Topology& topology,
+                                                           SimdPath path) {
   return makeWaveletEncoder(wavelet(o), topology, path);
 }
 
@@ -100,7 +101,7 @@ const CodecEntry kWaveletEntry = {
     describe,
     settings,
     checkMesh,
-    makeEncoder,
+    ANIMC_ENCODER(makeEncoder),
     nullptr,
     makeDecoder,
 };
