@@ -9,6 +9,8 @@
 //       bit 2: seek to frame [1] (modulo the frame count) before decoding
 //       bit 3: decode the frames as one range through Decoder::frames() on two threads
 //              (several groups at once) instead of frame() by frame()
+//       bit 4: the file is the start of a stream still arriving: decode the stream of its
+//              whole groups (wholeGroupsOf(), as the WebAssembly player does)
 //   [2] max bitplanes (modulo 65; 0 = all)   [3] max payload bytes / 4 (0 = all)
 #include <algorithm>
 #include <cstdint>
@@ -89,6 +91,12 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (size < kControlBytes) return 0;
   std::vector<uint8_t> file(data + kControlBytes, data + size);
   if (data[0] & 1) repairCrcs(file);
+  if (data[0] & 16) {
+    std::vector<uint8_t> whole;
+    auto frames = animc::wholeGroupsOf(file.data(), file.size(), animc::memorySink(&whole));
+    if (!frames.ok() || frames.value() == 0) return 0;
+    file = std::move(whole);
+  }
   decode(file, data);
   return 0;
 }
