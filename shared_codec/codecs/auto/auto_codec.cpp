@@ -123,8 +123,8 @@ class AutoEncoder final : public GroupEncoder {
   std::vector<std::unique_ptr<GroupEncoder>> encoders_;
   std::vector<bool> frame_by_frame_;
   std::vector<uint8_t> index_;                               // in the file's candidate list
-  std::vector<std::vector<std::vector<uint8_t>>> payloads_;
-  std::vector<std::vector<uint8_t>> sample_;  // payloads of a run of frames  // of each candidate, for the last group
+  std::vector<std::vector<std::vector<uint8_t>>> payloads_;  // of each candidate, for the last group
+  std::vector<std::vector<uint8_t>> sample_;                 // payloads of a run of frames
   size_t best_ = 0;                                          // the candidate kept for the last group
 };
 
