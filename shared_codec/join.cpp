@@ -83,14 +83,24 @@ Result<uint64_t> wholeGroupsOf(const void* data, size_t size, std::unique_ptr<By
     offset += kSectionOverhead + frame.length;
   }
   if (group_offsets.empty()) return uint64_t(0);
+  // First_Frame and Frame_Count are outside the CRC; the index protects them in a whole file,
+  // so here they must add up as the index would have them.
+  std::vector<uint32_t> counts;
+  uint64_t frames = 0;
+  for (uint64_t begin : group_offsets) {
+    const uint64_t first = ByteReader(bytes + begin + 12, 8).u64("First_Frame").value();
+    const uint32_t count = ByteReader(bytes + begin + 20, 4).u32("Frame_Count").value();
+    if (first != frames || count == 0)
+      return corrupt("GRUP section at offset " + std::to_string(begin) + ": frames " + std::to_string(first) + " + " +
+                     std::to_string(count) + " do not follow the " + std::to_string(frames) + " before");
+    frames += count;
+    counts.push_back(count);
+  }
   ContainerWriter writer;
   ANIMC_RETURN_IF_ERROR(writer.openCopy(std::move(sink), std::vector<uint8_t>(bytes, bytes + groups_start)));
-  uint64_t frames = 0;
   for (size_t g = 0; g < group_offsets.size(); ++g) {
     const uint64_t begin = group_offsets[g], end = g + 1 < group_offsets.size() ? group_offsets[g + 1] : offset;
-    const uint32_t count = ByteReader(bytes + begin + 20, 4).u32("Frame_Count").value();
-    frames += count;
-    ANIMC_RETURN_IF_ERROR(writer.addGroupSection(std::vector<uint8_t>(bytes + begin, bytes + end), count));
+    ANIMC_RETURN_IF_ERROR(writer.addGroupSection(std::vector<uint8_t>(bytes + begin, bytes + end), counts[g]));
   }
   ANIMC_RETURN_IF_ERROR(writer.finish());
   return frames;

@@ -50,14 +50,18 @@ export function setWasmSource(source) {
   compiled = wasmBytes(source).then((bytes) => WebAssembly.compile(bytes));
 }
 
+// How the decoder ends when it cannot go on: this build has no C++ exceptions, so where the
+// library would throw (std::bad_alloc: out of memory) it calls exit(), which arrives here.
+class DecoderAbort extends Error {}
+
 // The decoder imports nothing it needs from its host: the standalone build asks for a few
-// WASI calls (exit, clocks, a console), answered here as unavailable; an exit is a trap.
+// WASI calls (exit, the environment), answered here as unavailable, and exit as an abort.
 function importsFor(module) {
   const imports = {};
   for (const { module: name, name: field } of WebAssembly.Module.imports(module)) {
     imports[name] ??= {};
     imports[name][field] = field === 'proc_exit'
-      ? (status) => { throw animError('corrupt', `animcompress: the decoder exited (${status})`); }
+      ? (status) => { throw new DecoderAbort(`exit(${status})`); }
       : () => 52;  // ENOSYS
   }
   return imports;
@@ -88,20 +92,37 @@ function readString(wasm, pointer) {
 
 function lastError(wasm) {
   const code = wasm.animc_error_code();
-  return animError(CODE_NAMES[code] ?? 'corrupt', `animcompress: ${readString(wasm, wasm.animc_error_message())}`);
+  return animError(CODE_NAMES[code] ?? 'corrupt', `animcompress: ${readString(wasm, wasm.animc_error_message() >>> 0)}`);
 }
 
-// Runs a call into the decoder: a trap (memory exhausted: the library aborts where it would
-// throw std::bad_alloc) becomes a 'limit' Error and leaves the instance unusable.
+// Runs a call into the decoder: an abort or a trap becomes a 'limit' Error (running out of
+// memory is what ends the decoder early) and leaves the instance unusable, never reused.
 function guarded(stream, call) {
   if (!stream.wasm) throw animError('invalid', 'animcompress: the stream is closed');
   try {
     return call(stream.wasm);
   } catch (error) {
-    if (!(error instanceof WebAssembly.RuntimeError)) throw error;
+    if (!(error instanceof WebAssembly.RuntimeError || error instanceof DecoderAbort)) throw error;
     stream.wasm = null;
-    throw animError('limit', `animcompress: the decoder ran out of WebAssembly memory (${error.message})`);
+    throw animError('limit', `animcompress: the decoder stopped, out of WebAssembly memory (${error.message})`);
   }
+}
+
+// Memory for `bytes` in the decoder, or a 'limit' Error. Addresses past 2 GiB come back from
+// WebAssembly as negative numbers: >>> 0 makes them unsigned.
+function allocate(wasm, bytes) {
+  const pointer = wasm.animc_alloc(Math.max(1, bytes)) >>> 0;
+  if (!pointer) throw animError('limit', `animcompress: no WebAssembly memory for ${bytes} bytes`);
+  return pointer;
+}
+
+function limitValues(options) {
+  return LIMIT_NAMES.map((name) => {
+    const value = options[name] ?? 0;
+    if (typeof value !== 'number' || !(value >= 0))
+      throw animError('invalid', `animcompress: ${name} must be a number ≥ 0 (0: the default; Infinity: none)`);
+    return value;
+  });
 }
 
 export class AnimStream {
@@ -110,13 +131,18 @@ export class AnimStream {
   // then the frames of its whole groups, and the promise gives null while there is none yet.
   static async open(bytes, options = {}) {
     const data = asBytes(bytes);
+    const limitsGiven = limitValues(options);
     const stream = new AnimStream(await instantiate());
     const handle = guarded(stream, (wasm) => {
-      const pointer = wasm.animc_alloc(Math.max(1, data.length));
+      const limits = allocate(wasm, 8 * LIMIT_NAMES.length);
+      const pointer = wasm.animc_alloc(Math.max(1, data.length)) >>> 0;
+      if (!pointer) {
+        wasm.animc_free(limits);
+        throw animError('limit', `animcompress: no WebAssembly memory for a ${data.length}-byte stream`);
+      }
       new Uint8Array(wasm.memory.buffer, pointer, data.length).set(data);
-      const limits = wasm.animc_alloc(8 * LIMIT_NAMES.length);
-      new Float64Array(wasm.memory.buffer, limits, LIMIT_NAMES.length).set(LIMIT_NAMES.map((n) => options[n] ?? 0));
-      const opened = wasm.animc_open(pointer, data.length, options.partial ? 1 : 0, limits);
+      new Float64Array(wasm.memory.buffer, limits, LIMIT_NAMES.length).set(limitsGiven);
+      const opened = wasm.animc_open(pointer, data.length, options.partial ? 1 : 0, limits) >>> 0;
       wasm.animc_free(limits);
       return opened;
     });
@@ -134,7 +160,7 @@ export class AnimStream {
     stream.frameRate = w.animc_frame_rate(handle);
     stream.groupCount = w.animc_group_count(handle);
     stream.byteLength = w.animc_stream_bytes(handle);
-    stream.codec = readString(w, w.animc_codec(handle));
+    stream.codec = readString(w, w.animc_codec(handle) >>> 0);
     return stream;
   }
 
@@ -147,7 +173,7 @@ export class AnimStream {
   // The vertex indices, 3 per triangle.
   triangles() {
     return guarded(this, (w) =>
-      new Uint32Array(w.memory.buffer, w.animc_triangles(this.handle), 3 * this.triangleCount).slice());
+      new Uint32Array(w.memory.buffer, w.animc_triangles(this.handle) >>> 0, 3 * this.triangleCount).slice());
   }
 
   // Frame k (0 ≤ k < frameCount), in any order: x, y, z per vertex. Into `out` (a Float32Array
@@ -159,7 +185,7 @@ export class AnimStream {
     const floats = 3 * this.vertexCount;
     if (out && out.length !== floats) throw animError('invalid', `animcompress: out must hold ${floats} floats`);
     return guarded(this, (w) => {
-      if (!this.framePointer) this.framePointer = w.animc_alloc(4 * Math.max(1, floats));
+      if (!this.framePointer) this.framePointer = allocate(w, 4 * floats);
       if (w.animc_frame(this.handle, k, this.framePointer) !== 0) throw lastError(w);
       const decoded = new Float32Array(w.memory.buffer, this.framePointer, floats);
       if (!out) return decoded.slice();

@@ -1,11 +1,14 @@
 // SPDX-License-Identifier: Apache-2.0
 // The Web Worker behind WorkerStream (worker_stream.mjs): one AnimStream, decoded off the
 // page's thread. Messages: {id, op: 'open', bytes, options} → the stream's figures and
-// triangles (null: no whole group yet); {id, op: 'frame', k} → the frame, transferred;
+// triangles (null: no whole group yet, or a later open already answered); {id, op: 'frame', k} → the frame, transferred;
 // {id, op: 'close'}. A failure answers {id, error: {message, code}}.
 import { AnimStream } from './animcompress.mjs';
 
 let stream = null;
+// Opens may finish out of order (the first one compiles the decoder): one started before the
+// stream shown was opened is dropped, so an older, shorter start of a file never replaces it.
+let opensStarted = 0, openShown = 0;
 
 function figures(s) {
   const { vertexCount, triangleCount, frameCount, frameRate, groupCount, byteLength, codec } = s;
@@ -14,8 +17,14 @@ function figures(s) {
 
 async function answer({ op, bytes, options, k }) {
   if (op === 'open') {
+    const ticket = ++opensStarted;
     const opened = await AnimStream.open(bytes, options);
     if (!opened) return [null];
+    if (ticket < openShown) {
+      opened.close();
+      return [null];
+    }
+    openShown = ticket;
     stream?.close();
     stream = opened;
     const f = figures(stream);

@@ -7,18 +7,28 @@
 //   const xyz = await s.frame(k);                    // as more of a stream arrives
 const worker_url = new URL('./decode_worker.mjs', import.meta.url);
 
+function workerError(message, code) {
+  const error = new Error(message);
+  error.code = code;
+  return error;
+}
+
 export class WorkerStream {
   constructor(worker) {
     this.worker = worker;
     this.pending = new Map();
     this.nextId = 0;
     worker.onmessage = ({ data }) => {
-      const { resolve, reject } = this.pending.get(data.id);
+      const call = this.pending.get(data.id);
+      if (!call) return;
       this.pending.delete(data.id);
-      if (!data.error) return resolve(data.result);
-      const error = new Error(data.error.message);
-      error.code = data.error.code;
-      reject(error);
+      if (!data.error) return call.resolve(data.result);
+      call.reject(workerError(data.error.message, data.error.code));
+    };
+    // The worker could not load (its script or the .wasm) or failed outside a call.
+    worker.onerror = (event) => {
+      event.preventDefault?.();
+      this.fail(workerError(`animcompress: the decoding worker failed: ${event.message ?? 'no message'}`, 'io'));
     };
   }
 
@@ -26,11 +36,13 @@ export class WorkerStream {
   static async open(bytes, options = {}) {
     const stream = new WorkerStream(new Worker(worker_url, { type: 'module' }));
     try {
-      return (await stream.reopen(bytes, options)) ? stream : null;
+      if (await stream.reopen(bytes, options)) return stream;
     } catch (error) {
       stream.close();
       throw error;
     }
+    stream.close();
+    return null;
   }
 
   // Replaces the stream with that of `bytes` (more of a stream still arriving); false, with
@@ -53,12 +65,20 @@ export class WorkerStream {
   }
 
   close() {
-    this.worker.terminate();
-    for (const { reject } of this.pending.values()) reject(new Error('animcompress: the stream is closed'));
+    this.fail(workerError('animcompress: the stream is closed', 'invalid'));
+  }
+
+  // Ends the worker: every call waiting, and any made later, fails with `error`.
+  fail(error) {
+    this.worker?.terminate();
+    this.worker = null;
+    this.failure = error;
+    for (const { reject } of this.pending.values()) reject(error);
     this.pending.clear();
   }
 
   call(message) {
+    if (!this.worker) return Promise.reject(this.failure);
     const id = this.nextId++;
     return new Promise((resolve, reject) => {
       this.pending.set(id, { resolve, reject });

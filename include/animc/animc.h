@@ -331,8 +331,9 @@ ANIMC_API Result<uint64_t> joinStreams(const std::vector<StreamPart>& parts, std
 // connectivity and each GRUP section that lies wholly in those bytes, then a new INDX and END.
 // A player opens it with Decoder::openMemory() to show those frames while the rest arrives; of
 // a whole stream it writes the same bytes. Returns the frames of those groups: 0, with nothing
-// written, while the bytes do not hold one whole group yet. Only the sections' frame is read
-// here: the decoder checks the rest (CRCs, the index) when it opens and decodes the result.
+// written, while the bytes do not hold one whole group yet. Groups whose frame numbers do not
+// follow on are Corrupt; the rest (CRCs, payloads) is checked by the decoder that opens and
+// decodes the result.
 ANIMC_API Result<uint64_t> wholeGroupsOf(const void* data, size_t size, std::unique_ptr<ByteSink> sink);
 
 // ---- Metrics ------------------------------------------------------------------------------

@@ -155,6 +155,20 @@ TEST(WholeGroupsOf, EveryPrefixOpensAsItsWholeGroups) {
   bad[1] = 'X';
   std::vector<uint8_t> none;
   EXPECT_EQ(wholeGroupsOf(bad.data(), bad.size(), memorySink(&none)).status().code(), StatusCode::kCorrupt);
+  // First_Frame and Frame_Count, outside the group CRC, must follow on (the second group's here).
+  auto sectionEnd = [&](size_t offset) {
+    uint64_t length = 0;
+    for (int k = 0; k < 8; ++k) length |= uint64_t(whole[offset + 4 + k]) << (8 * k);
+    return offset + 16 + length;
+  };
+  const size_t second_group = sectionEnd(sectionEnd(sectionEnd(8)));
+  for (size_t field : {second_group + 12, second_group + 20}) {
+    std::vector<uint8_t> forged = whole, out;
+    forged[field] ^= 1;
+    auto frames = wholeGroupsOf(forged.data(), forged.size(), memorySink(&out));
+    EXPECT_EQ(frames.status().code(), StatusCode::kCorrupt) << field;
+    EXPECT_TRUE(out.empty());
+  }
 }
 
 }  // namespace

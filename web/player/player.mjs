@@ -9,13 +9,15 @@ import { WorkerStream } from '../worker_stream.mjs';
 import { errorColours, largestError, readPc2 } from './error_colours.mjs';
 
 const $ = (id) => document.getElementById(id);
-const state = { frame: 0, frameCount: 0, complete: false, error: '', bytes: 0, shownHash: '' };
+const state = { frame: 0, frameCount: 0, complete: false, error: '', bytes: 0 };
 let stream = null;
 let original = null;   // { vertexCount, frameCount, frames: Float32Array }
 let errorScale = 0;
 let playing = false;
 let clockStart = 0, frameAtStart = 0;
-let showing = Promise.resolve();
+let showing = null, wantedFrame = null;  // showFrame()'s decoding, and the frame it shows next
+let shownPositions = null;
+let loads = 0;  // files opened: a load that is not the latest stops
 
 const renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
 renderer.setPixelRatio(window.devicePixelRatio);
@@ -82,7 +84,9 @@ async function sha256(floats) {
 
 // Shows frame k: its positions, its normals and, with an original, its error colours.
 async function show(k) {
-  const positions = await stream.frame(k);
+  const from = stream;
+  const positions = await from.frame(k);
+  if (from !== stream) return;  // another file was opened meanwhile
   const first = !geometry.getAttribute('position');
   if (first) frameCamera(positions);
   else geometry.setAttribute('position', new THREE.BufferAttribute(positions, 3));
@@ -91,13 +95,29 @@ async function show(k) {
   material.needsUpdate = true;
   geometry.computeVertexNormals();
   state.frame = k;
-  state.shownHash = await sha256(positions);
+  shownPositions = positions;
   $('scrub').value = String(k);
   readout();
 }
 
+// Asks for frame k. One frame decodes at a time and only the latest asked for is next, so a
+// slow decoder drops frames instead of queueing them; the promise settles when the frame
+// asked for last is shown.
 function showFrame(k) {
-  showing = showing.then(() => show(k)).catch((e) => message(e.message, true));
+  wantedFrame = k;
+  showing ??= (async () => {
+    try {
+      while (wantedFrame !== null) {
+        const next = wantedFrame;
+        wantedFrame = null;
+        await show(next);
+      }
+    } catch (error) {
+      if (stream) message(error.message, true);
+    } finally {
+      showing = null;
+    }
+  })();
   return showing;
 }
 
@@ -106,7 +126,7 @@ function tick() {
     // performance.now(), not the animation frame's time stamp, which can precede clockStart.
     const k = frameAtStart + Math.floor(((performance.now() - clockStart) / 1000) * stream.frameRate);
     const wanted = $('loop').checked || !state.complete ? k % state.frameCount : Math.min(k, state.frameCount - 1);
-    if (wanted !== state.frame) showFrame(wanted);
+    if (wanted !== state.frame && wanted !== wantedFrame) showFrame(wanted);
     if (!$('loop').checked && state.complete && k >= state.frameCount - 1) setPlaying(false);
   }
   controls.update();
@@ -123,16 +143,19 @@ function setPlaying(on) {
 }
 
 // Takes the stream of `bytes`: the whole groups so far while `partial`, else the whole file.
-async function take(bytes, partial) {
+// `current()` is false once another file is being opened: then this one's work is dropped.
+async function take(bytes, partial, current) {
   if (!stream) {
-    stream = await WorkerStream.open(bytes, { partial });
-    if (!stream) return;
+    const opened = await WorkerStream.open(bytes, { partial });
+    if (!opened || !current()) return opened?.close();
+    stream = opened;
     geometry.setIndex(new THREE.BufferAttribute(stream.triangles(), 1));
     message('');
     $('play').disabled = $('scrub').disabled = false;
+    state.frameCount = stream.frameCount;
     await showFrame(0);
     setPlaying(true);
-  } else if (!(await stream.reopen(bytes, { partial }))) {
+  } else if (!(await stream.reopen(bytes, { partial })) || !current()) {
     return;
   }
   state.frameCount = stream.frameCount;
@@ -142,20 +165,25 @@ async function take(bytes, partial) {
   readout();
 }
 
-// Reads a response as it arrives, opening the whole groups each new chunk completes.
-async function loadResponse(response) {
+// Reads a response as it arrives, opening the whole groups so far each time a quarter more
+// has come (each opening copies what has arrived).
+async function loadResponse(response, current) {
   const total = Number(response.headers.get('content-length')) || 0;
   const chunks = [];
-  let received = 0;
+  let received = 0, opened = 0;
   for (const reader = response.body.getReader(); ;) {
     const { done, value } = await reader.read();
+    if (!current()) return reader.cancel();
     if (done) break;
     chunks.push(value);
     received += value.length;
-    state.bytes = total || received;
-    if (received < total) await take(concat(chunks, received), true);
+    state.bytes = Math.max(total, received);
+    if (received >= 1.25 * opened + 16384 && (!total || received < total)) {
+      opened = received;
+      await take(concat(chunks, received), true, current);
+    }
   }
-  await take(concat(chunks, received), false);
+  await take(concat(chunks, received), false, current);
 }
 
 function concat(chunks, size) {
@@ -170,40 +198,51 @@ function forgetStream() {
   setPlaying(false);
   stream?.close();
   stream = null;
+  shownPositions = null;
   geometry.deleteAttribute('position');
   geometry.deleteAttribute('color');
   geometry.setIndex(null);
-  Object.assign(state, { frame: 0, frameCount: 0, complete: false, error: '', bytes: 0, shownHash: '' });
+  Object.assign(state, { frame: 0, frameCount: 0, complete: false, error: '', bytes: 0 });
   errorScale = 0;
 }
 
 async function open(source) {
+  const load = ++loads;
+  const current = () => load === loads;
   try {
     forgetStream();
     message('Loading…');
     if (typeof source === 'string') {
       const response = await fetch(source);
       if (!response.ok) throw new Error(`${source}: HTTP ${response.status}`);
-      await loadResponse(response);
+      await loadResponse(response, current);
     } else {
       state.bytes = source.size;
-      await take(new Uint8Array(await source.arrayBuffer()), false);
+      await take(new Uint8Array(await source.arrayBuffer()), false, current);
     }
-    if (original) await measureErrors();
+    if (original && current()) await measureErrors();
   } catch (error) {
-    message(`Cannot play this file: ${error.message}`, true);
+    if (current()) message(`Cannot play this file: ${error.message}`, true);
   }
 }
 
 async function openOriginal(bytes) {
-  original = readPc2(bytes);
-  if (stream && state.complete) await measureErrors();
+  try {
+    original = readPc2(bytes);
+    if (stream && state.complete) await measureErrors();
+  } catch (error) {
+    original = null;
+    message(`Cannot use the original: ${error.message}`, true);
+  }
 }
 
 async function measureErrors() {
-  if (original.vertexCount !== stream.vertexCount || original.frameCount !== stream.frameCount)
-    return message(`The original has ${original.vertexCount} vertices × ${original.frameCount} frames; ` +
-      `the stream ${stream.vertexCount} × ${stream.frameCount}`, true);
+  if (original.vertexCount !== stream.vertexCount || original.frameCount !== stream.frameCount) {
+    message(`The original has ${original.vertexCount} vertices × ${original.frameCount} frames; ` +
+      `the stream ${stream.vertexCount} × ${stream.frameCount}: no error colours`, true);
+    original = null;
+    return;
+  }
   errorScale = await largestError((k) => stream.frame(k), original);
   await showFrame(state.frame);
 }
@@ -228,6 +267,8 @@ window.addEventListener('drop', async (e) => {
 window.animcPlayer = {
   state,
   showFrame: (k) => { setPlaying(false); return showFrame(k); },
+  // SHA-256 of the positions shown (crypto.subtle: pages served from localhost or https).
+  shownHash: () => sha256(shownPositions),
   pause: () => setPlaying(false),
   errorScale: () => errorScale,
   async hashAllFrames() {
@@ -251,10 +292,16 @@ window.animcPlayer = {
   },
 };
 
-const params = new URLSearchParams(location.search);
-if (params.get('original')) {
-  fetch(params.get('original')).then((r) => r.arrayBuffer()).then((b) => openOriginal(new Uint8Array(b)))
-    .then(() => params.get('src') && open(params.get('src')));
-} else if (params.get('src')) {
-  open(params.get('src'));
+async function openFromUrl(params) {
+  if (params.get('original')) {
+    try {
+      const response = await fetch(params.get('original'));
+      if (!response.ok) throw new Error(`${params.get('original')}: HTTP ${response.status}`);
+      await openOriginal(new Uint8Array(await response.arrayBuffer()));
+    } catch (error) {
+      message(`Cannot use the original: ${error.message}`, true);
+    }
+  }
+  if (params.get('src')) await open(params.get('src'));
 }
+openFromUrl(new URLSearchParams(location.search));

@@ -102,6 +102,10 @@ function withVertexCount(bytes, count) {
 test('the limits refuse what a file announces beyond them, before any work', async () => {
   await assert.rejects(AnimStream.open(withVertexCount(sample, 0x7fffffff)), { code: 'limit' });
   await assert.rejects(AnimStream.open(sample, { maxVertices: 10 }), { code: 'limit' });
+  await assert.rejects(AnimStream.open(sample, { maxVertices: NaN }), { code: 'invalid' });
+  const unlimited = await AnimStream.open(sample, { maxVertices: Infinity, maxVertexFrames: 2 ** 70 });
+  assert.equal(unlimited.frame(0).length, 3 * unlimited.vertexCount, 'Infinity: no limit');
+  unlimited.close();
   const trajectory = await AnimStream.open(readFileSync(join(goldenDir, 'trajectory.v1.target_kg.1_2.ams')),
     { maxMultiplyAdds: 1000 });
   assert.throws(() => trajectory.frame(0), { code: 'limit' });

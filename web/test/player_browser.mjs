@@ -87,9 +87,15 @@ async function main() {
     args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--window-size=960,640'],
   });
   try {
-    const page = await browser.newPage();
+    // Any error a page does not handle fails the test.
+    const pageErrors = [];
+    const newPage = async () => {
+      const p = await browser.newPage();
+      p.on('pageerror', (e) => pageErrors.push(e.message));
+      return p;
+    };
+    const page = await newPage();
     await page.setViewport({ width: 960, height: 640 });
-    page.on('pageerror', (e) => console.error(`page error: ${e.message}`));
 
     // The frames decoded in the page are the native decoder's.
     await page.goto(`${base}?src=/files/sydney.ams&original=/files/original.pc2`);
@@ -100,9 +106,9 @@ async function main() {
     // Scrubbing to frame k shows frame k; the canvas shows the mesh.
     for (const k of [150, 7, 197]) {
       await page.evaluate((k) => window.animcPlayer.showFrame(k), k);
-      const shown = await page.evaluate(() => window.animcPlayer.state);
-      assert.equal(shown.frame, k);
-      assert.equal(shown.shownHash, sha256(frames.subarray(k * frameBytes, (k + 1) * frameBytes)), `frame ${k}`);
+      assert.equal(await page.evaluate(() => window.animcPlayer.state.frame), k);
+      assert.equal(await page.evaluate(() => window.animcPlayer.shownHash()),
+        sha256(frames.subarray(k * frameBytes, (k + 1) * frameBytes)), `frame ${k}`);
     }
     const pixels = await page.evaluate(() => window.animcPlayer.meshPixels());
     assert.ok(pixels > 2000, `only ${pixels} pixels of mesh on the canvas`);
@@ -114,7 +120,7 @@ async function main() {
     }
 
     // The first group plays while the rest of the file is held back.
-    const held = await browser.newPage();
+    const held = await newPage();
     await held.goto(`${base}?src=/held/sydney.ams`);
     await waitFor(held, () => window.animcPlayer?.state.frameCount > 0, 'played before the whole file arrived');
     const early = await held.evaluate(() => window.animcPlayer.state);
@@ -125,12 +131,13 @@ async function main() {
     console.log(`ok: ${early.frameCount} frames played before the second half of the file arrived`);
 
     // A corrupt file shows a message.
-    const bad = await browser.newPage();
+    const bad = await newPage();
     await bad.goto(`${base}?src=/files/corrupt.ams`);
     await waitFor(bad, () => window.animcPlayer?.state.error, 'showed an error');
     const text = await bad.evaluate(() => document.getElementById('message').textContent);
     assert.match(text, /corrupt|CRC/i);
     console.log(`ok: a corrupt file shows "${text}"`);
+    assert.deepEqual(pageErrors, [], 'errors the pages did not handle');
   } finally {
     await browser.close();
     server.close();
