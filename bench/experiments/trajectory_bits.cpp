@@ -1,0 +1,90 @@
+// SPDX-License-Identifier: Apache-2.0
+// Design measurement for the trajectory codec's next version (issue 40): where the bytes of a
+// trajectory-coded .ams go. Each group payload is read back (readTrajectoryGroup) and written
+// again with parts left out, the codec's own writer measuring them:
+//   head          Frame_Type, counts and the steps (13 + 4 K bytes);
+//   mean          the mean trajectory: the group written with no component, less the head;
+//   basis         the K basis vectors: the group with every coefficient 0, less the above;
+//   coefficients  the rest of the payload (its zeros' few bytes are counted with the basis).
+// Prints one JSON object a file: those bytes summed over the groups, the components of each
+// group, and the file's other bytes (header, connectivity, the one-byte frame records).
+// trajectory_bits.py builds it (one g++ line against build/'s libanimc.a) and runs it.
+//   usage: trajectory_bits FILE.ams...
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "api.h"
+#include "codecs/trajectory/group_coding.h"
+#include "container/container_reader.h"
+
+namespace {
+
+struct Parts {
+  double head = 0, mean = 0, basis = 0, coefficients = 0, group_payloads = 0;
+  std::vector<uint32_t> components;
+};
+
+size_t written(const animc::TrajectoryGroup& g, const animc::CodingOrder& order) {
+  std::vector<uint8_t> out;
+  animc::writeTrajectoryGroup(g, order, out);
+  return out.size() + 1;  // and the Frame_Type byte read before the group
+}
+
+void addGroup(const std::vector<uint8_t>& payload, const animc::CodingOrder& order, Parts& parts) {
+  animc::TrajectoryGroup g;
+  animc::ByteReader reader(payload.data() + 1, payload.size() - 1);
+  if (!animc::readTrajectoryGroup(reader, order, UINT64_MAX, g).ok()) return;
+  animc::TrajectoryGroup no_components = g;
+  no_components.components = 0;
+  no_components.basis.clear();
+  no_components.basis_step.clear();
+  no_components.coefficients.clear();
+  animc::TrajectoryGroup zero_coefficients = g;
+  std::fill(zero_coefficients.coefficients.begin(), zero_coefficients.coefficients.end(), 0);
+  const double head = 13 + 4.0 * g.components;
+  const double mean_end = double(written(no_components, order)), basis_end = double(written(zero_coefficients, order));
+  parts.head += head;
+  parts.mean += mean_end - 13;
+  parts.basis += basis_end - mean_end - 4.0 * g.components;
+  parts.coefficients += double(payload.size()) - basis_end;
+  parts.group_payloads += double(payload.size());
+  parts.components.push_back(g.components);
+}
+
+int measure(const std::string& path) {
+  auto source = animc::AmsSource::open(path);
+  auto reader = animc::ContainerReader::open(path);
+  if (!source.ok() || !reader.ok()) {
+    std::fprintf(stderr, "trajectory_bits: %s: cannot open\n", path.c_str());
+    return 1;
+  }
+  if (source.value()->settings().codec() != animc::CodecId::kTrajectory) {
+    std::fprintf(stderr, "trajectory_bits: %s: not a trajectory-coded file\n", path.c_str());
+    return 1;
+  }
+  const animc::CodingOrder order(source.value()->topology());
+  Parts parts;
+  animc::ContainerReader& r = *reader.value();
+  std::vector<uint8_t> payload;
+  for (size_t g = 0; g < r.groupCount(); ++g) {
+    if (!r.beginGroup(g).ok() || !r.nextFrame(payload).ok()) return 1;
+    addGroup(payload, order, parts);
+  }
+  std::printf("{\"file\": \"%s\", \"vertices\": %u, \"frames\": %lld, \"file_bytes\": %llu, \"head\": %.0f, "
+              "\"mean\": %.0f, \"basis\": %.0f, \"coefficients\": %.0f, \"components\": [",
+              path.c_str(), unsigned(order.vertex.size()), (long long)source.value()->frameCount(),
+              (unsigned long long)source.value()->info().file_bytes, parts.head, parts.mean, parts.basis,
+              parts.coefficients);
+  for (size_t i = 0; i < parts.components.size(); ++i) std::printf("%s%u", i ? ", " : "", parts.components[i]);
+  std::printf("]}\n");
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  int failures = 0;
+  for (int i = 1; i < argc; ++i) failures += measure(argv[i]);
+  return failures ? 1 : 0;
+}

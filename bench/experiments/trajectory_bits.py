@@ -1,0 +1,68 @@
+#!/usr/bin/python3
+# SPDX-License-Identifier: Apache-2.0
+"""Design measurement for the trajectory codec's next version (issue 40): where the bytes of
+today's trajectory files go at the KG errors the issue names. Every shared sequence is encoded
+with `animc encode --codec trajectory --target-kg X --json`, then trajectory_bits (built here
+from trajectory_bits.cpp against build/'s libanimc.a) splits each file: the connectivity and
+the rest outside the groups, each group's head and steps, mean trajectory, basis vectors and
+coefficients. Prints a Markdown table (bits per vertex per frame of each part, and its share).
+
+  usage: bench/experiments/trajectory_bits.py [--animc PATH] [--data DIR] [--kg 0.1,0.3,0.45,1]"""
+import argparse
+import json
+import os
+import subprocess
+import sys
+import tempfile
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+REPO = os.path.dirname(os.path.dirname(HERE))
+sys.path.insert(0, os.path.dirname(HERE))
+from bench_common import find_sequences, log, table  # noqa: E402
+
+
+def build_tool(work):
+    tool = os.path.join(work, 'trajectory_bits')
+    build = os.path.join(REPO, 'build')
+    subprocess.run(['g++', '-O2', '-std=c++17', '-I', os.path.join(REPO, 'shared_codec'), '-I',
+                    os.path.join(REPO, 'include'), '-I', os.path.join(build, 'generated'), '-I', '/usr/include/eigen3',
+                    os.path.join(HERE, 'trajectory_bits.cpp'), os.path.join(build, 'shared_codec', 'libanimc.a'),
+                    '-llzma', '-lpthread', '-o', tool], check=True)
+    return tool
+
+
+def row(name, kg, split, encoded):
+    vf = split['vertices'] * split['frames'] / 8  # bytes to bits per vertex per frame
+    groups = split['head'] + split['mean'] + split['basis'] + split['coefficients']
+    parts = [split['file_bytes'] - groups, split['head'] + split['mean'], split['basis'], split['coefficients']]
+    total = split['file_bytes']
+    cells = [f'{p / vf:.3f} ({100 * p / total:.0f} %)' for p in parts]
+    k = split['components']
+    components = str(k[0]) if len(set(k)) == 1 else f'{min(k)}–{max(k)}'
+    return [name, f'{kg:g}', f'{encoded["kg_error"]:.3f}', f'{total / vf:.3f}'] + cells + [components]
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__.split('\n')[0])
+    p.add_argument('--animc', default=os.path.join(REPO, 'build', 'animc', 'animc'))
+    p.add_argument('--data', default=os.path.normpath(os.path.join(REPO, '..', 'shared', 'data')))
+    p.add_argument('--kg', default='0.1,0.3,0.45,1')
+    args = p.parse_args()
+    rows = []
+    with tempfile.TemporaryDirectory() as work:
+        tool = build_tool(work)
+        for name, pc2, ply in find_sequences(args.data):
+            for kg in (float(x) for x in args.kg.split(',')):
+                log(f'{name}: KG {kg:g} %')
+                ams = os.path.join(work, f'{name}.ams')
+                encoded = json.loads(subprocess.run(
+                    [args.animc, 'encode', pc2, '--mesh', ply, '-o', ams, '--codec', 'trajectory', '--target-kg',
+                     str(kg), '--json'], check=True, capture_output=True, text=True).stdout)
+                split = json.loads(subprocess.run([tool, ams], check=True, capture_output=True, text=True).stdout)
+                rows.append(row(name, kg, split, encoded))
+    print('\n'.join(table(['sequence', 'target KG %', 'KG %', 'bpvf', 'outside groups', 'head + mean', 'basis',
+                           'coefficients', 'components'], rows)))
+
+
+if __name__ == '__main__':
+    main()
