@@ -27,7 +27,7 @@ Against it: our codecs at the same KG, from `animc encode --json` (affine-octree
 log-log interpolated; wavelet --target-kg).
 
   usage: bench/experiments/trajectory_coding.py ANIMC DATA_DIR [--groups 32,64] [--kinds pca,dct]
-         [--basis-factor F] [--no-prediction]
+         [--basis-factor F] [--no-prediction] [--cotangent] [--no-ours]
 """
 import argparse
 import json
@@ -58,8 +58,26 @@ def dct_matrix(n):
     return m
 
 
-def coded_order_predictor(vertex_count, faces):
-    """The breadth-first coding order and, per vertex, its neighbours coded before it."""
+def cotangent_weights(positions, faces):
+    """{(v, w): weight} of each edge of the mesh at `positions`: half the sum of the cotangents
+    of the angles opposite it (the cotangent Laplacian's), at least a thousandth of the mean, so
+    that obtuse triangles do not make weights negative or zero."""
+    weights = {}
+    for tri in faces:
+        for i in range(3):
+            a, b, c = tri[i], tri[(i + 1) % 3], tri[(i + 2) % 3]  # the angle at a, opposite edge b-c
+            u, w = positions[b] - positions[a], positions[c] - positions[a]
+            sine = np.linalg.norm(np.cross(u, w))
+            cot = float(np.dot(u, w) / sine) if sine > 0 else 0.0
+            for e in ((b, c), (c, b)):
+                weights[e] = weights.get(e, 0.0) + cot / 2
+    floor = 1e-3 * np.mean([abs(x) for x in weights.values()])
+    return {e: max(x, floor) for e, x in weights.items()}
+
+
+def coded_order_predictor(vertex_count, faces, edge_weights=None):
+    """The breadth-first coding order and, per vertex, its neighbours coded before it, weighted
+    equally, or by edge_weights (normalised over those neighbours) when given."""
     neighbours = [set() for _ in range(vertex_count)]
     for a, b, c in faces:
         neighbours[a] |= {b, c}
@@ -82,10 +100,11 @@ def coded_order_predictor(vertex_count, faces):
     rows, cols, vals = [], [], []
     for v in range(vertex_count):
         earlier = [w for w in neighbours[v] if position[w] < position[v]]
-        for w in earlier:
+        weights = [edge_weights[(v, w)] if edge_weights else 1.0 for w in earlier]
+        for w, weight in zip(earlier, weights):
             rows.append(v)
             cols.append(w)
-            vals.append(1.0 / len(earlier))
+            vals.append(weight / sum(weights))
     return np.array(order), (np.array(rows, dtype=int), np.array(cols, dtype=int), np.array(vals))
 
 
@@ -274,6 +293,15 @@ def our_codecs(animc, pc2_path, ply_path, targets):
     return {t: (loglog_interp(points, t), wavelet[t]) for t in targets}, static
 
 
+def our_static_bytes(animc, pc2_path, ply_path):
+    """What an .ams of the sequence spends outside its motion (affine-octree's static bytes)."""
+    with tempfile.TemporaryDirectory() as tmp:
+        out = os.path.join(tmp, 'x.ams')
+        r = json.loads(subprocess.run([animc, 'encode', pc2_path, '--mesh', ply_path, '-o', out, '--codec',
+                                       'affine-octree', '--json'], check=True, capture_output=True, text=True).stdout)
+    return r['static_bytes']
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument('animc')
@@ -282,6 +310,9 @@ def main():
     parser.add_argument('--kinds', default='dct,pca,pca-xyz')
     parser.add_argument('--basis-factor', type=float, default=1.0)
     parser.add_argument('--no-prediction', action='store_true')
+    parser.add_argument('--cotangent', action='store_true',
+                        help="weigh the neighbours' prediction by the cotangent Laplacian of the mean frame")
+    parser.add_argument('--no-ours', action='store_true', help="leave out our codecs' columns (0 there)")
     args = parser.parse_args()
     VARIANT.update(basis_factor=args.basis_factor, prediction=not args.no_prediction)
     print('| sequence | KG % | affine-octree bpvf | wavelet bpvf | ' +
@@ -291,8 +322,12 @@ def main():
         frames = frames.astype(np.float64)
         faces = ply.read_ply_faces(ply_path)
         f, v, _ = frames.shape
-        order, predictor = coded_order_predictor(v, faces)
-        ours, static = our_codecs(args.animc, pc2_path, ply_path, TARGETS)
+        weights = cotangent_weights(frames.mean(axis=0), faces) if args.cotangent else None
+        order, predictor = coded_order_predictor(v, faces, weights)
+        if args.no_ours:
+            ours, static = {t: (0.0, 0.0) for t in TARGETS}, our_static_bytes(args.animc, pc2_path, ply_path)
+        else:
+            ours, static = our_codecs(args.animc, pc2_path, ply_path, TARGETS)
         for target in TARGETS:
             octree, wavelet = ours[target]
             cells = []
