@@ -73,35 +73,35 @@ Result<uint64_t> wholeGroupsOf(const void* data, size_t size, std::unique_ptr<By
   uint64_t offset = kFileHeaderBytes;
   for (const char* tag : {kTagHead, kTagConnectivity}) {
     if (!sectionAt(bytes, size, offset, frame)) return uint64_t(0);
-    if (!hasTag(frame, tag)) return corrupt(std::string("expected section ") + tag + " at offset " + std::to_string(offset));
+    if (!hasTag(frame, tag))
+      return corrupt(std::string("expected section ") + tag + " at offset " + std::to_string(offset));
     offset += kSectionOverhead + frame.length;
   }
   const uint64_t groups_start = offset;
-  std::vector<uint64_t> group_offsets;
-  while (sectionAt(bytes, size, offset, frame) && hasTag(frame, kTagGroup) && frame.length >= kGroupFieldBytes) {
-    group_offsets.push_back(offset);
-    offset += kSectionOverhead + frame.length;
-  }
-  if (group_offsets.empty()) return uint64_t(0);
   // First_Frame and Frame_Count are outside the CRC; the index protects them in a whole file,
   // so here they must add up as the index would have them.
-  std::vector<uint32_t> counts;
+  struct WholeGroup {
+    uint64_t begin, end;
+    uint32_t frames;
+  };
+  std::vector<WholeGroup> groups;
   uint64_t frames = 0;
-  for (uint64_t begin : group_offsets) {
-    const uint64_t first = ByteReader(bytes + begin + 12, 8).u64("First_Frame").value();
-    const uint32_t count = ByteReader(bytes + begin + 20, 4).u32("Frame_Count").value();
+  while (sectionAt(bytes, size, offset, frame) && hasTag(frame, kTagGroup) && frame.length >= kGroupFieldBytes) {
+    const uint64_t first = ByteReader(bytes + offset + 12, 8).u64("First_Frame").value();
+    const uint32_t count = ByteReader(bytes + offset + 20, 4).u32("Frame_Count").value();
     if (first != frames || count == 0)
-      return corrupt("GRUP section at offset " + std::to_string(begin) + ": frames " + std::to_string(first) + " + " +
+      return corrupt("GRUP section at offset " + std::to_string(offset) + ": frames " + std::to_string(first) + " + " +
                      std::to_string(count) + " do not follow the " + std::to_string(frames) + " before");
     frames += count;
-    counts.push_back(count);
+    const uint64_t end = offset + kSectionOverhead + frame.length;
+    groups.push_back({offset, end, count});
+    offset = end;
   }
+  if (groups.empty()) return uint64_t(0);
   ContainerWriter writer;
   ANIMC_RETURN_IF_ERROR(writer.openCopy(std::move(sink), std::vector<uint8_t>(bytes, bytes + groups_start)));
-  for (size_t g = 0; g < group_offsets.size(); ++g) {
-    const uint64_t begin = group_offsets[g], end = g + 1 < group_offsets.size() ? group_offsets[g + 1] : offset;
-    ANIMC_RETURN_IF_ERROR(writer.addGroupSection(std::vector<uint8_t>(bytes + begin, bytes + end), counts[g]));
-  }
+  for (const WholeGroup& g : groups)
+    ANIMC_RETURN_IF_ERROR(writer.addGroupSection(std::vector<uint8_t>(bytes + g.begin, bytes + g.end), g.frames));
   ANIMC_RETURN_IF_ERROR(writer.finish());
   return frames;
 }

@@ -135,16 +135,14 @@ export class AnimStream {
     const stream = new AnimStream(await instantiate());
     const handle = guarded(stream, (wasm) => {
       const limits = allocate(wasm, 8 * LIMIT_NAMES.length);
-      const pointer = wasm.animc_alloc(Math.max(1, data.length)) >>> 0;
-      if (!pointer) {
+      try {
+        const pointer = allocate(wasm, data.length);  // animc_open() owns it
+        new Uint8Array(wasm.memory.buffer, pointer, data.length).set(data);
+        new Float64Array(wasm.memory.buffer, limits, LIMIT_NAMES.length).set(limitsGiven);
+        return wasm.animc_open(pointer, data.length, options.partial ? 1 : 0, limits) >>> 0;
+      } finally {
         wasm.animc_free(limits);
-        throw animError('limit', `animcompress: no WebAssembly memory for a ${data.length}-byte stream`);
       }
-      new Uint8Array(wasm.memory.buffer, pointer, data.length).set(data);
-      new Float64Array(wasm.memory.buffer, limits, LIMIT_NAMES.length).set(limitsGiven);
-      const opened = wasm.animc_open(pointer, data.length, options.partial ? 1 : 0, limits) >>> 0;
-      wasm.animc_free(limits);
-      return opened;
     });
     if (!handle) {
       const error = options.partial && stream.wasm.animc_error_code() === 0 ? null : lastError(stream.wasm);

@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: Apache-2.0
 // The Web Worker behind WorkerStream (worker_stream.mjs): one AnimStream, decoded off the
 // page's thread. Messages: {id, op: 'open', bytes, options} → the stream's figures and
-// triangles (null: no whole group yet, or a later open already answered); {id, op: 'frame', k} → the frame, transferred;
-// {id, op: 'close'}. A failure answers {id, error: {message, code}}.
+// triangles (null: no whole group yet, or a later open already answered); {id, op: 'frame',
+// k} → the frame, transferred; {id, op: 'close'}. A failure answers {id, error: {message,
+// code}}.
 import { AnimStream } from './animcompress.mjs';
 
 let stream = null;
