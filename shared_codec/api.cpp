@@ -2,9 +2,9 @@
 #include "api.h"
 
 #include <algorithm>
-#include <deque>
 
 #include "core/atomic_file.h"
+#include "encoder_access.h"
 
 namespace animc {
 
@@ -44,15 +44,12 @@ Result<EncodeSummary> encodeSequence(FrameSource& source, const EncodeSettings& 
   Encoder& encoder = created.value();
   const int64_t total = source.frameCount();
   std::vector<float> xyz;
-  // The frames added whose reconstruction the observer has not seen yet (a group codec
-  // reconstructs a group when it closes).
-  std::deque<std::vector<float>> unobserved;
+  // The observer sees a group's frames when the encoder has coded it, in the encoder's own
+  // copy: a large group is never held twice.
   int64_t observed = 0;
   auto observe = [&] {
-    for (; observed < encoder.reconstructedFrames(); ++observed) {
-      observer(observed, unobserved.front().data(), encoder.reconstruction(observed));
-      unobserved.pop_front();
-    }
+    for (; observed < encoder.reconstructedFrames(); ++observed)
+      observer(observed, EncoderAccess::original(encoder, observed), encoder.reconstruction(observed));
   };
   for (int64_t frame = 0;; ++frame) {
     const std::string where = source.where();  // before next() moves past the frame
@@ -60,10 +57,7 @@ Result<EncodeSummary> encodeSequence(FrameSource& source, const EncodeSettings& 
     if (!more) break;
     Status s = encoder.addFrame(xyz.data());
     if (!s.ok()) return s.withContext(where);
-    if (observer) {
-      unobserved.push_back(xyz);
-      observe();
-    }
+    if (observer) observe();
     if (progress) {
       const int pct = total > 0 ? int(std::min<int64_t>(99, 100 * (frame + 1) / total)) : 0;
       if (!progress(pct, "encoding")) return cancelled();

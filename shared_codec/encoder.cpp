@@ -10,6 +10,7 @@
 #include "codecs/frame_group_encoder.h"
 #include "container/container_writer.h"
 #include "core/parallel.h"
+#include "encoder_access.h"
 #include "io/byte_writer.h"
 
 namespace animc {
@@ -92,6 +93,10 @@ struct Encoder::Impl {
   // Group mode: the frames gathered (3N floats each) in the groups they make, the last one
   // open; and the first frame of each group of the last batch coded, then its end.
   std::vector<float> pending;
+  // The frames of the last batch coded, for original() until the next frame comes (then
+  // they make room for it: the group's frames are never held twice).
+  std::vector<float> coded;
+  const float* last_added = nullptr;     // the caller's, frame by frame
   std::vector<uint32_t> pending_groups;  // frame counts of the closed groups
   uint32_t open_frames = 0;
   std::vector<int64_t> coded_first;
@@ -140,7 +145,9 @@ Status Encoder::Impl::codeBatch() {
   const int64_t first = summary.frames - open_frames - int64_t(offset[count]);
   coded_first.clear();
   for (size_t i = 0; i <= count; ++i) coded_first.push_back(first + int64_t(offset[i]));
-  pending.erase(pending.begin(), pending.begin() + offset[count] * frame_size);
+  // A batch is coded when its last group closes: pending holds just the batch.
+  coded.swap(pending);
+  pending.clear();
   pending_groups.clear();
   reconstruction_frame = -1;
   return Status();
@@ -154,46 +161,50 @@ Status Encoder::Impl::writeFrame(const std::vector<uint8_t>& bytes, const FrameC
   return Status();
 }
 
-struct EncoderAccess {
-  static Result<Encoder> create(const EncodeSettings& settings, Topology topology, double frame_rate,
-                                std::unique_ptr<ByteSink> sink) {
-    ANIMC_RETURN_IF_ERROR(settings.validate());
-    ANIMC_RETURN_IF_ERROR(checkTopology(topology, settings.entry()));
-    if (!settings.entry().makeEncoder && !settings.entry().makeGroupEncoder)
-      return unsupported("this build of the library only decodes (ANIMC_DECODER_ONLY)");
-    if (!sink) return invalidArgument("no sink to write to");
-    auto impl = std::make_unique<Encoder::Impl>();
-    impl->settings = settings;
-    impl->topology = std::move(topology);
-    ContainerHeader header;
-    header.codec = settings.codec();
-    header.codec_params = codecParameters(settings);
-    header.vertex_count = impl->topology.vertex_count;
-    header.triangle_count = impl->topology.triangles.size();
-    header.frame_rate = frame_rate;
-    header.iframe_interval = settings.iframe_interval;
-    ANIMC_RETURN_IF_ERROR(impl->writer.open(std::move(sink), header, impl->topology));
-    const CodecEntry& codec = settings.entry();
-    // A group codec's first frame record carries the whole group: not static.
-    if (codec.makeGroupEncoder) impl->summary.static_bytes = impl->writer.bytesWritten();
-    impl->threads = resolveThreads(settings.threads);
-    // A frame-by-frame codec gathers its groups for the threads only while a group's frames
-    // stay small: otherwise it streams, one frame at a time, as on one thread (the bytes are
-    // the same either way).
-    const uint64_t group_bytes = uint64_t(settings.iframe_interval) * 12 * impl->topology.vertex_count;
-    const bool batch_frames =
-        impl->threads > 1 && settings.iframe_interval > 0 && group_bytes <= kMaxGatheredGroupBytes;
-    if (codec.makeGroupEncoder || batch_frames) {
-      impl->group_coders.push_back(makeAnyGroupEncoder(codec, settings.options, impl->topology, bestSimdPath()));
-      impl->max_group_frames = impl->group_coders[0]->maxGroupFrames();
-    } else {
-      impl->codec = codec.makeEncoder(settings.options, impl->topology, bestSimdPath());
-    }
-    impl->summary.vertices = impl->topology.vertex_count;
-    impl->summary.triangles = impl->topology.triangles.size();
-    return Encoder(std::move(impl));
+Result<Encoder> EncoderAccess::create(const EncodeSettings& settings, Topology topology, double frame_rate,
+                                      std::unique_ptr<ByteSink> sink) {
+  ANIMC_RETURN_IF_ERROR(settings.validate());
+  ANIMC_RETURN_IF_ERROR(checkTopology(topology, settings.entry()));
+  if (!settings.entry().makeEncoder && !settings.entry().makeGroupEncoder)
+    return unsupported("this build of the library only decodes (ANIMC_DECODER_ONLY)");
+  if (!sink) return invalidArgument("no sink to write to");
+  auto impl = std::make_unique<Encoder::Impl>();
+  impl->settings = settings;
+  impl->topology = std::move(topology);
+  ContainerHeader header;
+  header.codec = settings.codec();
+  header.codec_params = codecParameters(settings);
+  header.vertex_count = impl->topology.vertex_count;
+  header.triangle_count = impl->topology.triangles.size();
+  header.frame_rate = frame_rate;
+  header.iframe_interval = settings.iframe_interval;
+  ANIMC_RETURN_IF_ERROR(impl->writer.open(std::move(sink), header, impl->topology));
+  const CodecEntry& codec = settings.entry();
+  // A group codec's first frame record carries the whole group: not static.
+  if (codec.makeGroupEncoder) impl->summary.static_bytes = impl->writer.bytesWritten();
+  impl->threads = resolveThreads(settings.threads);
+  // A frame-by-frame codec gathers its groups for the threads only while a group's frames
+  // stay small: otherwise it streams, one frame at a time, as on one thread (the bytes are
+  // the same either way).
+  const uint64_t group_bytes = uint64_t(settings.iframe_interval) * 12 * impl->topology.vertex_count;
+  const bool batch_frames = impl->threads > 1 && settings.iframe_interval > 0 && group_bytes <= kMaxGatheredGroupBytes;
+  if (codec.makeGroupEncoder || batch_frames) {
+    impl->group_coders.push_back(makeAnyGroupEncoder(codec, settings.options, impl->topology, bestSimdPath()));
+    impl->max_group_frames = impl->group_coders[0]->maxGroupFrames();
+  } else {
+    impl->codec = codec.makeEncoder(settings.options, impl->topology, bestSimdPath());
   }
-};
+  impl->summary.vertices = impl->topology.vertex_count;
+  impl->summary.triangles = impl->topology.triangles.size();
+  return Encoder(std::move(impl));
+}
+
+const float* EncoderAccess::original(const Encoder& encoder, int64_t frame) {
+  const Encoder::Impl& e = *encoder.impl_;
+  if (!e.groupMode()) return frame == e.summary.frames - 1 ? e.last_added : nullptr;
+  if (e.coded.empty() || frame < e.coded_first.front() || frame >= e.coded_first.back()) return nullptr;
+  return e.coded.data() + size_t(frame - e.coded_first.front()) * 3 * e.topology.vertex_count;
+}
 
 Result<EncodeSettings> encodeSettingsFrom(const EncoderOptions& options) {
   ANIMC_ASSIGN_OR_RETURN(const CodecEntry* codec, findCodecByName(options.codec));
@@ -253,6 +264,11 @@ Status Encoder::addFrame(const float* xyz) {
   const int64_t frame = e.summary.frames;
   ANIMC_RETURN_IF_ERROR(checkFrame(xyz, e.topology.vertex_count, frame));
   if (e.groupMode()) {
+    if (!e.coded.empty()) {  // the last batch's frames make room for this one
+      e.pending.swap(e.coded);
+      e.pending.clear();
+      e.coded = std::vector<float>();
+    }
     e.pending.insert(e.pending.end(), xyz, xyz + size_t(e.topology.vertex_count) * 3);
     ++e.open_frames;
     ++e.summary.frames;
@@ -271,6 +287,7 @@ Status Encoder::addFrame(const float* xyz) {
   e.codec->encodeFrame(xyz, intra, e.payload, stats);
   e.summary.encode_seconds += std::chrono::duration<double>(Clock::now() - start).count();
   e.reconstruction_frame = -1;
+  e.last_added = xyz;
   ++e.summary.frames;
   return e.writeFrame(e.payload, stats);
 }

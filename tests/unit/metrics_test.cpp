@@ -283,6 +283,35 @@ TEST(CompareSequences, ReadErrorsAndCancellationEndIt) {
   EXPECT_EQ(stopped.status().code(), StatusCode::kCancelled);
 }
 
+// The observer sees each frame as it was given with the frame a decoder will output, in
+// order, whether the codec codes frame by frame, in groups, or gathers groups for threads.
+TEST(EncodeObserver, SeesEachOriginalWithItsDecodedFrame) {
+  MemorySequence original = testing_support::gridSequence(5, 4, 11, 1.0, 1.0);
+  std::vector<EncodeSettings> settings(4);
+  settings[1].trajectory().group_frames = 4;  // three groups
+  settings[2].trajectory().group_frames = 4;
+  settings[2].threads = 2;  // two groups coded at once
+  settings[3].iframe_interval = 3;
+  settings[3].threads = 2;  // frames gathered into groups for the threads
+  for (const EncodeSettings& s : settings) {
+    const std::string path = testing_support::tempPath("observed.ams");
+    std::vector<Frame> given, shown;
+    auto keep = [&](int64_t frame, const float* xyz, const float* reconstruction) {
+      EXPECT_EQ(frame, int64_t(shown.size()));
+      given.emplace_back(xyz, xyz + 3 * 20);
+      shown.emplace_back(reconstruction, reconstruction + 3 * 20);
+    };
+    original.rewind();
+    ASSERT_TRUE(encodeSequence(original, s, path, {}, keep).ok()) << s.entry().name;
+    std::vector<Frame> frames;
+    original.rewind();
+    for (Frame xyz; original.next(xyz).value();) frames.push_back(xyz);
+    EXPECT_EQ(given, frames) << s.entry().name;
+    EXPECT_EQ(shown, testing_support::decodeAll(path)) << s.entry().name;
+    std::remove(path.c_str());
+  }
+}
+
 // The observer sees what a decoder of the file will output, so its figures are those of
 // comparing the original with the decoded file.
 TEST(MeasuringObserver, MeasuresWhatTheDecoderOutputs) {
