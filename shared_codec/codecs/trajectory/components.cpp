@@ -52,6 +52,17 @@ Columns<Scalar> productByRows(const RowMatrixF& a, const Columns<Scalar>& b) {
   return out;
 }
 
+// x := x * b for a square b, in double, a block of rows at a time: a large product that needs
+// no second matrix of x's size.
+void multiplyRowsInPlace(RowMatrixF& x, const Eigen::MatrixXd& b) {
+  const size_t blocks = size_t((x.rows() + kProductRows - 1) / kProductRows);
+  parallelFor(blocks, double(kProductRows) * double(x.cols()) * double(b.cols()), [&](size_t i) {
+    const Eigen::Index r = Eigen::Index(i) * kProductRows, h = std::min(kProductRows, x.rows() - r);
+    const Rows<double> block = x.middleRows(r, h).cast<double>() * b;
+    x.middleRows(r, h) = block.cast<float>();
+  });
+}
+
 // a^T * b in float, a block of columns of b at a time.
 Eigen::MatrixXf transposedProductByColumns(const RowMatrixF& a, const Eigen::MatrixXf& b) {
   Eigen::MatrixXf out(a.cols(), b.cols());
@@ -124,7 +135,7 @@ Components TrajectoryDecomposition::none() const {
   return pc;
 }
 
-void TrajectoryDecomposition::extend(Components& pc, Eigen::Index count, double negligible) const {
+void TrajectoryDecomposition::extend(Components& pc, Eigen::Index count, double negligible) {
   if (pc.complete) return;
   // Near the rank, the full eigendecomposition of a Gram matrix costs less than iterating.
   const Eigen::Index have = pc.sigma.size(), width = count + extraDirections(count);
@@ -135,12 +146,12 @@ void TrajectoryDecomposition::extend(Components& pc, Eigen::Index count, double 
   appendLeading(pc, count, width, negligible);
 }
 
-Components TrajectoryDecomposition::all() const {
+Components TrajectoryDecomposition::all() {
   Components pc;
   pc.mean = mean_;
   pc.energy = energy_;
   pc.complete = true;
-  const RowMatrixF& x = centred_;
+  RowMatrixF& x = centred_;
   // The smaller of the two Gram matrices: trajectories (row x row) or vertices (n x n).
   const bool by_trajectory = x.cols() <= x.rows();
   const Eigen::MatrixXd gram = by_trajectory ? lowerGram(x) : lowerGram(x.transpose());
@@ -149,15 +160,17 @@ Components TrajectoryDecomposition::all() const {
   leadingPairs(Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(gram), dim, pc.sigma, vectors);
   if (by_trajectory) {
     pc.basis = vectors;
-    pc.coefficients = productByRows(x, pc.basis);
+    multiplyRowsInPlace(x, pc.basis);  // as many components as trajectory values
+    pc.coefficients = std::move(x);
   } else {
     pc.basis = x.cast<double>().transpose() * vectors;  // x is small: fewer vertices than 3G
     for (Eigen::Index k = 0; k < dim; ++k) {
       if (pc.sigma[k] > 0) pc.basis.col(k) /= pc.sigma[k];
       vectors.col(k) *= pc.sigma[k];
     }
-    pc.coefficients = vectors;
+    pc.coefficients = vectors.cast<float>();
   }
+  centred_ = RowMatrixF();
   return pc;
 }
 
@@ -168,7 +181,7 @@ void TrajectoryDecomposition::appendLeading(Components& pc, Eigen::Index count, 
                                             double negligible) const {
   const RowMatrixF& x = centred_;
   const Eigen::MatrixXf basis = pc.basis.cast<float>();
-  const Eigen::MatrixXf coefficients = pc.coefficients.cast<float>();
+  const RowMatrixF& coefficients = pc.coefficients;
   auto residualTimes = [&](const Eigen::MatrixXf& z) {  // r z, N x width
     Eigen::MatrixXf out = productByRows(x, z);
     if (basis.cols() > 0) out.noalias() -= coefficients * (basis.transpose() * z);
@@ -211,7 +224,7 @@ void TrajectoryDecomposition::appendLeading(Components& pc, Eigen::Index count, 
   pc.basis.conservativeResize(Eigen::NoChange, have + count);
   pc.basis.rightCols(count) = added;
   pc.coefficients.conservativeResize(Eigen::NoChange, have + count);
-  pc.coefficients.rightCols(count) = productByRows(x, Eigen::MatrixXf(added.cast<float>())).cast<double>();
+  pc.coefficients.rightCols(count) = productByRows(x, Eigen::MatrixXf(added.cast<float>()));
 }
 
 }  // namespace animc

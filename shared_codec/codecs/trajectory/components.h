@@ -17,7 +17,7 @@ struct Components {
   Eigen::RowVectorXd mean;  // 3G
   Eigen::MatrixXd basis;    // 3G x K, columns
   Eigen::VectorXd sigma;    // K
-  Eigen::MatrixXd coefficients;  // N x K, a component's contiguous
+  RowMatrixF coefficients;  // N x K, a trajectory's contiguous (float: the frames' precision)
   double energy = 0;        // sum of the squared centred trajectories: sigma's and the rest's
   bool complete = false;    // every component there is (K = min(N, 3G)), none left out
 };
@@ -32,14 +32,14 @@ class TrajectoryDecomposition {
   Components none() const;
   // Appends the next `count` components to pc (the leading ones of what pc leaves out), or
   // makes pc every component when they would be most of them. The iteration stops when it
-  // finds less than `negligible` more energy (or a thousandth of what it found).
-  void extend(Components& pc, Eigen::Index count, double negligible) const;
-  // Frees the trajectories, once a Components is complete: extend() has no more to do.
-  void release() { centred_ = RowMatrixF(); }
+  // finds less than `negligible` more energy (or a thousandth of what it found). Every
+  // component's coefficients take the trajectories' memory: pc is then complete, and the
+  // decomposition has nothing left to give.
+  void extend(Components& pc, Eigen::Index count, double negligible);
 
  private:
   Eigen::Index rank() const { return std::min(centred_.rows(), centred_.cols()); }
-  Components all() const;
+  Components all();
   void appendLeading(Components& pc, Eigen::Index count, Eigen::Index width, double negligible) const;
 
   Eigen::RowVectorXd mean_;

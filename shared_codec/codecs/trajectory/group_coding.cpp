@@ -200,26 +200,33 @@ Status readTrajectoryGroup(ByteReader payload, const CodingOrder& order, uint64_
   return Status();
 }
 
+GroupBasis dequantisedBasis(const TrajectoryGroup& g) {
+  GroupBasis b;
+  b.frames = g.frames;
+  b.components = g.components;
+  const size_t row = size_t(3) * g.frames;
+  b.mean.resize(row);
+  for (size_t i = 0; i < row; ++i) b.mean[i] = float(g.mean[i]) * g.mean_step;
+  b.basis.resize(g.components * row);
+  for (uint32_t k = 0; k < g.components; ++k)
+    for (size_t i = 0; i < row; ++i) b.basis[k * row + i] = float(g.basis[k * row + i]) * g.basis_step[k];
+  return b;
+}
+
 void GroupFrames::reset(const TrajectoryGroup& g, const CodingOrder& order, SimdPath path) {
   path_ = path;
-  frames_ = g.frames;
-  components_ = g.components;
+  basis_ = dequantisedBasis(g);
   vertices_ = uint32_t(order.vertex.size());
-  padded_ = (vertices_ + kLanes - 1) / kLanes * kLanes;
-  const size_t row = size_t(3) * frames_;
-  mean_.resize(row);
-  for (size_t i = 0; i < row; ++i) mean_[i] = float(g.mean[i]) * g.mean_step;
-  basis_.resize(components_ * row);
-  for (uint32_t k = 0; k < components_; ++k)
-    for (size_t i = 0; i < row; ++i) basis_[k * row + i] = float(g.basis[k * row + i]) * g.basis_step[k];
-  // Panels of kLanes vertices: a kernel step reads one panel front to back (K x kLanes floats)
-  // instead of K rows far apart. The padding lanes are zeros, never output.
-  coefficients_.assign(size_t(components_) * padded_, 0.0f);
-  for (uint32_t p = 0; components_ > 0 && p < vertices_; ++p) {  // no panels without components
+  const uint32_t components = g.components;
+  const size_t padded = (size_t(vertices_) + kLanes - 1) / kLanes * kLanes;
+  // Panels: a kernel step reads one front to back instead of K rows far apart.
+  coefficients_.assign(components * padded, 0.0f);
+  for (uint32_t p = 0; components > 0 && p < vertices_; ++p) {  // no panels without components
     const uint32_t v = order.vertex[p];
-    float* panel = coefficients_.data() + size_t(v / kLanes) * components_ * kLanes + v % kLanes;
-    for (uint32_t k = 0; k < components_; ++k)
-      panel[size_t(k) * kLanes] = float(g.coefficients[size_t(p) * components_ + k]) * g.coefficient_step;
+    float* panel = coefficients_.data() + size_t(v / kLanes) * components * kLanes + v % kLanes;
+    for (uint32_t k = 0; k < components; ++k)
+      panel[size_t(k) * kLanes] =
+          dequantisedCoefficient(g.coefficients[size_t(p) * components + k], g.coefficient_step);
   }
   batch_.resize(size_t(kBatch) * 3 * vertices_);
   batch_first_ = UINT32_MAX;
@@ -235,7 +242,7 @@ using Floats8 = float __attribute__((vector_size(32)));
 // SSE ones.
 __attribute__((always_inline)) inline void sumLanes(const float* panel, const float* basis, uint32_t components,
                                                     uint32_t frames, uint32_t first, Floats8 sums[][3]) {
-  constexpr uint32_t kBatch = GroupFrames::kBatch;
+  constexpr uint32_t kBatch = FrameKernel::kBatch;
   uint32_t column[kBatch];  // frames past the group repeat its last one, and are not stored
   for (uint32_t f = 0; f < kBatch; ++f) column[f] = std::min(first + f, frames - 1);
   for (uint32_t f = 0; f < kBatch; ++f)
@@ -243,7 +250,7 @@ __attribute__((always_inline)) inline void sumLanes(const float* panel, const fl
   const size_t row = size_t(3) * frames;
   for (uint32_t k = 0; k < components; ++k) {
     Floats8 c;
-    std::memcpy(&c, panel + size_t(k) * GroupFrames::kLanes, sizeof c);  // an unaligned load
+    std::memcpy(&c, panel + size_t(k) * FrameKernel::kLanes, sizeof c);  // an unaligned load
     const float* b = basis + k * row;
     for (uint32_t f = 0; f < kBatch; ++f)
       for (uint32_t d = 0; d < 3; ++d) sums[f][d] += c * b[d * frames + column[f]];
@@ -255,7 +262,7 @@ __attribute__((always_inline)) inline void sumLanes(const float* panel, const fl
 __attribute__((always_inline)) inline void batchKernel(const float* coefficients, const float* basis, const float* mean,
                                                        uint32_t components, uint32_t frames, uint32_t vertices,
                                                        uint32_t v_begin, uint32_t v_end, uint32_t first, float* out) {
-  constexpr uint32_t kBatch = GroupFrames::kBatch, kLanes = GroupFrames::kLanes;
+  constexpr uint32_t kBatch = FrameKernel::kBatch, kLanes = FrameKernel::kLanes;
   const uint32_t count = std::min(kBatch, frames - first);
   for (uint32_t v0 = v_begin; v0 < v_end; v0 += kLanes) {
     Floats8 sums[kBatch][3];
@@ -289,21 +296,24 @@ constexpr uint32_t kVerticesPerTask = 4096;
 
 }  // namespace
 
+void FrameKernel::run(SimdPath path, const GroupBasis& b, const float* panels, uint32_t vertices, uint32_t v_begin,
+                      uint32_t v_end, uint32_t first, float* out) {
+#ifndef ANIMC_NO_AVX2
+  if (path == SimdPath::kAvx2) {
+    batchAvx2(panels, b.basis.data(), b.mean.data(), b.components, b.frames, vertices, v_begin, v_end, first, out);
+    return;
+  }
+#endif
+  batchPortable(panels, b.basis.data(), b.mean.data(), b.components, b.frames, vertices, v_begin, v_end, first, out);
+}
+
 void GroupFrames::computeBatch(uint32_t first) const {
   const size_t tasks = (vertices_ + kVerticesPerTask - 1) / kVerticesPerTask;
-  const double task_cost = double(kVerticesPerTask) * components_ * kBatch * 3;
+  const double task_cost = double(kVerticesPerTask) * basis_.components * kBatch * 3;
   parallelFor(tasks, task_cost, [&](size_t i) {
     const uint32_t v_begin = uint32_t(i) * kVerticesPerTask;
     const uint32_t v_end = std::min(vertices_, v_begin + kVerticesPerTask);
-#ifndef ANIMC_NO_AVX2
-    if (path_ == SimdPath::kAvx2) {
-      batchAvx2(coefficients_.data(), basis_.data(), mean_.data(), components_, frames_, vertices_, v_begin, v_end,
-                first, batch_.data());
-      return;
-    }
-#endif
-    batchPortable(coefficients_.data(), basis_.data(), mean_.data(), components_, frames_, vertices_, v_begin, v_end,
-                  first, batch_.data());
+    FrameKernel::run(path_, basis_, coefficients_.data(), vertices_, v_begin, v_end, first, batch_.data());
   });
   batch_first_ = first;
 }

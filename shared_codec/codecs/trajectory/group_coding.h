@@ -44,16 +44,41 @@ void writeTrajectoryGroup(const TrajectoryGroup& group, const CodingOrder& order
 Status readTrajectoryGroup(ByteReader payload, const CodingOrder& order, uint64_t max_multiply_adds,
                            TrajectoryGroup& group);
 
-// The decoded frames of a group: every decoder and the encoder compute them with these
-// float operations in this order, so that they agree to the bit (docs/format.md 12.4).
+// A group's mean and basis vectors as the decoders compute with them (docs/format.md 12.4).
+struct GroupBasis {
+  uint32_t frames = 0;
+  uint32_t components = 0;
+  std::vector<float> mean;   // 3G
+  std::vector<float> basis;  // K rows of 3G
+};
+GroupBasis dequantisedBasis(const TrajectoryGroup& group);
+
+// A quantised coefficient as the decoders multiply with it.
+inline float dequantisedCoefficient(int32_t value, float step) { return float(value) * step; }
+
+// The frames of a group: every decoder and the encoder compute them with these float
+// operations in this order, so that they agree to the bit (docs/format.md 12.4). Frames are
+// computed kBatch at a time, so that the coefficients are read once for all of them, for
+// vertices kLanes at a time, from panels of their coefficients (K x kLanes floats, a
+// component's kLanes values together; lanes past the last vertex are zeros).
+struct FrameKernel {
+  static constexpr uint32_t kBatch = 4;
+  static constexpr uint32_t kLanes = 8;
+  // Frames [first, first + kBatch) (those in the group) of vertices [v_begin, v_end) of
+  // `vertices`, v_begin a multiple of kLanes, into out: 3 floats a vertex, `vertices` a frame.
+  // Any split of the vertices computes each vertex alike, so threads may share them.
+  static void run(SimdPath path, const GroupBasis& basis, const float* panels, uint32_t vertices, uint32_t v_begin,
+                  uint32_t v_end, uint32_t first, float* out);
+};
+
+// The decoded frames of a whole group.
 class GroupFrames {
  public:
-  // Frames are computed kBatch at a time: the coefficients are read once for all of them.
-  static constexpr uint32_t kBatch = 4;
-  static constexpr uint32_t kLanes = 8;  // vertices a kernel step computes
+  static constexpr uint32_t kBatch = FrameKernel::kBatch;
+  static constexpr uint32_t kLanes = FrameKernel::kLanes;
 
   void reset(const TrajectoryGroup& group, const CodingOrder& order, SimdPath path);
-  uint32_t frames() const { return frames_; }
+  uint32_t frames() const { return basis_.frames; }
   // Frame t of the group (t < frames()) into xyz (3 floats a vertex, vertex order).
   void frame(uint32_t t, float* xyz) const;
 
@@ -61,13 +86,9 @@ class GroupFrames {
   void computeBatch(uint32_t first) const;
 
   SimdPath path_ = SimdPath::kPortable;
-  uint32_t frames_ = 0;
-  uint32_t components_ = 0;
   uint32_t vertices_ = 0;
-  uint32_t padded_ = 0;               // vertices_ rounded up to kLanes
-  std::vector<float> mean_;           // 3G
-  std::vector<float> basis_;          // K rows of 3G
-  std::vector<float> coefficients_;   // K rows of padded_, vertex order, zeros after the last
+  GroupBasis basis_;
+  std::vector<float> coefficients_;   // panels, vertex order
   mutable std::vector<float> batch_;  // frames batch_first_ .. + kBatch, 3N floats each
   mutable uint32_t batch_first_ = UINT32_MAX;
 };

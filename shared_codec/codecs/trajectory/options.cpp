@@ -16,7 +16,8 @@ RateRange rangeOf(TrajectoryRate rate) {
   switch (rate) {
     case TrajectoryRate::kTargetKg: return {0, kMaxTrajectoryTargetKg, false, " % (KG error)"};
     case TrajectoryRate::kStep: return {kMinTrajectoryStep, kMaxTrajectoryStep, true, " of the diagonal"};
-    case TrajectoryRate::kMaxError: return {kMinTrajectoryMaxError, kMaxTrajectoryMaxError, true, " of the cube's side"};
+    case TrajectoryRate::kMaxError:
+      return {kMinTrajectoryMaxError, kMaxTrajectoryMaxError, true, " of the cube's side"};
     case TrajectoryRate::kBitsPerVertexFrame: return {0, kMaxTrajectoryBpvf, false, " bits per vertex per frame"};
   }
   return {0, 0, false, ""};
@@ -41,8 +42,8 @@ Status TrajectoryOptions::validate() const {
   const bool above_low = r.low_included ? rate_value >= r.low : rate_value > r.low;
   if (!(above_low && rate_value <= r.high))
     return invalidArgument(std::string(rateName(rate)) + " " + std::to_string(rate_value) + " outside " +
-                           (r.low_included ? "[" : "(") + std::to_string(r.low) + ", " + std::to_string(r.high) +
-                           "]" + r.unit);
+                           (r.low_included ? "[" : "(") + std::to_string(r.low) + ", " + std::to_string(r.high) + "]" +
+                           r.unit);
   if (group_frames < 1 || group_frames > kMaxTrajectoryGroupFrames)
     return invalidArgument("group frames " + std::to_string(group_frames) + " outside [1, " +
                            std::to_string(kMaxTrajectoryGroupFrames) + "]");

@@ -27,6 +27,9 @@ constexpr double kMaxQuantised = double(1 << 29);
 // The components computed first, and the fewest computed more at a time.
 constexpr Eigen::Index kFirstComponents = 64;
 constexpr Eigen::Index kMinMoreComponents = 16;
+// Vertices the rate search quantises and measures at a time, on one thread: a block's
+// coefficients and frames stay in cache.
+constexpr uint32_t kVertexBlock = 2048;
 
 int32_t quantise(double value, double step) {
   return int32_t(std::clamp(std::nearbyint(value / step), -kMaxQuantised, kMaxQuantised));
@@ -46,7 +49,9 @@ int32_t quantiseCoefficient(double value, double step) {
 class TrajectoryEncoder final : public GroupEncoder {
  public:
   TrajectoryEncoder(const TrajectoryOptions& options, const Topology& topology, SimdPath path)
-      : options_(options), order_(topology), vertices_(topology.vertex_count), path_(path) {}
+      : options_(options), order_(topology), vertices_(topology.vertex_count), path_(path), position_(vertices_) {
+    for (uint32_t p = 0; p < vertices_; ++p) position_[order_.vertex[p]] = p;
+  }
 
   uint32_t maxGroupFrames() const override {
     const uint64_t by_memory = std::max<uint64_t>(1, kMaxGroupValues / (uint64_t(3) * vertices_));
@@ -54,6 +59,7 @@ class TrajectoryEncoder final : public GroupEncoder {
   }
 
   void encodeGroup(const float* frames, uint32_t frame_count, std::vector<std::vector<uint8_t>>& payloads) override {
+    frames_ = GroupFrames();  // the last group's, no longer asked for
     original_ = frames;
     frame_count_ = frame_count;
     cube_sides_.clear();  // measure() compares with them at every step the search tries
@@ -74,15 +80,14 @@ class TrajectoryEncoder final : public GroupEncoder {
         more = moreComponents(pc, optimistic);
         continue;
       }
-      if (pc.complete) decomposition.release();  // the search's memory, on a large group
       step = chooseStep(pc);
       if (pc.complete || carriesEnough(pc, step) || sendsNoneOfTheWeakest(pc, float(step))) break;
       more = moreComponents(pc, step);
     }
     TrajectoryGroup group;
     quantiseGroup(pc, step, group);
+    pc = Components();  // before the decoded frames take as much memory
     trial_group_ = TrajectoryGroup();
-    trial_frames_ = GroupFrames();
     payloads.assign(frame_count, std::vector<uint8_t>{kTrajectoryNextFrame});
     payloads[0].clear();
     writeTrajectoryGroup(group, order_, payloads[0]);
@@ -168,9 +173,7 @@ class TrajectoryEncoder final : public GroupEncoder {
   // many more components that are not sent in the end.)
   bool sendsNoneOfTheWeakest(const Components& pc, float q) const {
     const Eigen::Index k = pc.sigma.size(), tail = std::max<Eigen::Index>(kMinMoreComponents / 2, k / 8);
-    for (Eigen::Index i = std::max<Eigen::Index>(0, k - tail); i < k; ++i)
-      if (!quantisedComponent(pc, i, q).column.empty()) return false;
-    return true;
+    return selection(pc, q, std::max<Eigen::Index>(0, k - tail)).sent.empty();
   }
 
   double leastWorthSending(double q) const {
@@ -212,14 +215,12 @@ class TrajectoryEncoder final : public GroupEncoder {
         search.guess = modelledStep(pc, search);
         search.slope = 2;  // a squared error
         const double allowed = allowedAtMost();
-        excess = [&, allowed](double u) {
-          return log2Ratio(measure(trial(pc, std::exp2(u))).squared, allowed);
-        };
+        excess = [&, allowed](double u) { return log2Ratio(measure(pc, std::exp2(u)).squared, allowed); };
         break;
       }
       case TrajectoryRate::kMaxError:
         search.guess = modelledStep(pc, search);
-        excess = [&](double u) { return log2Ratio(measure(trial(pc, std::exp2(u))).worst, 1) / 2; };
+        excess = [&](double u) { return log2Ratio(measure(pc, std::exp2(u)).worst, 1) / 2; };
         break;
       case TrajectoryRate::kBitsPerVertexFrame: {
         // The size falls as the step grows: the search runs on -u.
@@ -240,7 +241,7 @@ class TrajectoryEncoder final : public GroupEncoder {
 
   // log2 of the finest step the payload allows, and of a step past any error.
   StepSearch stepRange(const Components& pc) const {
-    const double largest = pc.coefficients.size() ? pc.coefficients.cwiseAbs().maxCoeff() : 0.0;
+    const double largest = pc.coefficients.size() ? double(pc.coefficients.cwiseAbs().maxCoeff()) : 0.0;
     const double scale = std::max({largest, firstFrameDiagonal(), 1e-30});
     StepSearch search;
     search.lowest = std::log2(std::max(largest / kMaxQuantised, scale * 1e-12));
@@ -301,65 +302,112 @@ class TrajectoryEncoder final : public GroupEncoder {
     return lo;
   }
 
-  // Component k quantised at coefficient step q, or nothing when it is not worth sending.
-  struct QuantisedComponent {
-    std::vector<int32_t> column, basis;  // empty when not sent
-    float basis_step = 0;
+  // What quantising the coefficients of component k at step q does to them, summed over
+  // the vertices.
+  struct ColumnStats {
+    double error = 0;   // squared, of the quantised coefficients
+    double energy = 0;  // squared, of the quantised coefficients
+    double bits = 0;    // estimated
+    bool any = false;   // a coefficient is not zero
   };
-  QuantisedComponent quantisedComponent(const Components& pc, Eigen::Index k, double q) const {
-    QuantisedComponent out;
-    std::vector<int32_t> column(vertices_);
-    bool any = false;
-    for (uint32_t p = 0; p < vertices_; ++p) {
-      column[p] = quantiseCoefficient(pc.coefficients(p, k), q);
-      any |= column[p] != 0;
+
+  // The ColumnStats of components [first, K) at step q: a vertex block at a time (rows of
+  // pc.coefficients, on any thread), the blocks' sums added in order.
+  std::vector<ColumnStats> columnStats(const Components& pc, double q, Eigen::Index first) const {
+    const Eigen::Index count = pc.coefficients.cols() - first;
+    const size_t blocks = (vertices_ + kVertexBlock - 1) / kVertexBlock;
+    std::vector<std::vector<ColumnStats>> partial(blocks, std::vector<ColumnStats>(size_t(count)));
+    parallelFor(blocks, 20.0 * kVertexBlock * double(count), [&](size_t b) {
+      const uint32_t end = std::min<uint32_t>(vertices_, uint32_t(b + 1) * kVertexBlock);
+      for (uint32_t p = uint32_t(b) * kVertexBlock; p < end; ++p)
+        for (Eigen::Index k = 0; k < count; ++k) {
+          const double c = pc.coefficients(p, first + k);
+          const int32_t value = quantiseCoefficient(c, q);
+          const double chat = value * q;
+          ColumnStats& s = partial[b][size_t(k)];
+          s.error += (c - chat) * (c - chat);
+          s.energy += chat * chat;
+          s.bits += estimatedBits(value);
+          s.any |= value != 0;
+        }
+    });
+    std::vector<ColumnStats> total(static_cast<size_t>(count));
+    for (const auto& block : partial)
+      for (size_t k = 0; k < total.size(); ++k) {
+        total[k].error += block[k].error;
+        total[k].energy += block[k].energy;
+        total[k].bits += block[k].bits;
+        total[k].any |= block[k].any;
+      }
+    return total;
+  }
+
+  // The components of [first, K) worth sending at coefficient step q, with their basis
+  // vectors quantised.
+  struct Selection {
+    std::vector<Eigen::Index> sent;
+    std::vector<std::vector<int32_t>> basis;  // of each sent
+    std::vector<float> basis_step;
+  };
+  Selection selection(const Components& pc, double q, Eigen::Index first = 0) const {
+    const std::vector<ColumnStats> stats = columnStats(pc, q, first);
+    std::vector<std::vector<int32_t>> basis(stats.size());
+    std::vector<float> steps(stats.size());
+    std::vector<char> sent(stats.size(), 0);
+    parallelFor(stats.size(), 20.0 * frame_count_, [&](size_t i) {
+      if (!stats[i].any) return;
+      const Eigen::Index k = first + Eigen::Index(i);
+      // An error d in basis vector k moves the vertices by their coefficients times d, sigma_k
+      // in total, and one in the mean moves all N vertices by d: these steps make each cost
+      // the squared error of one coefficient's step.
+      steps[i] = float(std::clamp(q / pc.sigma[k], 1.0 / kMaxQuantised, 2.0));
+      basis[i].resize(size_t(3) * frame_count_);
+      for (size_t j = 0; j < basis[i].size(); ++j) basis[i][j] = quantise(pc.basis(Eigen::Index(j), k), steps[i]);
+      sent[i] = worthSending(pc, k, q, stats[i], basis[i], steps[i]);
+    });
+    Selection out;
+    for (size_t i = 0; i < stats.size(); ++i) {
+      if (!sent[i]) continue;
+      out.sent.push_back(first + Eigen::Index(i));
+      out.basis.push_back(std::move(basis[i]));
+      out.basis_step.push_back(steps[i]);
     }
-    if (!any) return out;
-    // An error d in basis vector k moves the vertices by their coefficients times d, sigma_k
-    // in total, and one in the mean moves all N vertices by d: these steps make each cost
-    // the squared error of one coefficient's step.
-    const float basis_step = float(std::clamp(q / pc.sigma[k], 1.0 / kMaxQuantised, 2.0));
-    std::vector<int32_t> basis(size_t(3) * frame_count_);
-    for (size_t j = 0; j < basis.size(); ++j) basis[j] = quantise(pc.basis(Eigen::Index(j), k), basis_step);
-    if (!worthSending(pc, k, q, column, basis, basis_step)) return out;
-    out.column = std::move(column);
-    out.basis = std::move(basis);
-    out.basis_step = basis_step;
     return out;
+  }
+
+  // The group as quantised at step, all but its coefficients.
+  void quantiseHeader(const Components& pc, double step, Selection& chosen, TrajectoryGroup& g) const {
+    g.frames = frame_count_;
+    g.coefficient_step = float(step);
+    const double q = g.coefficient_step;
+    const size_t row = size_t(3) * frame_count_;
+    const uint32_t used = uint32_t(chosen.sent.size());
+    g.components = used;
+    g.basis_step = chosen.basis_step;
+    g.basis.resize(used * row);
+    for (uint32_t k = 0; k < used; ++k)
+      std::copy(chosen.basis[k].begin(), chosen.basis[k].end(), g.basis.begin() + k * row);
+    const double mean_reach = pc.mean.cwiseAbs().maxCoeff();
+    g.mean_step = float(std::max(q / std::sqrt(double(vertices_)), mean_reach / kMaxQuantised + 1e-30));
+    g.mean.resize(row);
+    for (size_t i = 0; i < row; ++i) g.mean[i] = quantise(pc.mean[Eigen::Index(i)], g.mean_step);
   }
 
   // The group as quantised at step: into g, whose buffers the search's trials reuse (a large
   // group's would otherwise be new pages at every trial).
   void quantiseGroup(const Components& pc, double step, TrajectoryGroup& g) const {
-    g.frames = frame_count_;
-    g.coefficient_step = float(step);
-    const double q = g.coefficient_step;
-    const size_t row = size_t(3) * frame_count_;
-    // Each component is quantised and judged on its own, on any thread; the ones sent are
-    // then taken in order.
-    std::vector<QuantisedComponent> parts(static_cast<size_t>(pc.coefficients.cols()));
-    parallelFor(parts.size(), 20.0 * vertices_ + 10.0 * row,
-                [&](size_t i) { parts[i] = quantisedComponent(pc, Eigen::Index(i), g.coefficient_step); });
-    std::vector<std::vector<int32_t>> columns, rows;
-    std::vector<float> steps;
-    for (QuantisedComponent& part : parts) {
-      if (part.column.empty()) continue;
-      columns.push_back(std::move(part.column));
-      rows.push_back(std::move(part.basis));
-      steps.push_back(part.basis_step);
-    }
-    const uint32_t used = uint32_t(columns.size());
-    g.components = used;
+    const double q = double(float(step));
+    Selection chosen = selection(pc, q);
+    quantiseHeader(pc, step, chosen, g);
+    const size_t used = chosen.sent.size();
     g.coefficients.resize(size_t(vertices_) * used);
-    for (uint32_t p = 0; p < vertices_; ++p)
-      for (uint32_t k = 0; k < used; ++k) g.coefficients[size_t(p) * used + k] = columns[k][p];
-    g.basis_step = steps;
-    g.basis.resize(used * row);
-    for (uint32_t k = 0; k < used; ++k) std::copy(rows[k].begin(), rows[k].end(), g.basis.begin() + k * row);
-    const double mean_reach = pc.mean.cwiseAbs().maxCoeff();
-    g.mean_step = float(std::max(q / std::sqrt(double(vertices_)), mean_reach / kMaxQuantised + 1e-30));
-    g.mean.resize(row);
-    for (size_t i = 0; i < row; ++i) g.mean[i] = quantise(pc.mean[Eigen::Index(i)], g.mean_step);
+    const size_t blocks = (vertices_ + kVertexBlock - 1) / kVertexBlock;
+    parallelFor(blocks, 10.0 * kVertexBlock * double(used), [&](size_t b) {
+      const uint32_t end = std::min<uint32_t>(vertices_, uint32_t(b + 1) * kVertexBlock);
+      for (uint32_t p = uint32_t(b) * kVertexBlock; p < end; ++p)
+        for (size_t k = 0; k < used; ++k)
+          g.coefficients[p * used + k] = quantiseCoefficient(pc.coefficients(p, chosen.sent[k]), q);
+    });
   }
 
   // A trial of the search: the group at step q in trial_group_.
@@ -372,16 +420,9 @@ class TrajectoryEncoder final : public GroupEncoder {
   // energy, less the error of its quantised coefficients and basis vector) is worth its
   // estimated bits at the slope of a uniform quantiser, 2 ln 2 q^2 / 12 per bit. Weak
   // components otherwise cost a whole basis vector for a few coefficients.
-  bool worthSending(const Components& pc, Eigen::Index k, double q, const std::vector<int32_t>& column,
+  bool worthSending(const Components& pc, Eigen::Index k, double q, const ColumnStats& column,
                     const std::vector<int32_t>& basis, float basis_step) const {
-    double coded_error = 0, coded_energy = 0, bits = 0;
-    for (uint32_t p = 0; p < vertices_; ++p) {
-      const double c = pc.coefficients(p, k), chat = column[p] * q;
-      coded_error += (c - chat) * (c - chat);
-      coded_energy += chat * chat;
-      bits += estimatedBits(column[p]);
-    }
-    double basis_error = 0;
+    double bits = column.bits, basis_error = 0;
     int64_t previous = 0;
     for (size_t i = 0; i < basis.size(); ++i) {
       const double b = pc.basis(Eigen::Index(i), k), bhat = basis[i] * double(basis_step);
@@ -390,7 +431,7 @@ class TrajectoryEncoder final : public GroupEncoder {
       bits += estimatedBits(basis[i] - previous);
       previous = basis[i];
     }
-    coded_error += coded_energy * basis_error;
+    const double coded_error = column.error + column.energy * basis_error;
     const double removed = pc.sigma[k] * pc.sigma[k] - coded_error;
     return removed > kBitSlope * q * q * bits;
   }
@@ -412,28 +453,55 @@ class TrajectoryEncoder final : public GroupEncoder {
     double worst = 0;    // the largest squared distance over the max error's (kMaxError)
   };
 
-  // The error of the frames the decoder will make of `group`.
-  GroupError measure(const TrajectoryGroup& group) const {
-    GroupFrames& decoded = trial_frames_;
-    decoded.reset(group, order_, path_);
-    std::vector<float> xyz(size_t(3) * vertices_);
+  // The error of the frames the decoder will make of the group at step `step`, a block of
+  // vertices at a time (on any thread; the blocks' sums added in order): their coefficients
+  // quantised into panels, and their frames computed as the decoders do, without the
+  // whole group's coefficients ever quantised at once.
+  GroupError measure(const Components& pc, double step) const {
+    TrajectoryGroup header;
+    Selection chosen = selection(pc, double(float(step)));
+    quantiseHeader(pc, step, chosen, header);
+    const GroupBasis basis = dequantisedBasis(header);
+    const uint32_t used = header.components, lanes = FrameKernel::kLanes;
+    const double q = header.coefficient_step;
+    const size_t blocks = (vertices_ + kVertexBlock - 1) / kVertexBlock;
+    std::vector<double> squared(blocks, 0);
+    std::vector<std::vector<double>> worst(blocks, std::vector<double>(frame_count_, 0));
+    parallelFor(blocks, 3.0 * kVertexBlock * (used + 4) * frame_count_, [&](size_t b) {
+      const uint32_t v0 = uint32_t(b) * kVertexBlock, count = std::min(kVertexBlock, vertices_ - v0);
+      std::vector<float> panels(size_t(used) * ((count + lanes - 1) / lanes * lanes), 0.0f);
+      for (uint32_t i = 0; i < count && used > 0; ++i) {
+        float* panel = panels.data() + size_t(i / lanes) * used * lanes + i % lanes;
+        const Eigen::Index p = position_[v0 + i];
+        for (uint32_t k = 0; k < used; ++k)
+          panel[size_t(k) * lanes] = dequantisedCoefficient(quantiseCoefficient(pc.coefficients(p, chosen.sent[k]), q),
+                                                            header.coefficient_step);
+      }
+      std::vector<float> xyz(size_t(FrameKernel::kBatch) * 3 * count);
+      for (uint32_t first = 0; first < frame_count_; first += FrameKernel::kBatch) {
+        FrameKernel::run(path_, basis, panels.data(), count, 0, count, first, xyz.data());
+        for (uint32_t t = first; t < std::min(frame_count_, first + FrameKernel::kBatch); ++t) {
+          const float* decoded = xyz.data() + size_t(t - first) * 3 * count;
+          const float* original = vertexOf(t, v0);
+          for (size_t v = 0; v < size_t(3) * count; v += 3) {
+            double sq = 0;
+            for (int c = 0; c < 3; ++c)
+              sq += (double(decoded[v + c]) - original[v + c]) * (double(decoded[v + c]) - original[v + c]);
+            squared[b] += sq;
+            worst[b][t] = std::max(worst[b][t], sq);
+          }
+        }
+      }
+    });
     GroupError e;
-    for (uint32_t t = 0; t < frame_count_; ++t) {
-      decoded.frame(t, xyz.data());
-      const float* original = vertexOf(t, 0);
-      double worst = 0;
-      for (size_t v = 0; v < xyz.size(); v += 3) {
-        double sq = 0;
-        for (int c = 0; c < 3; ++c)
-          sq += (double(xyz[v + c]) - original[v + c]) * (double(xyz[v + c]) - original[v + c]);
-        e.squared += sq;
-        worst = std::max(worst, sq);
-      }
-      if (options_.rate == TrajectoryRate::kMaxError) {
+    for (size_t b = 0; b < blocks; ++b) e.squared += squared[b];
+    if (options_.rate == TrajectoryRate::kMaxError)
+      for (uint32_t t = 0; t < frame_count_; ++t) {
+        double frame_worst = 0;
+        for (size_t b = 0; b < blocks; ++b) frame_worst = std::max(frame_worst, worst[b][t]);
         const double bound = options_.rate_value * cube_sides_[t];
-        e.worst = std::max(e.worst, worst / (bound * bound));
+        e.worst = std::max(e.worst, frame_worst / (bound * bound));
       }
-    }
     return e;
   }
 
@@ -446,9 +514,9 @@ class TrajectoryEncoder final : public GroupEncoder {
   std::vector<double> cube_sides_;  // of the group's frames (kMaxError)
   double spread_ = 0;               // of the group (kTargetKg)
   GroupFrames frames_;              // the last group as decoded
-  // The search's trials, their buffers kept from one trial to the next.
+  std::vector<uint32_t> position_;  // in coding order, of each vertex
+  // The bits-per-vertex-frame search's trials, their buffers kept from one trial to the next.
   mutable TrajectoryGroup trial_group_;
-  mutable GroupFrames trial_frames_;
 };
 
 }  // namespace
