@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
 
 namespace animc {
@@ -16,20 +17,30 @@ class FrameGroupEncoder final : public GroupEncoder {
   uint32_t maxGroupFrames() const override { return UINT32_MAX; }
 
   void encodeGroup(const float* frames, uint32_t frame_count, std::vector<std::vector<uint8_t>>& payloads) override {
-    const size_t size = frameSize();
     auto encoder = codec_.makeEncoder(options_, topology_, path_);
     payloads.assign(frame_count, {});
     stats_.assign(frame_count, {});
-    frames_.resize(frame_count * size);
-    for (uint32_t k = 0; k < frame_count; ++k) {
-      encoder->encodeFrame(frames + k * size, k == 0, payloads[k], stats_[k]);
-      const std::vector<double>& r = encoder->reconstruction();
-      std::copy(r.begin(), r.end(), frames_.begin() + k * size);  // decoders output floats
-    }
+    for (uint32_t k = 0; k < frame_count; ++k)
+      encoder->encodeFrame(frames + k * frameSize(), k == 0, payloads[k], stats_[k]);
+    payloads_ = payloads;
+    decoder_.reset();
   }
 
+  // Decodes the group's own payloads as a reader would, from its intra frame on: a large
+  // group's reconstructions are not kept beside its frames while it competes (auto) or waits
+  // for its batch, and a group nobody asks about is never decoded. Frames asked in order
+  // decode once each.
   void reconstruction(uint32_t k, float* xyz) const override {
-    std::memcpy(xyz, frames_.data() + k * frameSize(), frameSize() * sizeof(float));
+    if (!decoder_ || k < next_) {
+      decoder_ = codec_.makeDecoder(options_, topology_, DecoderOptions(), "", path_).value();
+      next_ = 0;
+    }
+    for (; next_ <= k; ++next_) {
+      const Status decoded =
+          decoder_->decodeFrame(ByteReader(payloads_[next_].data(), payloads_[next_].size()), frame_, nullptr);
+      if (!decoded.ok()) std::abort();  // its own payloads: a bug, not bad input
+    }
+    std::memcpy(xyz, frame_.data(), frameSize() * sizeof(float));
   }
 
   FrameCodingStats frameStats(uint32_t k) const override { return stats_[k]; }
@@ -41,8 +52,11 @@ class FrameGroupEncoder final : public GroupEncoder {
   CodecOptions options_;
   const Topology& topology_;
   SimdPath path_;
-  std::vector<FrameCodingStats> stats_;  // of the last group's frames
-  std::vector<float> frames_;            // the last group as decoded, 3N floats a frame
+  std::vector<FrameCodingStats> stats_;         // of the last group's frames
+  std::vector<std::vector<uint8_t>> payloads_;  // the last group's
+  mutable std::unique_ptr<FrameDecoder> decoder_;
+  mutable uint32_t next_ = 0;  // the frame decoder_ decodes next
+  mutable std::vector<float> frame_;
 };
 
 }  // namespace
