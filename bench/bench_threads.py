@@ -24,6 +24,8 @@ from ply import read_ply_faces, write_ply
 HEADING = '## Threads'
 THREADS = (1, 2)
 GROUP_FRAMES = 64
+# animc's default codec, and the codec whose memory docs/trajectory.md bounds.
+MEMORY_CODECS = ('auto', 'trajectory')
 LARGE_VERTICES = 500_000
 GROUP_VALUES = 2**25  # a trajectory group holds at most this many trajectory values (3 x frames x vertices)
 
@@ -114,15 +116,16 @@ def threads_section(animc, sequences, runs):
             speedups.append((name, row[1], row[2]))
         memory = []
         if large:
-            for threads in THREADS:
-                out = os.path.join(work, f'memory.t{threads}.ams')
-                log(f'peak memory of the large case, {threads} thread(s)')
+            for codec, threads in [(c, t) for c in MEMORY_CODECS for t in THREADS]:
+                out = os.path.join(work, f'memory.{codec}.t{threads}.ams')
+                log(f'peak memory of the large case, {codec}, {threads} thread(s)')
                 # Measured from a process of its own (GNU time, or a small Python): this script's
                 # own memory, which holds the large sequence, would otherwise count.
                 _, kib, _ = run_measured([animc, 'encode', large[0], '--mesh', large[1], '-o', out,
-                                          '--threads', str(threads)])
+                                          '--codec', codec, '--threads', str(threads)])
                 mib = kib / 1024
-                memory.append([threads, f'{mib:.0f} MiB', num(mib / (large[2] * large[3] * 12 / 2**20)) + '×'])
+                memory.append([f'`{codec}`', threads, f'{mib:.0f} MiB',
+                               num(mib / (large[2] * large[3] * 12 / 2**20)) + '×'])
     lines = [HEADING, '',
              f'Encoding: `animc bench IN --mesh M --threads N --runs {runs} --json` (`--runs 1` for the large '
              'sequence) at animc\'s default settings (auto, max error 1 %), which includes the rate search; '
@@ -130,7 +133,7 @@ def threads_section(animc, sequences, runs):
              'decodes in the runs of groups a reader takes (`decodeChunkEnd`). Medians in million vertices '
              '(× frames) per second; both thread counts wrote identical bytes (checked). Without an I-frame '
              'interval each of these sequences is one group: its work is split inside the group (the '
-             'trajectory Gram matrix, products and rate search; the frame reconstruction over ranges of 4096 '
+             'trajectory Gram matrix and products; the rate search in blocks of 2048 vertices; decoding\'s frame reconstruction over ranges of 4096 '
              'vertices, so not below that), the eigensolver stays on one thread. With '
              f'`--iframe-interval {GROUP_FRAMES}` the groups are coded and decoded one a thread. The large '
              'sequence is one group of as many frames as the trajectory codec puts in one '
@@ -140,8 +143,10 @@ def threads_section(animc, sequences, runs):
     if memory:
         raw = large[2] * large[3] * 12 / 2**20
         lines += [f'Peak memory of `animc encode` on the large sequence ({large[2]} vertices × {large[3]} '
-                  f'frames, one group; raw floats {raw:.0f} MiB), from the kernel\'s count for the process:', '']
-        lines += table(['threads', 'peak RSS', 'of the raw floats'], memory) + ['']
+                  f'frames, one group; raw floats {raw:.0f} MiB) at its default settings, from the kernel\'s '
+                  'count for the process. With `auto`, the affine-octree candidate\'s working memory on one '
+                  'frame of this mesh is most of what lies above the trajectory codec\'s peak:', '']
+        lines += table(['codec', 'threads', 'peak RSS', 'of the raw floats'], memory) + ['']
     if speedups:
         projected = []
         for name, enc, dec in speedups:
