@@ -35,6 +35,10 @@ constexpr uint32_t kSampleRuns = 4;
 constexpr uint32_t kRunFrames = 4;
 constexpr uint32_t kSampleFrames = kSampleRuns * kRunFrames;
 constexpr double kSkipShare = 0.75;
+// A group of more frames than this (as floats) runs its candidates one after the other even
+// with threads to spare: beside each other, their working sets (each a few times the group's)
+// would add up. The group codecs still split their own work over the threads.
+constexpr uint64_t kMaxBesideGroupBytes = uint64_t(1) << 26;
 
 class AutoEncoder final : public GroupEncoder {
  public:
@@ -62,7 +66,7 @@ class AutoEncoder final : public GroupEncoder {
   // codecs' best is well below the whole group's size estimated from the sample, that
   // candidate is not run in full. With more than one thread the frame-by-frame candidates
   // (sample or group) run on a thread of their own beside the group codecs, which keep the
-  // caller's threads.
+  // caller's threads, unless the group is large.
   void encodeGroup(const float* frames, uint32_t frame_count, std::vector<std::vector<uint8_t>>& payloads) override {
     const bool sampled = frame_count >= 2 * kSampleFrames;
     std::vector<double> estimates(encoders_.size(), 0);
@@ -79,7 +83,12 @@ class AutoEncoder final : public GroupEncoder {
       for (size_t i = 0; i < encoders_.size(); ++i)
         if (!frame_by_frame_[i]) encoders_[i]->encodeGroup(frames, frame_count, payloads_[i]);
     };
-    runBeside(codeFrameByFrame, codeGroups);
+    if (uint64_t(frame_count) * 12 * topology_.vertex_count > kMaxBesideGroupBytes) {
+      codeFrameByFrame();
+      codeGroups();
+    } else {
+      runBeside(codeFrameByFrame, codeGroups);
+    }
     size_t group_best = SIZE_MAX;
     for (size_t i = 0; i < encoders_.size(); ++i)
       if (!frame_by_frame_[i]) group_best = std::min(group_best, bytes(payloads_[i]));
