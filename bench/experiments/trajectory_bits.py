@@ -5,7 +5,9 @@ today's trajectory files go at the KG errors the issue names. Every shared seque
 with `animc encode --codec trajectory --target-kg X --json`, then trajectory_bits (built here
 from trajectory_bits.cpp against build/'s libanimc.a) splits each file: the connectivity and
 the rest outside the groups, each group's head and steps, mean trajectory, basis vectors and
-coefficients. Prints a Markdown table (bits per vertex per frame of each part, and its share).
+coefficients. Prints a Markdown table (bits per vertex per frame of each part, and its share),
+then one of what the mean and the basis would cost with a second-order prediction along time
+instead of today's first-order one (the same coder, fed second differences).
 
   usage: bench/experiments/trajectory_bits.py [--animc PATH] [--data DIR] [--kg 0.1,0.3,0.45,1]"""
 import argparse
@@ -42,13 +44,20 @@ def row(name, kg, split, encoded):
     return [name, f'{kg:g}', f'{encoded["kg_error"]:.3f}', f'{total / vf:.3f}'] + cells + [components]
 
 
+def prediction_row(name, kg, split):
+    mean, basis = split['mean'], split['basis']
+    return [name, f'{kg:g}', f'{mean:.0f}', f'{split["mean_second_order"]:.0f}',
+            f'{split["mean_second_order"] / mean:.3f}' if mean else '–', f'{basis:.0f}',
+            f'{split["basis_second_order"]:.0f}', f'{split["basis_second_order"] / basis:.3f}' if basis else '–']
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__.split('\n')[0])
     p.add_argument('--animc', default=os.path.join(REPO, 'build', 'animc', 'animc'))
     p.add_argument('--data', default=os.path.normpath(os.path.join(REPO, '..', 'shared', 'data')))
     p.add_argument('--kg', default='0.1,0.3,0.45,1')
     args = p.parse_args()
-    rows = []
+    rows, prediction_rows = [], []
     with tempfile.TemporaryDirectory() as work:
         tool = build_tool(work)
         for name, pc2, ply in find_sequences(args.data):
@@ -60,8 +69,12 @@ def main():
                      str(kg), '--json'], check=True, capture_output=True, text=True).stdout)
                 split = json.loads(subprocess.run([tool, ams], check=True, capture_output=True, text=True).stdout)
                 rows.append(row(name, kg, split, encoded))
+                prediction_rows.append(prediction_row(name, kg, split))
     print('\n'.join(table(['sequence', 'target KG %', 'KG %', 'bpvf', 'outside groups', 'head + mean', 'basis',
                            'coefficients', 'components'], rows)))
+    print()
+    print('\n'.join(table(['sequence', 'target KG %', 'mean bytes', 'second order', 'ratio', 'basis bytes',
+                           'second order', 'ratio'], prediction_rows)))
 
 
 if __name__ == '__main__':
