@@ -10,11 +10,12 @@ double residualStep(double max_error) { return 2.0 * max_error / std::sqrt(3.0) 
 
 void CellPoints::gather(const PFrameInput& in, const uint32_t* idx, size_t n) {
   const size_t size = kPointStride * n;
-  if (reference.size() < size) {  // the three grow together
-    reference.resize(size);
-    target.resize(size);
-    scratch.resize(size);
-  }
+  // Each as large as the largest cell gathered: the root's, every vertex. The target only
+  // when encoding, the scratch only for the portable kernel (the AVX2 one keeps no copy of
+  // frame f-2's points).
+  if (reference.size() < size) reference.resize(size);
+  if (in.target && target.size() < size) target.resize(size);
+  if (!useAvx2(path) && scratch.size() < size) scratch.resize(size);
   if (in.before) {
     gatherWithMotion(path, in.reference->data(), in.before->data(), in.cube, idx, n, reference.data(), scratch.data(),
                      model.frame, model.prior);
