@@ -17,13 +17,13 @@ class FrameGroupEncoder final : public GroupEncoder {
   uint32_t maxGroupFrames() const override { return UINT32_MAX; }
 
   void encodeGroup(const float* frames, uint32_t frame_count, std::vector<std::vector<uint8_t>>& payloads) override {
+    decoder_.reset();  // the last group's decoding state, before the encoder's own
     auto encoder = codec_.makeEncoder(options_, topology_, path_);
     payloads.assign(frame_count, {});
     stats_.assign(frame_count, {});
     for (uint32_t k = 0; k < frame_count; ++k)
       encoder->encodeFrame(frames + k * frameSize(), k == 0, payloads[k], stats_[k]);
     payloads_ = payloads;
-    decoder_.reset();
   }
 
   // Decodes the group's own payloads as a reader would, from its intra frame on: a large
