@@ -54,11 +54,12 @@ def encode_wavelet(animc, seq, ams, args):
                        '--json'] + args)
 
 
-def run_bench(animc, pc2, ply, settings, runs):
+def run_bench(animc, pc2, ply, settings, runs, one_thread=True):
     """One `animc bench --json` with the encoder settings (a list of animc arguments, e.g.
     ['--profile', 'predictive', '--max-error', '0.01']), on one thread unless they say
-    `--threads`; its JSON object, or {'error': text}."""
-    threads = [] if '--threads' in settings else ['--threads', '1']
+    `--threads` or one_thread is False (for an animc older than --threads, when only its
+    sizes count: they never depend on the thread count); its JSON object, or {'error': text}."""
+    threads = [] if '--threads' in settings or not one_thread else ['--threads', '1']
     cmd = [animc, 'bench', pc2, '--mesh', ply] + settings + threads + ['--runs', str(runs), '--json']
     try:
         p = subprocess.run(cmd, capture_output=True, text=True, timeout=ANIMC_TIMEOUT_S)

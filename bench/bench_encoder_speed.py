@@ -42,7 +42,7 @@ def speed_rows(animc, reference, sequences, runs):
         log(f'{s["name"]}: default, affine-octree and trajectory encodes, {runs} runs')
         default, octree, trajectory = (run_bench(animc, s['pc2'], s['ply'], settings, runs)
                                        for settings in (DEFAULT, OCTREE, TRAJECTORY))
-        old = run_bench(reference, s['pc2'], s['ply'], DEFAULT, 1) if reference else None
+        old = run_bench(reference, s['pc2'], s['ply'], DEFAULT, 1, one_thread=False) if reference else None
         if any('error' in r for r in (default, octree, trajectory)):
             failures += 1
             rows.append([s['name']] + ['failed'] * 7)
@@ -64,7 +64,7 @@ def size_rows(animc, reference, sequences):
             settings = ['--codec', 'trajectory', '--target-kg', str(target)]
             log(f'{s["name"]}: trajectory at KG {target} %')
             new = run_bench(animc, s['pc2'], s['ply'], settings, 1)
-            old = run_bench(reference, s['pc2'], s['ply'], settings, 1) if reference else None
+            old = run_bench(reference, s['pc2'], s['ply'], settings, 1, one_thread=False) if reference else None
             failures += 'error' in new
             cell, share = against(new, old)
             row += [cell, share]
