@@ -218,12 +218,10 @@ void GroupFrames::reset(const TrajectoryGroup& g, const CodingOrder& order, Simd
   basis_ = dequantisedBasis(g);
   vertices_ = uint32_t(order.vertex.size());
   const uint32_t components = g.components;
-  const size_t padded = (size_t(vertices_) + kLanes - 1) / kLanes * kLanes;
   // Panels: a kernel step reads one front to back instead of K rows far apart.
-  coefficients_.assign(components * padded, 0.0f);
+  coefficients_.assign(FrameKernel::panelFloats(vertices_, components), 0.0f);
   for (uint32_t p = 0; components > 0 && p < vertices_; ++p) {  // no panels without components
-    const uint32_t v = order.vertex[p];
-    float* panel = coefficients_.data() + size_t(v / kLanes) * components * kLanes + v % kLanes;
+    float* panel = coefficients_.data() + FrameKernel::panelOffset(order.vertex[p], components);
     for (uint32_t k = 0; k < components; ++k)
       panel[size_t(k) * kLanes] =
           dequantisedCoefficient(g.coefficients[size_t(p) * components + k], g.coefficient_step);

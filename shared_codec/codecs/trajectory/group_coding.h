@@ -64,6 +64,14 @@ inline float dequantisedCoefficient(int32_t value, float step) { return float(va
 struct FrameKernel {
   static constexpr uint32_t kBatch = 4;
   static constexpr uint32_t kLanes = 8;
+  // Floats of the panels of `vertices` vertices (rounded up to kLanes), and where vertex v's
+  // coefficient of component 0 is in them (component k's is k x kLanes further).
+  static size_t panelFloats(uint32_t vertices, uint32_t components) {
+    return (size_t(vertices) + kLanes - 1) / kLanes * kLanes * components;
+  }
+  static size_t panelOffset(uint32_t v, uint32_t components) {
+    return size_t(v / kLanes) * components * kLanes + v % kLanes;
+  }
   // Frames [first, first + kBatch) (those in the group) of vertices [v_begin, v_end) of
   // `vertices`, v_begin a multiple of kLanes, into out: 3 floats a vertex, `vertices` a frame.
   // Any split of the vertices computes each vertex alike, so threads may share them.

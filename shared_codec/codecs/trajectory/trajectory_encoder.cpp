@@ -375,11 +375,13 @@ class TrajectoryEncoder final : public GroupEncoder {
     return out;
   }
 
-  // The group as quantised at step, all but its coefficients.
-  void quantiseHeader(const Components& pc, double step, Selection& chosen, TrajectoryGroup& g) const {
+  // The group as quantised at step, all but its coefficients; and the components sent, whose
+  // coefficients are quantised at g.coefficient_step.
+  Selection quantiseHeader(const Components& pc, double step, TrajectoryGroup& g) const {
     g.frames = frame_count_;
     g.coefficient_step = float(step);
     const double q = g.coefficient_step;
+    Selection chosen = selection(pc, q);
     const size_t row = size_t(3) * frame_count_;
     const uint32_t used = uint32_t(chosen.sent.size());
     g.components = used;
@@ -391,14 +393,14 @@ class TrajectoryEncoder final : public GroupEncoder {
     g.mean_step = float(std::max(q / std::sqrt(double(vertices_)), mean_reach / kMaxQuantised + 1e-30));
     g.mean.resize(row);
     for (size_t i = 0; i < row; ++i) g.mean[i] = quantise(pc.mean[Eigen::Index(i)], g.mean_step);
+    return chosen;
   }
 
   // The group as quantised at step: into g, whose buffers the search's trials reuse (a large
   // group's would otherwise be new pages at every trial).
   void quantiseGroup(const Components& pc, double step, TrajectoryGroup& g) const {
-    const double q = double(float(step));
-    Selection chosen = selection(pc, q);
-    quantiseHeader(pc, step, chosen, g);
+    const Selection chosen = quantiseHeader(pc, step, g);
+    const double q = g.coefficient_step;
     const size_t used = chosen.sent.size();
     g.coefficients.resize(size_t(vertices_) * used);
     const size_t blocks = (vertices_ + kVertexBlock - 1) / kVertexBlock;
@@ -459,23 +461,22 @@ class TrajectoryEncoder final : public GroupEncoder {
   // whole group's coefficients ever quantised at once.
   GroupError measure(const Components& pc, double step) const {
     TrajectoryGroup header;
-    Selection chosen = selection(pc, double(float(step)));
-    quantiseHeader(pc, step, chosen, header);
+    const Selection chosen = quantiseHeader(pc, step, header);
     const GroupBasis basis = dequantisedBasis(header);
-    const uint32_t used = header.components, lanes = FrameKernel::kLanes;
+    const uint32_t used = header.components;
     const double q = header.coefficient_step;
     const size_t blocks = (vertices_ + kVertexBlock - 1) / kVertexBlock;
     std::vector<double> squared(blocks, 0);
     std::vector<std::vector<double>> worst(blocks, std::vector<double>(frame_count_, 0));
     parallelFor(blocks, 3.0 * kVertexBlock * (used + 4) * frame_count_, [&](size_t b) {
       const uint32_t v0 = uint32_t(b) * kVertexBlock, count = std::min(kVertexBlock, vertices_ - v0);
-      std::vector<float> panels(size_t(used) * ((count + lanes - 1) / lanes * lanes), 0.0f);
+      std::vector<float> panels(FrameKernel::panelFloats(count, used), 0.0f);
       for (uint32_t i = 0; i < count && used > 0; ++i) {
-        float* panel = panels.data() + size_t(i / lanes) * used * lanes + i % lanes;
+        float* panel = panels.data() + FrameKernel::panelOffset(i, used);
         const Eigen::Index p = position_[v0 + i];
         for (uint32_t k = 0; k < used; ++k)
-          panel[size_t(k) * lanes] = dequantisedCoefficient(quantiseCoefficient(pc.coefficients(p, chosen.sent[k]), q),
-                                                            header.coefficient_step);
+          panel[size_t(k) * FrameKernel::kLanes] = dequantisedCoefficient(
+              quantiseCoefficient(pc.coefficients(p, chosen.sent[k]), q), header.coefficient_step);
       }
       std::vector<float> xyz(size_t(FrameKernel::kBatch) * 3 * count);
       for (uint32_t first = 0; first < frame_count_; first += FrameKernel::kBatch) {
