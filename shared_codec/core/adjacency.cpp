@@ -5,7 +5,7 @@
 
 namespace animc {
 
-VertexAdjacency::VertexAdjacency(const Topology& topology) : first_(topology.vertex_count + 1, 0) {
+VertexAdjacency::VertexAdjacency(const Topology& topology, Neighbours kept) : first_(topology.vertex_count + 1, 0) {
   // Count each directed edge, fill, then sort and drop duplicates row by row.
   for (const Triangle& t : topology.triangles)
     for (int i = 0; i < 3; ++i) first_[t[i] + 1] += 2;
@@ -23,11 +23,14 @@ VertexAdjacency::VertexAdjacency(const Topology& topology) : first_(topology.ver
     std::sort(row_begin, row_end);
     const uint32_t start = out;
     for (auto it = row_begin; it != row_end; ++it)
-      if ((it == row_begin || *it != *(it - 1)) && *it != v) neighbours_[out++] = *it;
+      if ((it == row_begin || *it != *(it - 1)) && *it != v && (kept == Neighbours::kAll || *it < v))
+        neighbours_[out++] = *it;
     first_[v] = start;
   }
   first_[topology.vertex_count] = out;
+  // Each edge was listed once from each of its triangles: the rows shrank to half or less.
   neighbours_.resize(out + 1);
+  neighbours_.shrink_to_fit();
 }
 
 }  // namespace animc

@@ -11,7 +11,10 @@ namespace animc {
 
 class VertexAdjacency {
  public:
-  explicit VertexAdjacency(const Topology& topology);
+  // kLower keeps only the neighbours of lower index: half the rows, for coders that predict
+  // a vertex from those decoded before it.
+  enum class Neighbours { kAll, kLower };
+  explicit VertexAdjacency(const Topology& topology, Neighbours kept = Neighbours::kAll);
   const uint32_t* begin(uint32_t v) const { return &neighbours_[first_[v]]; }
   const uint32_t* end(uint32_t v) const { return &neighbours_[0] + first_[v + 1]; }
 

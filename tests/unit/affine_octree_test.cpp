@@ -161,6 +161,31 @@ TEST(OctreePartition, SplitsAreStablePartitionsByOctant) {
   }
 }
 
+// Cells of more vertices than the split's buckets hold take a split of their own: the root of
+// a large mesh, and here a crowded first-level cell too.
+TEST(OctreePartition, CellsLargerThanTheBucketsSplitTheSameWay) {
+  for (SimdPath path : availableSimdPaths()) {
+  SCOPED_TRACE(int(path));
+  PartitionWalk w(path);
+  std::uniform_real_distribution<double> uniform(0, 1);
+  const uint32_t n = 200000;
+  w.unit.resize(3 * size_t(n));
+  for (size_t i = 0; i < w.unit.size(); ++i) w.unit[i] = (i / 3) % 4 ? 0.5 * uniform(w.rng) : uniform(w.rng);
+  w.levels = 4;
+  std::vector<uint32_t> all(n);
+  for (uint32_t i = 0; i < n; ++i) all[i] = i;
+  Cell children[8];
+  w.partition.split(w.partition.reset(w.unit, w.levels), children);
+  for (int c = 0; c < 8; ++c) {
+    std::vector<uint32_t> inside;
+    for (uint32_t i : all)
+      if (PartitionWalk::octantAt(&w.unit[3 * size_t(i)], 0) == c) inside.push_back(i);
+    if (c == 0) ASSERT_GT(inside.size(), 100000u);  // a first-level cell as large as a root
+    ASSERT_NO_FATAL_FAILURE(w.walk(children[c], inside));
+  }
+  }
+}
+
 // The prior's one-pass kernel (which on AVX2 CPUs sums while it gathers, normalises frame f-2
 // point by point and solves with a row per vector) against its definition written out of the
 // frame-wide and portable pieces: normalise(), gatherPoints(), fitSums() about the first

@@ -63,22 +63,26 @@ class AffineOctreeEncoder final : public FrameEncoder {
 
   void encodeFrame(const float* xyz, bool intra, std::vector<uint8_t>& out,
                    FrameCodingStats& stats) override {
-    x_.assign(xyz, xyz + 3 * size_t(vertex_count_));
     stats = FrameCodingStats();
     const size_t start = out.size();
-    if (!intra && state_.has_current && encodeInter(out, stats)) return;
+    if (!intra && state_.has_current && encodeInter(xyz, out, stats)) return;
     out.resize(start);
-    encodeIntra(out, stats);
+    encodeIntra(xyz, out, stats);
   }
   const std::vector<double>& reconstruction() const override { return state_.current; }
 
  private:
-  bool encodeInter(std::vector<uint8_t>& out, FrameCodingStats& stats) {
+  // The frame in double goes to x_, which an inter frame normalises in place: on a large mesh
+  // every frame-sized array counts (docs/auto.md).
+  void takeFrame(const float* xyz) { x_.assign(xyz, xyz + 3 * size_t(vertex_count_)); }
+
+  bool encodeInter(const float* xyz, std::vector<uint8_t>& out, FrameCodingStats& stats) {
     const RootCube cube = state_.prepare();
-    normalise(state_.path, cube, x_, q_);
-    for (double c : q_)
+    takeFrame(xyz);
+    normalise(state_.path, cube, x_, x_);
+    for (double c : x_)
       if (std::fabs(c) > kMaxUnitCoordinate) return false;
-    PFrameInput in{&state_.u, state_.has_before ? &state_.before : nullptr, cube, &q_, innerMaxError(options_),
+    PFrameInput in{&state_.u, state_.has_before ? &state_.before : nullptr, cube, &x_, innerMaxError(options_),
                    options_.max_depth};
     out.push_back(kInterFrame);
     if (options_.profile == Profile::kPaper) {
@@ -94,8 +98,9 @@ class AffineOctreeEncoder final : public FrameEncoder {
     return true;
   }
 
-  void encodeIntra(std::vector<uint8_t>& out, FrameCodingStats& stats) {
+  void encodeIntra(const float* xyz, std::vector<uint8_t>& out, FrameCodingStats& stats) {
     stats.intra = true;
+    takeFrame(xyz);
     out.push_back(kIntraFrame);
     intra_.encode(x_, intraStep(options_, boundingCube(x_).side), out, state_.current);
     state_.restart();
@@ -109,7 +114,7 @@ class AffineOctreeEncoder final : public FrameEncoder {
   PredictiveOctreeEncoder predictive_;
   uint32_t vertex_count_;
   LoopState state_;
-  std::vector<double> x_, q_;
+  std::vector<double> x_;
 };
 
 class AffineOctreeDecoder final : public FrameDecoder {

@@ -112,7 +112,7 @@ Cell OctreePartition::reset(const std::vector<double>& unit_xyz, int levels) {
   const bool deep = levels > kSpreadBits;
   key_.resize(n);
   for (int b = 0; b < 2; ++b) order_[b].resize(kPadding + size_t(n));
-  buckets_.resize(kPadding + 8 * size_t(n));
+  buckets_.resize(kPadding + 8 * size_t(std::min(n, kBucketCell)));
 #if ANIMC_AVX2_PATH
   if (useAvx2(path_)) mortonKeysAvx2(unit_xyz.data(), n, deep, key_.data());
   else
@@ -234,6 +234,7 @@ void copyBackwards(const uint32_t* from, uint32_t n, uint32_t* to) {
 void OctreePartition::split(const Cell& cell, Cell children[8]) {
   const uint32_t n = cell.end - cell.begin;
   if (n <= kSmallCell) return splitSmall(cell, children);
+  if (n > kBucketCell) return splitLarge(cell, children);
   const uint32_t* order = vertices(cell);
   const int shift = octantShift(cell.depth);
   static_assert(kCopyChunk <= kPadding, "a copy may reach kCopyChunk slots before its range");
@@ -250,6 +251,27 @@ void OctreePartition::split(const Cell& cell, Cell children[8]) {
     end -= count[c];
     children[c] = Cell{cell.begin + end, cell.begin + end + count[c], cell.depth + 1};
     copyBackwards(buckets + size_t(c) * n, count[c], out + end);
+  }
+}
+
+// The few cells above kBucketCell vertices (the top levels of a large mesh's tree) take a
+// count pass and then each vertex straight to its child's next slot.
+void OctreePartition::splitLarge(const Cell& cell, Cell children[8]) {
+  const uint32_t n = cell.end - cell.begin;
+  const uint32_t* order = vertices(cell);
+  const int shift = octantShift(cell.depth);
+  uint32_t* out = &order_[(cell.depth & 1) ^ 1][kPadding + cell.begin];
+  uint32_t count[8] = {}, slot[8];
+  for (uint32_t i = 0; i < n; ++i) ++count[octant(key_[order[i]], shift)];
+  uint32_t begin = 0;
+  for (int c = 0; c < 8; ++c) {
+    slot[c] = begin;
+    children[c] = Cell{cell.begin + begin, cell.begin + begin + count[c], cell.depth + 1};
+    begin += count[c];
+  }
+  for (uint32_t i = 0; i < n; ++i) {
+    const uint32_t v = order[i];
+    out[slot[octant(key_[v], shift)]++] = v;
   }
 }
 

@@ -47,10 +47,13 @@ class OctreePartition {
   // its children are written to the other buffer: the parent's copy is dead once split, so
   // nothing is copied back.
   std::vector<uint32_t> order_[2];
-  // split() of a cell of a few vertices.
+  // split() of a cell of a few vertices, and of one too large for the buckets.
   void splitSmall(const Cell& cell, Cell children[8]);
+  void splitLarge(const Cell& cell, Cell children[8]);
 
-  // Scratch of split(): eight buckets, each as large as the root.
+  // Scratch of split(): eight buckets of kBucketCell slots, for the cells no larger. Buckets as
+  // large as the root would take 8 indices a vertex, more than all else the partition holds.
+  static constexpr uint32_t kBucketCell = 1u << 16;
   std::vector<uint32_t> buckets_;
   // Slots in front of the vertex lists and the buckets, which split() may overwrite.
   static constexpr uint32_t kPadding = 8;

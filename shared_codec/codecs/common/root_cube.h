@@ -19,6 +19,7 @@ struct RootCube {
 
 // Positions are xyz-interleaved doubles.
 RootCube boundingCube(const std::vector<double>& xyz);
+// out = (xyz − cube.min) / cube.side, vertex by vertex; out may be xyz itself.
 void normalise(SimdPath path, const RootCube& cube, const std::vector<double>& xyz, std::vector<double>& out);
 // normalise()'s arithmetic for one point, (x − min) · (1 / side), x and y through a Pair: the
 // portable normalise() and the passes that normalise points as they meet them share it.

@@ -24,13 +24,13 @@ constexpr double kMaxGridIndex = 1u << 30;
 }  // namespace
 
 StaticPositionCoder::StaticPositionCoder(const Topology& topology)
-    : vertex_count_(topology.vertex_count), adjacency_(topology) {}
+    : vertex_count_(topology.vertex_count), adjacency_(topology, VertexAdjacency::Neighbours::kLower) {}
 
 void StaticPositionCoder::predict(const std::vector<int64_t>& q, uint32_t v, int64_t pred[3]) const {
   // Rounded mean of the neighbours already decoded (lower index); else the previous vertex.
   int64_t sum[3] = {0, 0, 0};
   int64_t n = 0;
-  for (const uint32_t* u = adjacency_.begin(v); u != adjacency_.end(v) && *u < v; ++u, ++n)
+  for (const uint32_t* u = adjacency_.begin(v); u != adjacency_.end(v); ++u, ++n)
     for (int a = 0; a < 3; ++a) sum[a] += q[3 * size_t(*u) + a];
   for (int a = 0; a < 3; ++a) {
     if (n == 0) pred[a] = v > 0 ? q[3 * size_t(v - 1) + a] : 0;
