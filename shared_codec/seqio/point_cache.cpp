@@ -27,24 +27,26 @@ class PointCacheSource : public FrameSource {
     }
     size_t values = size_t(topology_.vertex_count) * 3;
     try {
-      bytes_.resize(values * 4);
       xyz.resize(values);
     } catch (const std::bad_alloc&) {
       return limitExceeded(where() + ": out of memory for one frame");
     }
-    ANIMC_ASSIGN_OR_RETURN(size_t got, input_->read(bytes_.data(), bytes_.size()));
-    if (got < bytes_.size())
+    // Read into the caller's floats and converted there: no second frame-sized buffer.
+    uint8_t* bytes = reinterpret_cast<uint8_t*>(xyz.data());
+    ANIMC_ASSIGN_OR_RETURN(size_t got, input_->read(bytes, values * 4));
+    if (got < values * 4)
       return truncated(layout_.name + ": truncated at frame " + std::to_string(frame_) + " of " +
                        std::to_string(layout_.frame_count));
-    decode(xyz.data(), values);
+    decodeInPlace(xyz.data(), values);
     ANIMC_RETURN_IF_ERROR(checkPositions(xyz.data(), topology_.vertex_count).withContext(where()));
     ++frame_;
     return true;
   }
 
  private:
-  void decode(float* xyz, size_t values) const {
-    const uint8_t* in = bytes_.data();
+  // Each value is read before its own 4 bytes are written.
+  void decodeInPlace(float* xyz, size_t values) const {
+    const uint8_t* in = reinterpret_cast<const uint8_t*>(xyz);
     for (size_t i = 0; i < values; ++i, in += 4)
       xyz[i] = bitsToFloat(layout_.big_endian ? loadBe32(in) : loadLe32(in));
   }
@@ -64,7 +66,6 @@ class PointCacheSource : public FrameSource {
   std::unique_ptr<ByteInput> input_;
   Topology topology_;
   PointCacheLayout layout_;
-  std::vector<uint8_t> bytes_;
   int64_t frame_ = 0;
   bool trailing_checked_ = false;
 };

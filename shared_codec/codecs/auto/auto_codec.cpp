@@ -127,7 +127,7 @@ class AutoEncoder final : public GroupEncoder {
     return n;
   }
 
-  Topology topology_;
+  const Topology& topology_;
   uint32_t group_frames_;
   std::vector<std::unique_ptr<GroupEncoder>> encoders_;
   std::vector<bool> frame_by_frame_;
