@@ -23,12 +23,13 @@ sys.path.insert(0, os.path.dirname(HERE))
 from bench_common import find_sequences, log, table  # noqa: E402
 
 
-def build_tool(work):
-    tool = os.path.join(work, 'trajectory_bits')
+def build_tool(work, name='trajectory_bits'):
+    """Builds bench/experiments/NAME.cpp against build/'s libanimc.a into work/NAME."""
+    tool = os.path.join(work, name)
     build = os.path.join(REPO, 'build')
     subprocess.run(['g++', '-O2', '-std=c++17', '-I', os.path.join(REPO, 'shared_codec'), '-I',
                     os.path.join(REPO, 'include'), '-I', os.path.join(build, 'generated'), '-I', '/usr/include/eigen3',
-                    os.path.join(HERE, 'trajectory_bits.cpp'), os.path.join(build, 'shared_codec', 'libanimc.a'),
+                    os.path.join(HERE, name + '.cpp'), os.path.join(build, 'shared_codec', 'libanimc.a'),
                     '-llzma', '-lpthread', '-o', tool], check=True)
     return tool
 
