@@ -180,7 +180,9 @@ TEST(OctreePartition, CellsLargerThanTheBucketsSplitTheSameWay) {
     std::vector<uint32_t> inside;
     for (uint32_t i : all)
       if (PartitionWalk::octantAt(&w.unit[3 * size_t(i)], 0) == c) inside.push_back(i);
-    if (c == 0) ASSERT_GT(inside.size(), 100000u);  // a first-level cell as large as a root
+    if (c == 0) {
+      ASSERT_GT(inside.size(), 100000u);  // a first-level cell as large as a root
+    }
     ASSERT_NO_FATAL_FAILURE(w.walk(children[c], inside));
   }
   }
