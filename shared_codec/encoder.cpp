@@ -103,6 +103,14 @@ struct Encoder::Impl {
   bool finished = false;
 
   bool groupMode() const { return codec == nullptr; }
+  // The floats of a whole group, reserved when a batch starts: a large group is then never
+  // copied as it grows, nor held twice meanwhile (pages past the last frame stay untouched
+  // when the sequence is shorter). Further groups of a batch grow it as they come.
+  size_t groupFloats() const {
+    const uint32_t interval = settings.iframe_interval;
+    const uint32_t group = interval > 0 ? std::min(interval, max_group_frames) : max_group_frames;
+    return size_t(group) * 3 * topology.vertex_count;
+  }
   int64_t pendingFrames() const;
   bool groupEnds(int64_t next_frame) const;
   Status codeBatch();
@@ -269,6 +277,7 @@ Status Encoder::addFrame(const float* xyz) {
       e.pending.clear();
       e.coded = std::vector<float>();
     }
+    if (e.pending.empty()) e.pending.reserve(e.groupFloats());
     e.pending.insert(e.pending.end(), xyz, xyz + size_t(e.topology.vertex_count) * 3);
     ++e.open_frames;
     ++e.summary.frames;

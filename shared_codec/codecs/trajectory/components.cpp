@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <vector>
 
 #include "core/parallel.h"
 
@@ -121,9 +122,20 @@ constexpr double kSettled = 1e-3;
 
 TrajectoryDecomposition::TrajectoryDecomposition(RowMatrixF x)
     : mean_(x.cast<double>().colwise().mean()), centred_(std::move(x)) {
+  // Rows are centred and measured a block at a time, on any thread; the energy adds the
+  // rows' in order, whatever the thread count.
   const Eigen::RowVectorXf mean = mean_.cast<float>();
-  centred_.rowwise() -= mean;
-  for (Eigen::Index v = 0; v < centred_.rows(); ++v) energy_ += centred_.row(v).cast<double>().squaredNorm();
+  const Eigen::Index rows = centred_.rows();
+  std::vector<double> row_energy(static_cast<size_t>(rows));
+  const size_t blocks = size_t((rows + kProductRows - 1) / kProductRows);
+  parallelFor(blocks, 2.0 * double(kProductRows) * double(centred_.cols()), [&](size_t i) {
+    const Eigen::Index r = Eigen::Index(i) * kProductRows, end = std::min(rows, r + kProductRows);
+    for (Eigen::Index v = r; v < end; ++v) {
+      centred_.row(v) -= mean;
+      row_energy[size_t(v)] = centred_.row(v).cast<double>().squaredNorm();
+    }
+  });
+  for (double e : row_energy) energy_ += e;
 }
 
 Components TrajectoryDecomposition::none() const {

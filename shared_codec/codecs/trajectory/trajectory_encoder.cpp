@@ -63,8 +63,10 @@ class TrajectoryEncoder final : public GroupEncoder {
     original_ = frames;
     frame_count_ = frame_count;
     cube_sides_.clear();  // measure() compares with them at every step the search tries
-    if (options_.rate == TrajectoryRate::kMaxError)
-      for (uint32_t t = 0; t < frame_count; ++t) cube_sides_.push_back(cubeSide(t));
+    if (options_.rate == TrajectoryRate::kMaxError) {
+      cube_sides_.resize(frame_count);
+      parallelFor(frame_count, 6.0 * vertices_, [&](size_t t) { cube_sides_[t] = cubeSide(uint32_t(t)); });
+    }
     spread_ = options_.rate == TrajectoryRate::kTargetKg ? spread() : 0;
     TrajectoryDecomposition decomposition(trajectories());
     // The leading components only, as many as the step chosen might send: more while the
@@ -105,9 +107,13 @@ class TrajectoryEncoder final : public GroupEncoder {
   RowMatrixF trajectories() const {
     const uint32_t g = frame_count_;
     RowMatrixF x(vertices_, 3 * g);
-    for (uint32_t p = 0; p < vertices_; ++p)
-      for (uint32_t t = 0; t < g; ++t)
-        for (uint32_t c = 0; c < 3; ++c) x(p, c * g + t) = vertexOf(t, order_.vertex[p])[c];
+    const size_t blocks = (vertices_ + kVertexBlock - 1) / kVertexBlock;
+    parallelFor(blocks, 3.0 * g * kVertexBlock, [&](size_t b) {
+      const uint32_t end = std::min<uint32_t>(vertices_, uint32_t(b + 1) * kVertexBlock);
+      for (uint32_t p = uint32_t(b) * kVertexBlock; p < end; ++p)
+        for (uint32_t t = 0; t < g; ++t)
+          for (uint32_t c = 0; c < 3; ++c) x(p, c * g + t) = vertexOf(t, order_.vertex[p])[c];
+    });
     return x;
   }
 
