@@ -47,9 +47,14 @@ Result<EncodeSummary> encodeSequence(FrameSource& source, const EncodeSettings& 
   // The observer sees a group's frames when the encoder has coded it, in the encoder's own
   // copy: a large group is never held twice.
   int64_t observed = 0;
-  auto observe = [&] {
-    for (; observed < encoder.reconstructedFrames(); ++observed)
-      observer(observed, EncoderAccess::original(encoder, observed), encoder.reconstruction(observed));
+  auto observe = [&]() -> Status {
+    for (; observed < encoder.reconstructedFrames(); ++observed) {
+      const float* reconstruction = encoder.reconstruction(observed);
+      if (reconstruction == nullptr)
+        return corrupt("internal error: the codec cannot decode its own frame " + std::to_string(observed));
+      observer(observed, EncoderAccess::original(encoder, observed), reconstruction);
+    }
+    return Status();
   };
   for (int64_t frame = 0;; ++frame) {
     const std::string where = source.where();  // before next() moves past the frame
@@ -57,7 +62,7 @@ Result<EncodeSummary> encodeSequence(FrameSource& source, const EncodeSettings& 
     if (!more) break;
     Status s = encoder.addFrame(xyz.data());
     if (!s.ok()) return s.withContext(where);
-    if (observer) observe();
+    if (observer) ANIMC_RETURN_IF_ERROR(observe());
     if (progress) {
       const int pct = total > 0 ? int(std::min<int64_t>(99, 100 * (frame + 1) / total)) : 0;
       if (!progress(pct, "encoding")) return cancelled();
@@ -65,7 +70,7 @@ Result<EncodeSummary> encodeSequence(FrameSource& source, const EncodeSettings& 
   }
   auto summary = encoder.finish();
   if (!summary.ok()) return summary.status().withContext(source.where());
-  if (observer) observe();
+  if (observer) ANIMC_RETURN_IF_ERROR(observe());
   if (progress) progress(100, "encoded");
   return summary;
 }

@@ -313,7 +313,8 @@ const float* Encoder::reconstruction(int64_t frame) {
     if (e.groupMode()) {
       const size_t i =
           size_t(std::upper_bound(e.coded_first.begin(), e.coded_first.end(), frame) - e.coded_first.begin()) - 1;
-      e.group_coders[i]->reconstruction(uint32_t(frame - e.coded_first[i]), e.reconstruction.data());
+      if (!e.group_coders[i]->reconstruction(uint32_t(frame - e.coded_first[i]), e.reconstruction.data()))
+        return nullptr;
     } else {
       // The codecs reconstruct in double; decoders output these rounded to float.
       const std::vector<double>& r = e.codec->reconstruction();

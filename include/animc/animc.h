@@ -189,7 +189,8 @@ class ANIMC_API Encoder {
   // Frame k as every decoder will reconstruct it (3 * vertex_count floats, valid until the
   // next call of addFrame() or reconstruction()): what the caller measures errors on. Known
   // for the last frame added (a frame-by-frame codec on one thread) or the frames of the
-  // groups coded last; null for any other frame.
+  // groups coded last; null for any other frame (and, were the codec's decoder to refuse
+  // the encoder's own output, a bug, for that frame too).
   const float* reconstruction(int64_t frame);
   // reconstruction() of the last frame added: null for a frame of a group still open.
   const float* reconstruction();

@@ -43,8 +43,10 @@ class GroupEncoder {
   // Codes frame_count frames (3 * vertex_count floats each, one after the other) as a
   // group: one payload per frame, the first an intra frame.
   virtual void encodeGroup(const float* frames, uint32_t frame_count, std::vector<std::vector<uint8_t>>& payloads) = 0;
-  // Frame k of the last coded group as the decoder will produce it (3 * vertex_count floats).
-  virtual void reconstruction(uint32_t k, float* xyz) const = 0;
+  // Frame k of the last coded group as the decoder will produce it (3 * vertex_count floats);
+  // false if the codec's own decoder refuses the group's payloads, which is a bug, reported
+  // as such rather than a crash.
+  [[nodiscard]] virtual bool reconstruction(uint32_t k, float* xyz) const = 0;
   // What frame k of the last coded group is (whether it is intra, its cells).
   virtual FrameCodingStats frameStats(uint32_t k) const {
     FrameCodingStats stats;

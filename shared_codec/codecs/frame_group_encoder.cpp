@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <cstdlib>
 #include <cstring>
 
 namespace animc {
@@ -30,17 +29,23 @@ class FrameGroupEncoder final : public GroupEncoder {
   // group's reconstructions are not kept beside its frames while it competes (auto) or waits
   // for its batch, and a group nobody asks about is never decoded. Frames asked in order
   // decode once each.
-  void reconstruction(uint32_t k, float* xyz) const override {
+  bool reconstruction(uint32_t k, float* xyz) const override {
     if (!decoder_ || k < next_) {
-      decoder_ = codec_.makeDecoder(options_, topology_, DecoderOptions(), "", path_).value();
+      auto made = codec_.makeDecoder(options_, topology_, DecoderOptions(), "", path_);
+      if (!made.ok()) return false;
+      decoder_ = std::move(made.value());
       next_ = 0;
     }
     for (; next_ <= k; ++next_) {
       const Status decoded =
           decoder_->decodeFrame(ByteReader(payloads_[next_].data(), payloads_[next_].size()), frame_, nullptr);
-      if (!decoded.ok()) std::abort();  // its own payloads: a bug, not bad input
+      if (!decoded.ok()) {
+        decoder_.reset();  // its own payloads: a bug, not bad input
+        return false;
+      }
     }
     std::memcpy(xyz, frame_.data(), frameSize() * sizeof(float));
+    return true;
   }
 
   FrameCodingStats frameStats(uint32_t k) const override { return stats_[k]; }

@@ -8,6 +8,7 @@
 
 #include "api.h"
 #include "codecs/codec_registry.h"
+#include "codecs/frame_group_encoder.h"
 #include "report/report.h"
 #include "test_sequences.h"
 
@@ -99,6 +100,36 @@ TEST(SimdPathChoice, AnimcSimdPortableSelectsThePortableKernels) {
 #else
   EXPECT_EQ(bestSimdPath(), SimdPath::kPortable);
 #endif
+}
+
+// A codec whose decoder refuses everything: the encoder's own output can then not be decoded,
+// which only a bug would cause. A frame-by-frame codec coding groups reports it and goes on.
+class RefusingDecoder final : public FrameDecoder {
+ public:
+  Status decodeFrame(ByteReader, std::vector<float>&, bool*) override { return corrupt("refused"); }
+};
+
+TEST(FrameGroupEncoder, ReportsAPayloadItsDecoderRefusesWithoutCrashing) {
+  CodecEntry refusing = *findCodec(uint8_t(CodecId::kAffineOctree));
+  refusing.makeDecoder = [](const CodecOptions&, const Topology&, const DecoderOptions&, const std::string&,
+                            SimdPath) -> Result<std::unique_ptr<FrameDecoder>> {
+    return std::unique_ptr<FrameDecoder>(std::make_unique<RefusingDecoder>());
+  };
+  const MemorySequence sequence = testing_support::gridSequence(6, 5, 3, 0.1, 0.2);
+  auto encoder = makeFrameGroupEncoder(refusing, AffineOctreeOptions(), sequence.topology(), SimdPath::kPortable);
+  std::vector<float> frames;
+  for (const auto& f : sequence.frames()) frames.insert(frames.end(), f.begin(), f.end());
+  std::vector<std::vector<uint8_t>> payloads;
+  encoder->encodeGroup(frames.data(), 3, payloads);
+  ASSERT_EQ(payloads.size(), 3u);
+  std::vector<float> xyz(frames.size() / 3);
+  EXPECT_FALSE(encoder->reconstruction(0, xyz.data()));
+  EXPECT_FALSE(encoder->reconstruction(2, xyz.data()));
+  // The same encoder with the codec's own decoder reconstructs the frames.
+  auto working = makeFrameGroupEncoder(*findCodec(uint8_t(CodecId::kAffineOctree)), AffineOctreeOptions(),
+                                       sequence.topology(), SimdPath::kPortable);
+  working->encodeGroup(frames.data(), 3, payloads);
+  EXPECT_TRUE(working->reconstruction(2, xyz.data()));
 }
 
 }  // namespace

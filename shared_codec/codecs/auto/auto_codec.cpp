@@ -104,7 +104,7 @@ class AutoEncoder final : public GroupEncoder {
     for (auto& p : payloads) p.insert(p.begin(), index_[best_]);
   }
 
-  void reconstruction(uint32_t k, float* xyz) const override { encoders_[best_]->reconstruction(k, xyz); }
+  bool reconstruction(uint32_t k, float* xyz) const override { return encoders_[best_]->reconstruction(k, xyz); }
 
  private:
   // A group's bytes from runs of frames spread over it, each coded as a group of its own:

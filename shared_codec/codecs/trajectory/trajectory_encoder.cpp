@@ -97,7 +97,10 @@ class TrajectoryEncoder final : public GroupEncoder {
     original_ = nullptr;
   }
 
-  void reconstruction(uint32_t k, float* xyz) const override { frames_.frame(k, xyz); }
+  bool reconstruction(uint32_t k, float* xyz) const override {
+    frames_.frame(k, xyz);
+    return true;
+  }
 
  private:
   const float* vertexOf(uint32_t t, uint32_t v) const { return original_ + (size_t(t) * vertices_ + v) * 3; }
