@@ -20,12 +20,10 @@
 #include <string>
 #include <vector>
 
-#include "api.h"
 #include "codecs/trajectory/components.h"
-#include "codecs/trajectory/group_coding.h"
-#include "container/container_reader.h"
 #include "entropy/classed_integer.h"
 #include "seqio/sequence_io.h"
+#include "trajectory_file.h"
 
 namespace {
 
@@ -86,20 +84,17 @@ Coded codeBasis(const animc::Components& pc, uint32_t K, uint32_t G, double q, b
 }
 
 int measure(const std::string& ams, const std::string& sequence, const std::string& mesh) {
-  auto reader = animc::ContainerReader::open(ams);
-  auto source = animc::AmsSource::open(ams);
+  TrajectoryFile file;
+  if (!file.open("trajectory_basis_dct", ams)) return 1;
   auto frames = animc::openSequence(sequence, mesh);
-  if (!reader.ok() || !source.ok() || !frames.ok()) {
-    std::fprintf(stderr, "trajectory_basis_dct: cannot open %s or %s\n", ams.c_str(), sequence.c_str());
+  if (!frames.ok()) {
+    std::fprintf(stderr, "trajectory_basis_dct: cannot open %s\n", sequence.c_str());
     return 1;
   }
-  const animc::CodingOrder order(source.value()->topology());
-  animc::ContainerReader& r = *reader.value();
+  const animc::CodingOrder& order = *file.order;
   std::vector<uint8_t> payload;
   animc::TrajectoryGroup g;
-  if (r.groupCount() != 1 || !r.beginGroup(0).ok() || !r.nextFrame(payload).ok() ||
-      !animc::readTrajectoryGroup(animc::ByteReader(payload.data() + 1, payload.size() - 1), order, UINT64_MAX, g)
-           .ok()) {
+  if (file.groups() != 1 || !file.read(0, payload, g)) {
     std::fprintf(stderr, "trajectory_basis_dct: %s: not a trajectory file of one group\n", ams.c_str());
     return 1;
   }

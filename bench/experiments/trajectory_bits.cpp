@@ -17,9 +17,7 @@
 #include <string>
 #include <vector>
 
-#include "api.h"
-#include "codecs/trajectory/group_coding.h"
-#include "container/container_reader.h"
+#include "trajectory_file.h"
 
 namespace {
 
@@ -48,10 +46,8 @@ void toSecondOrder(int32_t* row, uint32_t frames) {
   }
 }
 
-void addGroup(const std::vector<uint8_t>& payload, const animc::CodingOrder& order, Parts& parts) {
-  animc::TrajectoryGroup g;
-  animc::ByteReader reader(payload.data() + 1, payload.size() - 1);
-  if (!animc::readTrajectoryGroup(reader, order, UINT64_MAX, g).ok()) return;
+void addGroup(const std::vector<uint8_t>& payload, const animc::TrajectoryGroup& g, const animc::CodingOrder& order,
+              Parts& parts) {
   animc::TrajectoryGroup no_components = g;
   no_components.components = 0;
   no_components.basis.clear();
@@ -79,29 +75,21 @@ void addGroup(const std::vector<uint8_t>& payload, const animc::CodingOrder& ord
 }
 
 int measure(const std::string& path) {
-  auto source = animc::AmsSource::open(path);
-  auto reader = animc::ContainerReader::open(path);
-  if (!source.ok() || !reader.ok()) {
-    std::fprintf(stderr, "trajectory_bits: %s: cannot open\n", path.c_str());
-    return 1;
-  }
-  if (source.value()->settings().codec() != animc::CodecId::kTrajectory) {
-    std::fprintf(stderr, "trajectory_bits: %s: not a trajectory-coded file\n", path.c_str());
-    return 1;
-  }
-  const animc::CodingOrder order(source.value()->topology());
+  TrajectoryFile file;
+  if (!file.open("trajectory_bits", path)) return 1;
+  const animc::CodingOrder& order = *file.order;
+  animc::AmsSource* source = file.source.get();
   Parts parts;
-  animc::ContainerReader& r = *reader.value();
   std::vector<uint8_t> payload;
-  for (size_t g = 0; g < r.groupCount(); ++g) {
-    if (!r.beginGroup(g).ok() || !r.nextFrame(payload).ok()) return 1;
-    addGroup(payload, order, parts);
+  for (size_t g = 0; g < file.groups(); ++g) {
+    animc::TrajectoryGroup group;
+    if (file.read(g, payload, group)) addGroup(payload, group, order, parts);
   }
   std::printf("{\"file\": \"%s\", \"vertices\": %u, \"frames\": %lld, \"file_bytes\": %llu, \"head\": %.0f, "
               "\"mean\": %.0f, \"basis\": %.0f, \"coefficients\": %.0f, \"mean_second_order\": %.0f, "
               "\"basis_second_order\": %.0f, \"components\": [",
-              path.c_str(), unsigned(order.vertex.size()), (long long)source.value()->frameCount(),
-              (unsigned long long)source.value()->info().file_bytes, parts.head, parts.mean, parts.basis,
+              path.c_str(), unsigned(order.vertex.size()), (long long)source->frameCount(),
+              (unsigned long long)source->info().file_bytes, parts.head, parts.mean, parts.basis,
               parts.coefficients, parts.mean_second_order, parts.basis_second_order);
   for (size_t i = 0; i < parts.components.size(); ++i) std::printf("%s%u", i ? ", " : "", parts.components[i]);
   std::printf("]}\n");

@@ -34,6 +34,28 @@ def build_tool(work, name='trajectory_bits'):
     return tool
 
 
+def parse_arguments(doc):
+    """The options of the measurements of this folder: animc, the sequences, the KG targets."""
+    p = argparse.ArgumentParser(description=doc.split('\n')[0])
+    p.add_argument('--animc', default=os.path.join(REPO, 'build', 'animc', 'animc'))
+    p.add_argument('--data', default=os.path.normpath(os.path.join(REPO, '..', 'shared', 'data')))
+    p.add_argument('--kg', default='0.1,0.3,0.45,1')
+    return p.parse_args()
+
+
+def trajectory_files(args, work):
+    """Every shared sequence encoded by the trajectory codec at every KG target, one after the
+    other into work/NAME.ams: yields (name, pc2, ply, kg, ams, animc's JSON report)."""
+    for name, pc2, ply in find_sequences(args.data):
+        for kg in (float(x) for x in args.kg.split(',')):
+            log(f'{name}: KG {kg:g} %')
+            ams = os.path.join(work, f'{name}.ams')
+            encoded = json.loads(subprocess.run(
+                [args.animc, 'encode', pc2, '--mesh', ply, '-o', ams, '--codec', 'trajectory', '--target-kg', str(kg),
+                 '--json'], check=True, capture_output=True, text=True).stdout)
+            yield name, pc2, ply, kg, ams, encoded
+
+
 def row(name, kg, split, encoded):
     vf = split['vertices'] * split['frames'] / 8  # bytes to bits per vertex per frame
     groups = split['head'] + split['mean'] + split['basis'] + split['coefficients']
@@ -53,24 +75,14 @@ def prediction_row(name, kg, split):
 
 
 def main():
-    p = argparse.ArgumentParser(description=__doc__.split('\n')[0])
-    p.add_argument('--animc', default=os.path.join(REPO, 'build', 'animc', 'animc'))
-    p.add_argument('--data', default=os.path.normpath(os.path.join(REPO, '..', 'shared', 'data')))
-    p.add_argument('--kg', default='0.1,0.3,0.45,1')
-    args = p.parse_args()
+    args = parse_arguments(__doc__)
     rows, prediction_rows = [], []
     with tempfile.TemporaryDirectory() as work:
         tool = build_tool(work)
-        for name, pc2, ply in find_sequences(args.data):
-            for kg in (float(x) for x in args.kg.split(',')):
-                log(f'{name}: KG {kg:g} %')
-                ams = os.path.join(work, f'{name}.ams')
-                encoded = json.loads(subprocess.run(
-                    [args.animc, 'encode', pc2, '--mesh', ply, '-o', ams, '--codec', 'trajectory', '--target-kg',
-                     str(kg), '--json'], check=True, capture_output=True, text=True).stdout)
-                split = json.loads(subprocess.run([tool, ams], check=True, capture_output=True, text=True).stdout)
-                rows.append(row(name, kg, split, encoded))
-                prediction_rows.append(prediction_row(name, kg, split))
+        for name, _, _, kg, ams, encoded in trajectory_files(args, work):
+            split = json.loads(subprocess.run([tool, ams], check=True, capture_output=True, text=True).stdout)
+            rows.append(row(name, kg, split, encoded))
+            prediction_rows.append(prediction_row(name, kg, split))
     print('\n'.join(table(['sequence', 'target KG %', 'KG %', 'bpvf', 'outside groups', 'head + mean', 'basis',
                            'coefficients', 'components'], rows)))
     print()

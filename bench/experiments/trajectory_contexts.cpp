@@ -37,11 +37,9 @@
 #include <cstdint>
 #include <set>
 
-#include "api.h"
-#include "codecs/trajectory/group_coding.h"
 #include "core/adjacency.h"
-#include "container/container_reader.h"
 #include "entropy/classed_integer.h"
+#include "trajectory_file.h"
 
 namespace {
 
@@ -274,34 +272,23 @@ size_t codedBytes(const TrajectoryGroup& g, const CodingOrder& order, const Neig
 }
 
 int measure(const std::string& path) {
-  auto source = animc::AmsSource::open(path);
-  auto reader = animc::ContainerReader::open(path);
-  if (!source.ok() || !reader.ok()) {
-    std::fprintf(stderr, "trajectory_contexts: %s: cannot open\n", path.c_str());
-    return 1;
-  }
-  if (source.value()->settings().codec() != animc::CodecId::kTrajectory) {
-    std::fprintf(stderr, "trajectory_contexts: %s: not a trajectory-coded file\n", path.c_str());
-    return 1;
-  }
-  const CodingOrder order(source.value()->topology());
-  const Hierarchy levels[2] = {buildHierarchy(source.value()->topology(), order, INT32_MAX),
-                               buildHierarchy(source.value()->topology(), order, 1)};
+  TrajectoryFile file;
+  if (!file.open("trajectory_contexts", path)) return 1;
+  const CodingOrder& order = *file.order;
+  const animc::Topology& topology = file.source->topology();
+  const Hierarchy levels[2] = {buildHierarchy(topology, order, INT32_MAX), buildHierarchy(topology, order, 1)};
   const std::vector<Variant> all = variants();
   std::vector<double> bytes(all.size(), 0), hierarchy_bytes(2, 0);
-  animc::ContainerReader& r = *reader.value();
   std::vector<uint8_t> payload;
-  for (size_t group = 0; group < r.groupCount(); ++group) {
-    if (!r.beginGroup(group).ok() || !r.nextFrame(payload).ok()) return 1;
+  for (size_t group = 0; group < file.groups(); ++group) {
     TrajectoryGroup g;
-    animc::ByteReader in(payload.data() + 1, payload.size() - 1);
-    if (!animc::readTrajectoryGroup(in, order, UINT64_MAX, g).ok()) return 1;
+    if (!file.read(group, payload, g)) return 1;
     const Neighbourhood h = neighbourMeans(g, order);
     for (size_t v = 0; v < all.size(); ++v) bytes[v] += double(codedBytes(g, order, h, all[v]));
     for (int a = 0; a < 2; ++a) hierarchy_bytes[a] += double(hierarchyBytes(g, levels[a]));
   }
   std::printf("{\"file\": \"%s\", \"vertices\": %u, \"frames\": %lld", path.c_str(), unsigned(order.vertex.size()),
-              (long long)source.value()->frameCount());
+              (long long)file.source->frameCount());
   for (size_t v = 0; v < all.size(); ++v) std::printf(", \"%s\": %.0f", all[v].name.c_str(), bytes[v]);
   std::printf(", \"hierarchy\": %.0f, \"one level\": %.0f}\n", hierarchy_bytes[0], hierarchy_bytes[1]);
   return 0;

@@ -11,7 +11,6 @@ Both are built here against build/'s libanimc.a. Prints two Markdown tables: eac
 variant's bytes over today's, and the basis bytes and added error of both domains.
 
   usage: bench/experiments/trajectory_variants.py [--animc PATH] [--data DIR] [--kg 0.1,0.3,0.45,1]"""
-import argparse
 import json
 import os
 import subprocess
@@ -21,8 +20,8 @@ import tempfile
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.dirname(HERE))
 sys.path.insert(0, HERE)
-from bench_common import find_sequences, log, table  # noqa: E402
-from trajectory_bits import REPO, build_tool  # noqa: E402
+from bench_common import table  # noqa: E402
+from trajectory_bits import build_tool, parse_arguments, trajectory_files  # noqa: E402
 
 VARIANTS = ('previous', 'activity', 'both', 'components', 'shrunk', 'hierarchy', 'one level', 'unpredicted')
 
@@ -32,29 +31,19 @@ def run_json(command):
 
 
 def main():
-    p = argparse.ArgumentParser(description=__doc__.split('\n')[0])
-    p.add_argument('--animc', default=os.path.join(REPO, 'build', 'animc', 'animc'))
-    p.add_argument('--data', default=os.path.normpath(os.path.join(REPO, '..', 'shared', 'data')))
-    p.add_argument('--kg', default='0.1,0.3,0.45,1')
-    args = p.parse_args()
+    args = parse_arguments(__doc__)
     coefficient_rows, basis_rows = [], []
     with tempfile.TemporaryDirectory() as work:
         contexts = build_tool(work, 'trajectory_contexts')
         basis = build_tool(work, 'trajectory_basis_dct')
-        for name, pc2, ply in find_sequences(args.data):
-            for kg in (float(x) for x in args.kg.split(',')):
-                log(f'{name}: KG {kg:g} %')
-                ams = os.path.join(work, f'{name}.ams')
-                subprocess.run([args.animc, 'encode', pc2, '--mesh', ply, '-o', ams, '--codec', 'trajectory',
-                                '--target-kg', str(kg)], check=True, capture_output=True)
-                coded = run_json([contexts, ams])
-                today = coded['today']
-                coefficient_rows.append([name, f'{kg:g}', f'{today:.0f}'] +
-                                        [f'{coded[v] / today:.3f}' for v in VARIANTS])
-                b = run_json([basis, ams, pc2, ply])
-                basis_rows.append([name, f'{kg:g}', str(b['components']), f'{b["time_bytes"]:.0f}',
-                                   f'{b["dct_bytes"]:.0f}', f'{b["dct_bytes"] / b["time_bytes"]:.3f}',
-                                   f'{b["dct_error"] / b["time_error"]:.3f}'])
+        for name, pc2, ply, kg, ams, _ in trajectory_files(args, work):
+            coded = run_json([contexts, ams])
+            today = coded['today']
+            coefficient_rows.append([name, f'{kg:g}', f'{today:.0f}'] + [f'{coded[v] / today:.3f}' for v in VARIANTS])
+            b = run_json([basis, ams, pc2, ply])
+            basis_rows.append([name, f'{kg:g}', str(b['components']), f'{b["time_bytes"]:.0f}',
+                               f'{b["dct_bytes"]:.0f}', f'{b["dct_bytes"] / b["time_bytes"]:.3f}',
+                               f'{b["dct_error"] / b["time_error"]:.3f}'])
     print('\n'.join(table(['sequence', 'KG %', 'today (bytes)'] + list(VARIANTS), coefficient_rows)))
     print()
     print('\n'.join(table(['sequence', 'KG %', 'components', 'time (bytes)', 'DCT (bytes)', 'bytes DCT / time',

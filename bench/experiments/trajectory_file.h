@@ -1,0 +1,46 @@
+// SPDX-License-Identifier: Apache-2.0
+// A trajectory-coded .ams read back group by group as the codec's integers, for the design
+// measurements of this folder (trajectory_bits.cpp, trajectory_contexts.cpp,
+// trajectory_basis_dct.cpp).
+#pragma once
+#include <cstdint>
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "api.h"
+#include "codecs/trajectory/group_coding.h"
+#include "container/container_reader.h"
+
+struct TrajectoryFile {
+  std::unique_ptr<animc::AmsSource> source;  // its settings, mesh and sizes
+  std::unique_ptr<animc::ContainerReader> reader;
+  std::unique_ptr<animc::CodingOrder> order;
+
+  // Opens path, or says why not on stderr, after `tool`.
+  bool open(const char* tool, const std::string& path) {
+    auto s = animc::AmsSource::open(path);
+    auto r = animc::ContainerReader::open(path);
+    if (!s.ok() || !r.ok()) {
+      std::fprintf(stderr, "%s: %s: cannot open\n", tool, path.c_str());
+      return false;
+    }
+    if (s.value()->settings().codec() != animc::CodecId::kTrajectory) {
+      std::fprintf(stderr, "%s: %s: not a trajectory-coded file\n", tool, path.c_str());
+      return false;
+    }
+    source = std::move(s.value());
+    reader = std::move(r.value());
+    order = std::make_unique<animc::CodingOrder>(source->topology());
+    return true;
+  }
+  size_t groups() const { return reader->groupCount(); }
+  // Group g's first payload (its Frame_Type byte first) and its integers.
+  bool read(size_t g, std::vector<uint8_t>& payload, animc::TrajectoryGroup& group) {
+    if (!reader->beginGroup(g).ok() || !reader->nextFrame(payload).ok() || payload.empty()) return false;
+    return animc::readTrajectoryGroup(animc::ByteReader(payload.data() + 1, payload.size() - 1), *order, UINT64_MAX,
+                                      group)
+        .ok();
+  }
+};
