@@ -98,8 +98,4 @@ int measure(const std::string& path) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  int failures = 0;
-  for (int i = 1; i < argc; ++i) failures += measure(argv[i]);
-  return failures ? 1 : 0;
-}
+int main(int argc, char** argv) { return measureEach(argc, argv, measure); }

@@ -44,3 +44,10 @@ struct TrajectoryFile {
         .ok();
   }
 };
+
+// main() of a tool measuring each file its command line names: 1 if any failed.
+inline int measureEach(int argc, char** argv, int (*measure)(const std::string& path)) {
+  int failures = 0;
+  for (int i = 1; i < argc; ++i) failures += measure(argv[i]);
+  return failures ? 1 : 0;
+}
