@@ -144,8 +144,8 @@ def threads_section(animc, sequences, runs):
         raw = large[2] * large[3] * 12 / 2**20
         lines += [f'Peak memory of `animc encode` on the large sequence ({large[2]} vertices × {large[3]} '
                   f'frames, one group; raw floats {raw:.0f} MiB) at its default settings, from the kernel\'s '
-                  'count for the process. With `auto`, the affine-octree candidate\'s working memory on one '
-                  'frame of this mesh is most of what lies above the trajectory codec\'s peak:', '']
+                  'count for the process. With `auto`, the candidates run one after the other on a group this '
+                  'large, so its peak is the larger of theirs beside the group\'s frames (docs/auto.md):', '']
         lines += table(['codec', 'threads', 'peak RSS', 'of the raw floats'], memory) + ['']
     if speedups:
         projected = []
