@@ -20,9 +20,7 @@
 #include <string>
 #include <vector>
 
-#include "codecs/trajectory/components.h"
 #include "entropy/classed_integer.h"
-#include "seqio/sequence_io.h"
 #include "trajectory_file.h"
 
 namespace {
@@ -86,29 +84,18 @@ Coded codeBasis(const animc::Components& pc, uint32_t K, uint32_t G, double q, b
 int measure(const std::string& ams, const std::string& sequence, const std::string& mesh) {
   TrajectoryFile file;
   if (!file.open("trajectory_basis_dct", ams)) return 1;
-  auto frames = animc::openSequence(sequence, mesh);
-  if (!frames.ok()) {
-    std::fprintf(stderr, "trajectory_basis_dct: cannot open %s\n", sequence.c_str());
-    return 1;
-  }
-  const animc::CodingOrder& order = *file.order;
   std::vector<uint8_t> payload;
   animc::TrajectoryGroup g;
   if (file.groups() != 1 || !file.read(0, payload, g)) {
     std::fprintf(stderr, "trajectory_basis_dct: %s: not a trajectory file of one group\n", ams.c_str());
     return 1;
   }
-  const uint32_t n = uint32_t(order.vertex.size()), G = g.frames;
-  animc::RowMatrixF x(n, 3 * G);
-  std::vector<float> xyz;
-  for (uint32_t t = 0; t < G; ++t) {
-    if (!frames.value()->next(xyz).ok()) return 1;
-    for (uint32_t p = 0; p < n; ++p)
-      for (uint32_t axis = 0; axis < 3; ++axis) x(p, axis * G + t) = xyz[size_t(order.vertex[p]) * 3 + axis];
+  const uint32_t G = g.frames;
+  animc::Components pc;
+  if (!recomputeComponents(sequence, mesh, *file.order, G, g.components, pc)) {
+    std::fprintf(stderr, "trajectory_basis_dct: cannot read %s\n", sequence.c_str());
+    return 1;
   }
-  animc::TrajectoryDecomposition decomposition(std::move(x));
-  animc::Components pc = decomposition.none();
-  decomposition.extend(pc, g.components, 0);
   const uint32_t K = std::min<uint32_t>(g.components, uint32_t(pc.sigma.size()));
   const Coded time = codeBasis(pc, K, G, g.coefficient_step, false);
   const Coded dct = codeBasis(pc, K, G, g.coefficient_step, true);

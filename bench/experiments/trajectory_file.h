@@ -10,8 +10,10 @@
 #include <vector>
 
 #include "api.h"
+#include "codecs/trajectory/components.h"
 #include "codecs/trajectory/group_coding.h"
 #include "container/container_reader.h"
+#include "seqio/sequence_io.h"
 
 struct TrajectoryFile {
   std::unique_ptr<animc::AmsSource> source;  // its settings, mesh and sizes
@@ -44,6 +46,28 @@ struct TrajectoryFile {
         .ok();
   }
 };
+
+// The leading `count` principal components of the first `frames` frames of a sequence, its
+// trajectories in `order`'s rows, computed as the trajectory encoder computes them
+// (TrajectoryDecomposition); false if the sequence cannot be read.
+inline bool recomputeComponents(const std::string& sequence, const std::string& mesh, const animc::CodingOrder& order,
+                                uint32_t frames, uint32_t count, animc::Components& pc) {
+  auto source = animc::openSequence(sequence, mesh);
+  if (!source.ok()) return false;
+  const uint32_t n = uint32_t(order.vertex.size());
+  animc::RowMatrixF x(n, 3 * frames);
+  std::vector<float> xyz;
+  for (uint32_t t = 0; t < frames; ++t) {
+    auto more = source.value()->next(xyz);
+    if (!more.ok() || !more.value() || xyz.size() != size_t(3) * n) return false;
+    for (uint32_t p = 0; p < n; ++p)
+      for (uint32_t axis = 0; axis < 3; ++axis) x(p, axis * frames + t) = xyz[size_t(order.vertex[p]) * 3 + axis];
+  }
+  animc::TrajectoryDecomposition decomposition(std::move(x));
+  pc = decomposition.none();
+  decomposition.extend(pc, count, 0);
+  return true;
+}
 
 // main() of a tool measuring each file its command line names: 1 if any failed.
 inline int measureEach(int argc, char** argv, int (*measure)(const std::string& path)) {

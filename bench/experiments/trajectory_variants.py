@@ -6,9 +6,12 @@ sequence is encoded with `animc encode --codec trajectory --target-kg X` (one gr
   trajectory_contexts.cpp   codes the file's quantised coefficients, unchanged (so at the file's
                             own error), with other contexts and predictions;
   trajectory_basis_dct.cpp  computes the group's basis again and quantises it at the encoder's
-                            steps in the time domain (today) and in a DCT domain along time.
-Both are built here against build/'s libanimc.a. Prints two Markdown tables: each coefficient
-variant's bytes over today's, and the basis bytes and added error of both domains.
+                            steps in the time domain (today) and in a DCT domain along time;
+  trajectory_rdoq.cpp       computes the group's coefficients again and quantises them by
+                            plain rounding, today's rule and a rate-distortion choice.
+All are built here against build/'s libanimc.a. Prints three Markdown tables: each coefficient
+variant's bytes over today's, the basis bytes and added error of both domains, and each
+quantisation's coefficient bytes and error over today's, and its bytes at today's error.
 
   usage: bench/experiments/trajectory_variants.py [--animc PATH] [--data DIR] [--kg 0.1,0.3,0.45,1]"""
 import json
@@ -32,10 +35,11 @@ def run_json(command):
 
 def main():
     args = parse_arguments(__doc__)
-    coefficient_rows, basis_rows = [], []
+    coefficient_rows, basis_rows, rdoq_rows = [], [], []
     with tempfile.TemporaryDirectory() as work:
         contexts = build_tool(work, 'trajectory_contexts')
         basis = build_tool(work, 'trajectory_basis_dct')
+        rdoq = build_tool(work, 'trajectory_rdoq')
         for name, pc2, ply, kg, ams, _ in trajectory_files(args, work):
             coded = run_json([contexts, ams])
             today = coded['today']
@@ -44,10 +48,17 @@ def main():
             basis_rows.append([name, f'{kg:g}', str(b['components']), f'{b["time_bytes"]:.0f}',
                                f'{b["dct_bytes"]:.0f}', f'{b["dct_bytes"] / b["time_bytes"]:.3f}',
                                f'{b["dct_error"] / b["time_error"]:.3f}'])
+            r = run_json([rdoq, ams, pc2, ply])
+            rdoq_rows.append([name, f'{kg:g}', f'{r["today_bytes"]:.0f}'] +
+                             [f'{r[f"{v}_{part}"] / r[f"today_{part}"]:.3f}' for v in ('nearest', 'rdoq')
+                              for part in ('bytes', 'error', 'at_today')])
     print('\n'.join(table(['sequence', 'KG %', 'today (bytes)'] + list(VARIANTS), coefficient_rows)))
     print()
     print('\n'.join(table(['sequence', 'KG %', 'components', 'time (bytes)', 'DCT (bytes)', 'bytes DCT / time',
                            'error DCT / time'], basis_rows)))
+    print()
+    print('\n'.join(table(['sequence', 'KG %', 'today (bytes)', 'nearest: bytes', 'error', 'bytes at equal error',
+                           'rdoq: bytes', 'error', 'bytes at equal error'], rdoq_rows)))
 
 
 if __name__ == '__main__':
