@@ -81,21 +81,11 @@ Coded codeBasis(const animc::Components& pc, uint32_t K, uint32_t G, double q, b
   return c;
 }
 
-int measure(const std::string& ams, const std::string& sequence, const std::string& mesh) {
-  TrajectoryFile file;
-  if (!file.open("trajectory_basis_dct", ams)) return 1;
-  std::vector<uint8_t> payload;
-  animc::TrajectoryGroup g;
-  if (file.groups() != 1 || !file.read(0, payload, g)) {
-    std::fprintf(stderr, "trajectory_basis_dct: %s: not a trajectory file of one group\n", ams.c_str());
-    return 1;
-  }
+int measure(const OneGroup& one) {
+  const animc::TrajectoryGroup& g = one.group;
+  const animc::Components& pc = one.pc;
+  const std::string& ams = one.path;
   const uint32_t G = g.frames;
-  animc::Components pc;
-  if (!recomputeComponents(sequence, mesh, *file.order, G, g.components, pc)) {
-    std::fprintf(stderr, "trajectory_basis_dct: cannot read %s\n", sequence.c_str());
-    return 1;
-  }
   const uint32_t K = std::min<uint32_t>(g.components, uint32_t(pc.sigma.size()));
   const Coded time = codeBasis(pc, K, G, g.coefficient_step, false);
   const Coded dct = codeBasis(pc, K, G, g.coefficient_step, true);
@@ -107,10 +97,4 @@ int measure(const std::string& ams, const std::string& sequence, const std::stri
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  if (argc != 4) {
-    std::fprintf(stderr, "usage: trajectory_basis_dct FILE.ams SEQUENCE MESH\n");
-    return 2;
-  }
-  return measure(argv[1], argv[2], argv[3]);
-}
+int main(int argc, char** argv) { return measureOneGroup("trajectory_basis_dct", argc, argv, measure); }

@@ -69,6 +69,36 @@ inline bool recomputeComponents(const std::string& sequence, const std::string& 
   return true;
 }
 
+// A file of one trajectory group, its integers, and its leading components computed again from
+// its sequence (as many as the group sends).
+struct OneGroup {
+  std::string path;
+  TrajectoryFile file;
+  animc::TrajectoryGroup group;
+  animc::Components pc;
+};
+
+// main() of a tool measuring one such file: `tool FILE.ams SEQUENCE MESH`.
+inline int measureOneGroup(const char* tool, int argc, char** argv, int (*measure)(const OneGroup& one)) {
+  if (argc != 4) {
+    std::fprintf(stderr, "usage: %s FILE.ams SEQUENCE MESH\n", tool);
+    return 2;
+  }
+  OneGroup one;
+  one.path = argv[1];
+  if (!one.file.open(tool, one.path)) return 1;
+  std::vector<uint8_t> payload;
+  if (one.file.groups() != 1 || !one.file.read(0, payload, one.group)) {
+    std::fprintf(stderr, "%s: %s: not a trajectory file of one group\n", tool, argv[1]);
+    return 1;
+  }
+  if (!recomputeComponents(argv[2], argv[3], *one.file.order, one.group.frames, one.group.components, one.pc)) {
+    std::fprintf(stderr, "%s: cannot read %s\n", tool, argv[2]);
+    return 1;
+  }
+  return measure(one);
+}
+
 // main() of a tool measuring each file its command line names: 1 if any failed.
 inline int measureEach(int argc, char** argv, int (*measure)(const std::string& path)) {
   int failures = 0;

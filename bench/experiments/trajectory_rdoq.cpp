@@ -89,20 +89,11 @@ Coded quantiseAndCode(const animc::Components& pc, const animc::CodingOrder& ord
   return c;
 }
 
-int measure(const std::string& ams, const std::string& sequence, const std::string& mesh) {
-  TrajectoryFile file;
-  if (!file.open("trajectory_rdoq", ams)) return 1;
-  std::vector<uint8_t> payload;
-  animc::TrajectoryGroup g;
-  if (file.groups() != 1 || !file.read(0, payload, g)) {
-    std::fprintf(stderr, "trajectory_rdoq: %s: not a trajectory file of one group\n", ams.c_str());
-    return 1;
-  }
-  animc::Components pc;
-  if (!recomputeComponents(sequence, mesh, *file.order, g.frames, g.components, pc)) {
-    std::fprintf(stderr, "trajectory_rdoq: cannot read %s\n", sequence.c_str());
-    return 1;
-  }
+int measure(const OneGroup& one) {
+  const animc::TrajectoryGroup& g = one.group;
+  const animc::Components& pc = one.pc;
+  const TrajectoryFile& file = one.file;
+  const std::string& ams = one.path;
   const uint32_t K = std::min<uint32_t>(g.components, uint32_t(pc.sigma.size()));
   const char* names[3] = {"nearest", "today", "rdoq"};
   const double q = g.coefficient_step;
@@ -123,10 +114,4 @@ int measure(const std::string& ams, const std::string& sequence, const std::stri
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  if (argc != 4) {
-    std::fprintf(stderr, "usage: trajectory_rdoq FILE.ams SEQUENCE MESH\n");
-    return 2;
-  }
-  return measure(argv[1], argv[2], argv[3]);
-}
+int main(int argc, char** argv) { return measureOneGroup("trajectory_rdoq", argc, argv, measure); }
