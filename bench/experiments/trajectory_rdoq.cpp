@@ -90,18 +90,17 @@ Coded quantiseAndCode(const animc::Components& pc, const animc::CodingOrder& ord
 }
 
 int measure(const OneGroup& one) {
-  const animc::TrajectoryGroup& g = one.group;
+  const animc::CodingOrder& order = *one.file.order;
   const animc::Components& pc = one.pc;
-  const TrajectoryFile& file = one.file;
-  const std::string& ams = one.path;
+  const animc::TrajectoryGroup& g = one.group;
   const uint32_t K = std::min<uint32_t>(g.components, uint32_t(pc.sigma.size()));
   const char* names[3] = {"nearest", "today", "rdoq"};
   const double q = g.coefficient_step;
   Coded coded[3];
-  for (int r = 0; r < 3; ++r) coded[r] = quantiseAndCode(pc, *file.order, K, q, Rule(r));
-  const Coded coarser = quantiseAndCode(pc, *file.order, K, 1.05 * q, Rule::kToday);
+  for (int r = 0; r < 3; ++r) coded[r] = quantiseAndCode(pc, order, K, q, Rule(r));
+  const Coded coarser = quantiseAndCode(pc, order, K, 1.05 * q, Rule::kToday);
   const double error_per_byte = (coarser.error - coded[1].error) / (coded[1].bytes - coarser.bytes);
-  std::printf("{\"file\": \"%s\", \"components\": %u, \"bits_per_squared_step\": %.3f", ams.c_str(), K,
+  std::printf("{\"file\": \"%s\", \"components\": %u, \"bits_per_squared_step\": %.3f", one.path.c_str(), K,
               q * q / error_per_byte * 8);
   for (int r = 0; r < 3; ++r) {
     const double at_today = coded[r].bytes + (coded[r].error - coded[1].error) / error_per_byte;
