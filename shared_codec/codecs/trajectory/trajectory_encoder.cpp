@@ -31,6 +31,19 @@ constexpr Eigen::Index kMinMoreComponents = 16;
 // coefficients and frames stay in cache.
 constexpr uint32_t kVertexBlock = 2048;
 
+size_t vertexBlocks(uint32_t vertices) { return (vertices + kVertexBlock - 1) / kVertexBlock; }
+
+// block(b, begin, end) for the vertex blocks of `vertices`, on any thread. The blocks are
+// fixed, so what each one sums never depends on the thread count; vertex_cost is parallelFor's
+// cost of one vertex.
+void forVertexBlocks(uint32_t vertices, double vertex_cost,
+                     const std::function<void(size_t b, uint32_t begin, uint32_t end)>& block) {
+  parallelFor(vertexBlocks(vertices), vertex_cost * kVertexBlock, [&](size_t b) {
+    const uint32_t begin = uint32_t(b) * kVertexBlock;
+    block(b, begin, std::min<uint32_t>(vertices, begin + kVertexBlock));
+  });
+}
+
 int32_t quantise(double value, double step) {
   return int32_t(std::clamp(std::nearbyint(value / step), -kMaxQuantised, kMaxQuantised));
 }
@@ -110,10 +123,8 @@ class TrajectoryEncoder final : public GroupEncoder {
   RowMatrixF trajectories() const {
     const uint32_t g = frame_count_;
     RowMatrixF x(vertices_, 3 * g);
-    const size_t blocks = (vertices_ + kVertexBlock - 1) / kVertexBlock;
-    parallelFor(blocks, 3.0 * g * kVertexBlock, [&](size_t b) {
-      const uint32_t end = std::min<uint32_t>(vertices_, uint32_t(b + 1) * kVertexBlock);
-      for (uint32_t p = uint32_t(b) * kVertexBlock; p < end; ++p)
+    forVertexBlocks(vertices_, 3.0 * g, [&](size_t, uint32_t begin, uint32_t end) {
+      for (uint32_t p = begin; p < end; ++p)
         for (uint32_t t = 0; t < g; ++t)
           for (uint32_t c = 0; c < 3; ++c) x(p, c * g + t) = vertexOf(t, order_.vertex[p])[c];
     });
@@ -324,11 +335,9 @@ class TrajectoryEncoder final : public GroupEncoder {
   // pc.coefficients, on any thread), the blocks' sums added in order.
   std::vector<ColumnStats> columnStats(const Components& pc, double q, Eigen::Index first) const {
     const Eigen::Index count = pc.coefficients.cols() - first;
-    const size_t blocks = (vertices_ + kVertexBlock - 1) / kVertexBlock;
-    std::vector<std::vector<ColumnStats>> partial(blocks, std::vector<ColumnStats>(size_t(count)));
-    parallelFor(blocks, 20.0 * kVertexBlock * double(count), [&](size_t b) {
-      const uint32_t end = std::min<uint32_t>(vertices_, uint32_t(b + 1) * kVertexBlock);
-      for (uint32_t p = uint32_t(b) * kVertexBlock; p < end; ++p)
+    std::vector<std::vector<ColumnStats>> partial(vertexBlocks(vertices_), std::vector<ColumnStats>(size_t(count)));
+    forVertexBlocks(vertices_, 20.0 * double(count), [&](size_t b, uint32_t begin, uint32_t end) {
+      for (uint32_t p = begin; p < end; ++p)
         for (Eigen::Index k = 0; k < count; ++k) {
           const double c = pc.coefficients(p, first + k);
           const int32_t value = quantiseCoefficient(c, q);
@@ -412,10 +421,8 @@ class TrajectoryEncoder final : public GroupEncoder {
     const double q = g.coefficient_step;
     const size_t used = chosen.sent.size();
     g.coefficients.resize(size_t(vertices_) * used);
-    const size_t blocks = (vertices_ + kVertexBlock - 1) / kVertexBlock;
-    parallelFor(blocks, 10.0 * kVertexBlock * double(used), [&](size_t b) {
-      const uint32_t end = std::min<uint32_t>(vertices_, uint32_t(b + 1) * kVertexBlock);
-      for (uint32_t p = uint32_t(b) * kVertexBlock; p < end; ++p)
+    forVertexBlocks(vertices_, 10.0 * double(used), [&](size_t, uint32_t begin, uint32_t end) {
+      for (uint32_t p = begin; p < end; ++p)
         for (size_t k = 0; k < used; ++k)
           g.coefficients[p * used + k] = quantiseCoefficient(pc.coefficients(p, chosen.sent[k]), q);
     });
@@ -474,11 +481,11 @@ class TrajectoryEncoder final : public GroupEncoder {
     const GroupBasis basis = dequantisedBasis(header);
     const uint32_t used = header.components;
     const double q = header.coefficient_step;
-    const size_t blocks = (vertices_ + kVertexBlock - 1) / kVertexBlock;
+    const size_t blocks = vertexBlocks(vertices_);
     std::vector<double> squared(blocks, 0);
     std::vector<std::vector<double>> worst(blocks, std::vector<double>(frame_count_, 0));
-    parallelFor(blocks, 3.0 * kVertexBlock * (used + 4) * frame_count_, [&](size_t b) {
-      const uint32_t v0 = uint32_t(b) * kVertexBlock, count = std::min(kVertexBlock, vertices_ - v0);
+    forVertexBlocks(vertices_, 3.0 * (used + 4) * frame_count_, [&](size_t b, uint32_t v0, uint32_t end) {
+      const uint32_t count = end - v0;
       std::vector<float> panels(FrameKernel::panelFloats(count, used), 0.0f);
       for (uint32_t i = 0; i < count && used > 0; ++i) {
         float* panel = panels.data() + FrameKernel::panelOffset(i, used);
