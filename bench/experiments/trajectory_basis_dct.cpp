@@ -25,8 +25,9 @@
 
 namespace {
 
-constexpr int kBands = 8;
-int bandOf(uint32_t k) { return std::min(31 - __builtin_clz(k + 1), kBands - 1); }
+// The codec's own bands and prediction (group_coding.h).
+constexpr int kBands = animc::kCoefficientBands;
+using animc::coefficientBand;
 
 struct Coded {
   double bytes = 0, error = 0;  // error: sum of sigma_k^2 |b_k - quantised b_k|^2
@@ -61,7 +62,7 @@ Coded codeBasis(const animc::Components& pc, uint32_t K, uint32_t G, double q, b
           const double e = d - double(v) * step;
           c.error += sigma * sigma * e * e;
           const int frequency_band = std::min(f == 0 ? 0 : 32 - __builtin_clz(f), 11);
-          animc::encodeClassed(rc, raw, models[size_t(bandOf(k)) * 12 + frequency_band], v);
+          animc::encodeClassed(rc, raw, models[size_t(coefficientBand(k)) * 12 + frequency_band], v);
         }
       } else {
         int64_t previous = 0;
@@ -69,7 +70,7 @@ Coded codeBasis(const animc::Components& pc, uint32_t K, uint32_t G, double q, b
           const int64_t v = std::llround(run[t] / step);
           const double e = run[t] - double(v) * step;
           c.error += sigma * sigma * e * e;
-          animc::encodeClassed(rc, raw, models[size_t(bandOf(k))], v - previous);
+          animc::encodeClassed(rc, raw, models[size_t(coefficientBand(k))], v - previous);
           previous = v;
         }
       }

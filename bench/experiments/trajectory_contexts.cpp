@@ -47,15 +47,12 @@ using animc::ClassedIntegerModel;
 using animc::CodingOrder;
 using animc::TrajectoryGroup;
 
-constexpr int kBands = 8;
-int bandOf(uint32_t k) { return std::min(31 - __builtin_clz(k + 1), kBands - 1); }
+// The codec's own bands and prediction (group_coding.h).
+constexpr int kBands = animc::kCoefficientBands;
+using animc::coefficientBand;
+using animc::roundedMean;
 int componentBandOf(uint32_t k) { return k < 16 ? int(k) : 16 + std::min(31 - __builtin_clz(k + 1), 11) - 4; }
 constexpr int kComponentBands = 24;
-
-int64_t roundedMean(int64_t sum, int64_t n) {  // half away from -infinity, as codec 3
-  const int64_t numerator = 2 * sum + n, denominator = 2 * n;
-  return numerator / denominator - ((numerator % denominator) < 0 ? 1 : 0);
-}
 
 int magnitudeContext(int64_t v) {
   const int64_t m = v < 0 ? -v : v;
@@ -79,19 +76,19 @@ struct Variant {
 
 std::vector<Variant> variants() {
   return {
-      {"today", kBands * 3, false, [](uint32_t k, int kind, int, int) { return bandOf(k) * 3 + kind; }},
+      {"today", kBands * 3, false, [](uint32_t k, int kind, int, int) { return coefficientBand(k) * 3 + kind; }},
       {"previous", kBands * 12, false,
-       [](uint32_t k, int kind, int previous, int) { return (bandOf(k) * 3 + kind) * 4 + previous; }},
+       [](uint32_t k, int kind, int previous, int) { return (coefficientBand(k) * 3 + kind) * 4 + previous; }},
       {"activity", kBands * 12, false,
-       [](uint32_t k, int kind, int, int activity) { return (bandOf(k) * 3 + kind) * 4 + activity; }},
+       [](uint32_t k, int kind, int, int activity) { return (coefficientBand(k) * 3 + kind) * 4 + activity; }},
       {"both", kBands * 48, false,
        [](uint32_t k, int kind, int previous, int activity) {
-         return ((bandOf(k) * 3 + kind) * 4 + previous) * 4 + activity;
+         return ((coefficientBand(k) * 3 + kind) * 4 + previous) * 4 + activity;
        }},
       {"components", kComponentBands * 3, false,
        [](uint32_t k, int kind, int, int) { return componentBandOf(k) * 3 + kind; }},
-      {"shrunk", kBands * 3, true, [](uint32_t k, int kind, int, int) { return bandOf(k) * 3 + kind; }},
-      {"unpredicted", kBands * 3, false, [](uint32_t k, int, int, int) { return bandOf(k) * 3; }, false},
+      {"shrunk", kBands * 3, true, [](uint32_t k, int kind, int, int) { return coefficientBand(k) * 3 + kind; }},
+      {"unpredicted", kBands * 3, false, [](uint32_t k, int, int, int) { return coefficientBand(k) * 3; }, false},
   };
 }
 
@@ -122,7 +119,7 @@ std::vector<float> shrinkFactors(const TrajectoryGroup& g, const Neighbourhood& 
   const size_t K = g.components;
   for (size_t i = 0; i < h.mean.size(); ++i) {
     if (std::isnan(h.mean[i])) continue;
-    const int b = bandOf(uint32_t(i % K));
+    const int b = coefficientBand(uint32_t(i % K));
     xy[b] += h.mean[i] * g.coefficients[i];
     xx[b] += h.mean[i] * h.mean[i];
   }
@@ -224,7 +221,7 @@ size_t hierarchyBytes(const TrajectoryGroup& g, const Hierarchy& hierarchy) {
         kind = prediction == 0 ? 1 : 2;
       }
       const int64_t residual = g.coefficients[size_t(p) * K + k] - prediction;
-      const int context = bandOf(k) * 3 + kind + per_level * hierarchy.level[i];
+      const int context = coefficientBand(k) * 3 + kind + per_level * hierarchy.level[i];
       animc::encodeClassed(rc, raw, models[size_t(context)], residual);
     }
   }
@@ -255,7 +252,7 @@ size_t codedBytes(const TrajectoryGroup& g, const CodingOrder& order, const Neig
           const int64_t r = residual[size_t(order.earlier[j]) * K + k];
           sum_abs += r < 0 ? -r : r;
         }
-        prediction = v.shrunk ? int64_t(std::floor(double(factor[bandOf(k)]) * h.mean[i] + 0.5))
+        prediction = v.shrunk ? int64_t(std::floor(double(factor[coefficientBand(k)]) * h.mean[i] + 0.5))
                               : roundedMean(sum, int64_t(end - begin));
         kind = prediction == 0 ? 1 : 2;
       }

@@ -29,14 +29,11 @@
 
 namespace {
 
-constexpr int kBands = 8;
-int bandOf(uint32_t k) { return std::min(31 - __builtin_clz(k + 1), kBands - 1); }
+// The codec's own bands and prediction (group_coding.h).
+constexpr int kBands = animc::kCoefficientBands;
+using animc::coefficientBand;
+using animc::roundedMean;
 constexpr double kBitSlope = 2 * M_LN2 / 12;  // squared steps a bit buys
-
-int64_t roundedMean(int64_t sum, int64_t n) {  // as codec 3's prediction
-  const int64_t numerator = 2 * sum + n, denominator = 2 * n;
-  return numerator / denominator - ((numerator % denominator) < 0 ? 1 : 0);
-}
 
 enum class Rule { kNearest, kToday, kRdoq };
 
@@ -63,7 +60,7 @@ Coded quantiseAndCode(const animc::Components& pc, const animc::CodingOrder& ord
         prediction = roundedMean(sum, int64_t(end - begin));
         kind = prediction == 0 ? 1 : 2;
       }
-      animc::ClassedIntegerModel& model = models[size_t(bandOf(k) * 3 + kind)];
+      animc::ClassedIntegerModel& model = models[size_t(coefficientBand(k) * 3 + kind)];
       const double x = double(pc.coefficients(Eigen::Index(p), Eigen::Index(k))) / q;  // in steps
       const double a = std::fabs(x);
       int64_t v = std::llround(x);

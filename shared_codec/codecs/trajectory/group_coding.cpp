@@ -16,19 +16,14 @@
 namespace animc {
 namespace {
 
-// Components are coded in bands of doubling width (0, 1, 2-3, 4-7, ...): the first carry
-// most of the motion and so the largest values.
-constexpr int kBands = 8;
-int bandOf(uint32_t k) { return std::min(31 - __builtin_clz(k + 1), kBands - 1); }
-
 // A coefficient's context: its component's band, and what its prediction says (no coded
 // neighbour, a zero prediction, a non-zero one).
 constexpr int kPredictionKinds = 3;
 
 struct GroupModels {
   ClassedIntegerModel mean;
-  ClassedIntegerModel basis[kBands];
-  ClassedIntegerModel coefficient[kBands * kPredictionKinds];
+  ClassedIntegerModel basis[kCoefficientBands];
+  ClassedIntegerModel coefficient[kCoefficientBands * kPredictionKinds];
 };
 
 // The rounded mean of the earlier neighbours' values of component k (half away from
@@ -43,10 +38,8 @@ Prediction predict(const CodingOrder& order, const int32_t* values, uint32_t com
   if (begin == end) return {};
   int64_t sum = 0;
   for (uint32_t i = begin; i < end; ++i) sum += values[size_t(order.earlier[i]) * components + k];
-  const int64_t n = end - begin;
-  const int64_t numerator = 2 * sum + n, denominator = 2 * n;
-  const int64_t floor = numerator / denominator - ((numerator % denominator) < 0 ? 1 : 0);
-  return {floor, floor == 0 ? 1 : 2};
+  const int64_t mean = roundedMean(sum, end - begin);
+  return {mean, mean == 0 ? 1 : 2};
 }
 
 // Values coded as differences along time within each of the three coordinate runs of a
@@ -128,13 +121,13 @@ void writeTrajectoryGroup(const TrajectoryGroup& g, const CodingOrder& order, st
   encodeRow(rc, raw, models->mean, g.mean.data(), g.frames);
   const size_t row = size_t(3) * g.frames;
   for (uint32_t k = 0; k < g.components; ++k)
-    encodeRow(rc, raw, models->basis[bandOf(k)], g.basis.data() + k * row, g.frames);
+    encodeRow(rc, raw, models->basis[coefficientBand(k)], g.basis.data() + k * row, g.frames);
   const uint32_t n = uint32_t(order.vertex.size());
   for (uint32_t p = 0; p < n; ++p)
     for (uint32_t k = 0; k < g.components; ++k) {
       const Prediction pred = predict(order, g.coefficients.data(), g.components, p, k);
       const int64_t v = g.coefficients[size_t(p) * g.components + k];
-      encodeClassed(rc, raw, models->coefficient[bandOf(k) * kPredictionKinds + pred.kind], v - pred.value);
+      encodeClassed(rc, raw, models->coefficient[coefficientBand(k) * kPredictionKinds + pred.kind], v - pred.value);
     }
   rc.finish();
   raw.appendTo(out);
@@ -183,14 +176,14 @@ Status readTrajectoryGroup(ByteReader payload, const CodingOrder& order, uint64_
   RawBitReader raw(payload.cursor(), payload.remaining());
   bool fits = decodeRow(rc, raw, models->mean, g.mean.data(), frames);
   for (uint32_t k = 0; fits && k < components; ++k)
-    fits = decodeRow(rc, raw, models->basis[bandOf(k)], g.basis.data() + k * row, frames);
+    fits = decodeRow(rc, raw, models->basis[coefficientBand(k)], g.basis.data() + k * row, frames);
   // Damaged data is found at the end: the loops are as long whatever the bytes, and a
   // decoder that reads past its input gets zeros.
   for (uint32_t p = 0; fits && p < n; ++p)
     for (uint32_t k = 0; k < components; ++k) {
       const Prediction pred = predict(order, g.coefficients.data(), components, p, k);
       const int64_t v =
-          pred.value + decodeClassed(rc, raw, models->coefficient[bandOf(k) * kPredictionKinds + pred.kind]);
+          pred.value + decodeClassed(rc, raw, models->coefficient[coefficientBand(k) * kPredictionKinds + pred.kind]);
       if (!fitsInt32(v)) fits = false;
       g.coefficients[size_t(p) * components + k] = int32_t(v);
     }

@@ -2,6 +2,7 @@
 // One frame group of the trajectory codec as integers (what the payload carries), its
 // payload, and the frames a decoder makes of it (docs/format.md, section 12).
 #pragma once
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -33,6 +34,18 @@ struct TrajectoryGroup {
   std::vector<int32_t> basis;         // K rows of 3G, in units of their basis_step
   std::vector<int32_t> coefficients;  // per coding position, K values, in units of coefficient_step
 };
+
+// Components are coded in bands of doubling width (0, 1, 2-3, 4-7, ..., the last one open):
+// the first carry most of the motion and so the largest values. A component's band picks the
+// models of its basis vector and of its coefficients.
+constexpr int kCoefficientBands = 8;
+inline int coefficientBand(uint32_t k) { return std::min(31 - __builtin_clz(k + 1), kCoefficientBands - 1); }
+// The rounded mean of n > 0 values summing to `sum` (half away from -infinity): a
+// coefficient's prediction from its coded neighbours.
+inline int64_t roundedMean(int64_t sum, int64_t n) {
+  const int64_t numerator = 2 * sum + n, denominator = 2 * n;
+  return numerator / denominator - ((numerator % denominator) < 0 ? 1 : 0);
+}
 
 // Frame_Type, the payload's first byte.
 constexpr uint8_t kTrajectoryGroupFrame = 0;  // the group's first frame: the whole group
