@@ -34,6 +34,11 @@ def build_tool(work, name='trajectory_bits'):
     return tool
 
 
+def run_json(command):
+    """The JSON a command prints; its failure stops the measurement."""
+    return json.loads(subprocess.run(command, check=True, capture_output=True, text=True).stdout)
+
+
 def parse_arguments(doc):
     """The options of the measurements of this folder: animc, the sequences, the KG targets."""
     p = argparse.ArgumentParser(description=doc.split('\n')[0])
@@ -50,9 +55,8 @@ def trajectory_files(args, work):
         for kg in (float(x) for x in args.kg.split(',')):
             log(f'{name}: KG {kg:g} %')
             ams = os.path.join(work, f'{name}.ams')
-            encoded = json.loads(subprocess.run(
-                [args.animc, 'encode', pc2, '--mesh', ply, '-o', ams, '--codec', 'trajectory', '--target-kg', str(kg),
-                 '--json'], check=True, capture_output=True, text=True).stdout)
+            encoded = run_json([args.animc, 'encode', pc2, '--mesh', ply, '-o', ams, '--codec', 'trajectory',
+                                '--target-kg', str(kg), '--json'])
             yield name, pc2, ply, kg, ams, encoded
 
 
@@ -80,7 +84,7 @@ def main():
     with tempfile.TemporaryDirectory() as work:
         tool = build_tool(work)
         for name, _, _, kg, ams, encoded in trajectory_files(args, work):
-            split = json.loads(subprocess.run([tool, ams], check=True, capture_output=True, text=True).stdout)
+            split = run_json([tool, ams])
             rows.append(row(name, kg, split, encoded))
             prediction_rows.append(prediction_row(name, kg, split))
     print('\n'.join(table(['sequence', 'target KG %', 'KG %', 'bpvf', 'outside groups', 'head + mean', 'basis',

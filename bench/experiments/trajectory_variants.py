@@ -14,9 +14,7 @@ variant's bytes over today's, the basis bytes and added error of both domains, a
 quantisation's coefficient bytes and error over today's, and its bytes at today's error.
 
   usage: bench/experiments/trajectory_variants.py [--animc PATH] [--data DIR] [--kg 0.1,0.3,0.45,1]"""
-import json
 import os
-import subprocess
 import sys
 import tempfile
 
@@ -24,13 +22,9 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.dirname(HERE))
 sys.path.insert(0, HERE)
 from bench_common import table  # noqa: E402
-from trajectory_bits import build_tool, parse_arguments, trajectory_files  # noqa: E402
+from trajectory_bits import build_tool, parse_arguments, run_json, trajectory_files  # noqa: E402
 
 VARIANTS = ('previous', 'activity', 'both', 'components', 'shrunk', 'hierarchy', 'one level', 'unpredicted')
-
-
-def run_json(command):
-    return json.loads(subprocess.run(command, check=True, capture_output=True, text=True).stdout)
 
 
 def main():
