@@ -54,8 +54,8 @@ struct CodecEntry {
   Status (*checkMesh)(const Topology& topology);
   // The coders run the kernels of `path` (core/simd_math.h): chosen once, here, by the
   // caller (the API passes bestSimdPath()), and the same bytes and frames either way. A coder
-  // may keep a reference to `topology`: it must outlive the coder (a large mesh is not copied
-  // for each coder of a sequence).
+  // (encoder or decoder) may keep a reference to `topology`: it must outlive the coder (a large
+  // mesh is not copied for each coder of a sequence).
   std::unique_ptr<FrameEncoder> (*makeEncoder)(const CodecOptions& options, const Topology& topology, SimdPath path);
   // For a codec that codes whole groups, instead of makeEncoder (which is then null).
   std::unique_ptr<GroupEncoder> (*makeGroupEncoder)(const CodecOptions& options, const Topology& topology,

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/sequence.h"
+#include "core/uninitialised_vector.h"
 
 namespace animc {
 
@@ -20,7 +21,7 @@ class VertexAdjacency {
 
  private:
   std::vector<uint32_t> first_;
-  std::vector<uint32_t> neighbours_;
+  UninitialisedVector<uint32_t> neighbours_;
 };
 
 }  // namespace animc

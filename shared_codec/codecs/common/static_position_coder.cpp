@@ -23,14 +23,17 @@ constexpr double kMaxGridIndex = 1u << 30;
 
 }  // namespace
 
-StaticPositionCoder::StaticPositionCoder(const Topology& topology)
-    : vertex_count_(topology.vertex_count), adjacency_(topology, VertexAdjacency::Neighbours::kLower) {}
+const VertexAdjacency& StaticPositionCoder::adjacency() const {
+  if (!adjacency_) adjacency_ = std::make_unique<const VertexAdjacency>(topology_, VertexAdjacency::Neighbours::kLower);
+  return *adjacency_;
+}
 
-void StaticPositionCoder::predict(const std::vector<int64_t>& q, uint32_t v, int64_t pred[3]) const {
+void StaticPositionCoder::predict(const VertexAdjacency& adjacency, const std::vector<int64_t>& q, uint32_t v,
+                                  int64_t pred[3]) const {
   // Rounded mean of the neighbours already decoded (lower index); else the previous vertex.
   int64_t sum[3] = {0, 0, 0};
   int64_t n = 0;
-  for (const uint32_t* u = adjacency_.begin(v); u != adjacency_.end(v); ++u, ++n)
+  for (const uint32_t* u = adjacency.begin(v); u != adjacency.end(v); ++u, ++n)
     for (int a = 0; a < 3; ++a) sum[a] += q[3 * size_t(*u) + a];
   for (int a = 0; a < 3; ++a) {
     if (n == 0) pred[a] = v > 0 ? q[3 * size_t(v - 1) + a] : 0;
@@ -55,9 +58,10 @@ void StaticPositionCoder::encode(const std::vector<double>& xyz, double step, st
   IFrameModel model;
   RangeEncoder rc(out);
   int64_t previous[3] = {0, 0, 0};
-  for (uint32_t v = 0; v < vertex_count_; ++v) {
+  const VertexAdjacency& rows = adjacency();
+  for (uint32_t v = 0; v < topology_.vertex_count; ++v) {
     int64_t pred[3];
-    predict(q, v, pred);
+    predict(rows, q, v, pred);
     for (int a = 0; a < 3; ++a) {
       const int64_t r = q[3 * size_t(v) + a] - pred[a];
       encodeInt(rc, model, contextOf(previous[a]), r);
@@ -79,11 +83,12 @@ Status StaticPositionCoder::decode(ByteReader& in, std::vector<double>& recon) c
   if (!(step > 0 && step < 1e30)) return corrupt("intra frame: grid step out of range");
   RangeDecoder rc(in.cursor(), in.remaining());
   IFrameModel model;
-  std::vector<int64_t> q(3 * size_t(vertex_count_));
+  std::vector<int64_t> q(3 * size_t(topology_.vertex_count));
   int64_t previous[3] = {0, 0, 0};
-  for (uint32_t v = 0; v < vertex_count_; ++v) {
+  const VertexAdjacency& rows = adjacency();
+  for (uint32_t v = 0; v < topology_.vertex_count; ++v) {
     int64_t pred[3];
-    predict(q, v, pred);
+    predict(rows, q, v, pred);
     for (int a = 0; a < 3; ++a) {
       const int64_t r = decodeInt(rc, model, contextOf(previous[a]));
       const int64_t value = pred[a] + r;

@@ -4,6 +4,7 @@
 // lower index (the mesh is known to both sides), residuals through the range coder.
 #pragma once
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "core/adjacency.h"
@@ -15,7 +16,8 @@ namespace animc {
 
 class StaticPositionCoder {
  public:
-  explicit StaticPositionCoder(const Topology& topology);
+  // Keeps a reference to topology, which must outlive the coder.
+  explicit StaticPositionCoder(const Topology& topology) : topology_(topology) {}
 
   // step: grid spacing in the frame's units (> 0). Appends the payload to out and leaves the
   // reconstruction (what the decoder will produce) in recon.
@@ -24,10 +26,13 @@ class StaticPositionCoder {
   Status decode(ByteReader& in, std::vector<double>& recon) const;
 
  private:
-  void predict(const std::vector<int64_t>& q, uint32_t v, int64_t pred[3]) const;
+  void predict(const VertexAdjacency& adjacency, const std::vector<int64_t>& q, uint32_t v, int64_t pred[3]) const;
+  // Built when the first frame is coded: the decoder of an auto file holds a coder for each
+  // candidate, most of which never see a frame, and a large mesh's rows take a while to build.
+  const VertexAdjacency& adjacency() const;
 
-  uint32_t vertex_count_;
-  VertexAdjacency adjacency_;
+  const Topology& topology_;
+  mutable std::unique_ptr<const VertexAdjacency> adjacency_;
 };
 
 }  // namespace animc

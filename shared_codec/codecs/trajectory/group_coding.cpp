@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <deque>
 #include <memory>
 
 #include "codecs/trajectory/options.h"
@@ -72,6 +71,9 @@ bool decodeRow(RangeDecoder& rc, RawBitReader& raw, ClassedIntegerModel& m, int3
 
 bool usableStep(float s) { return std::isfinite(s) && s > 0; }
 
+// Vertices a thread takes at a time when the panels are filled or a batch is computed.
+constexpr uint32_t kVerticesPerTask = 4096;
+
 }  // namespace
 
 CodingOrder::CodingOrder(const Topology& topology) {
@@ -79,24 +81,22 @@ CodingOrder::CodingOrder(const Topology& topology) {
   const VertexAdjacency adjacency(topology);
   std::vector<uint32_t> position(n, UINT32_MAX);
   vertex.reserve(n);
-  std::deque<uint32_t> queue;
+  // The vertices placed so far are the breadth-first queue: those from `next` on are waiting.
+  auto place = [&](uint32_t v) {
+    position[v] = uint32_t(vertex.size());
+    vertex.push_back(v);
+  };
   for (uint32_t root = 0; root < n; ++root) {
     if (position[root] != UINT32_MAX) continue;
-    position[root] = uint32_t(vertex.size());
-    vertex.push_back(root);
-    queue.push_back(root);
-    while (!queue.empty()) {
-      const uint32_t v = queue.front();
-      queue.pop_front();
-      for (const uint32_t* w = adjacency.begin(v); w != adjacency.end(v); ++w) {
-        if (position[*w] != UINT32_MAX) continue;
-        position[*w] = uint32_t(vertex.size());
-        vertex.push_back(*w);
-        queue.push_back(*w);
-      }
+    place(root);
+    for (size_t next = vertex.size() - 1; next < vertex.size(); ++next) {
+      const uint32_t v = vertex[next];
+      for (const uint32_t* w = adjacency.begin(v); w != adjacency.end(v); ++w)
+        if (position[*w] == UINT32_MAX) place(*w);
     }
   }
   first.assign(1, 0);
+  first.reserve(size_t(n) + 1);
   for (uint32_t p = 0; p < n; ++p) {
     const uint32_t v = vertex[p];
     for (const uint32_t* w = adjacency.begin(v); w != adjacency.end(v); ++w)
@@ -211,14 +211,20 @@ void GroupFrames::reset(const TrajectoryGroup& g, const CodingOrder& order, Simd
   basis_ = dequantisedBasis(g);
   vertices_ = uint32_t(order.vertex.size());
   const uint32_t components = g.components;
-  // Panels: a kernel step reads one front to back instead of K rows far apart.
-  coefficients_.assign(FrameKernel::panelFloats(vertices_, components), 0.0f);
-  for (uint32_t p = 0; components > 0 && p < vertices_; ++p) {  // no panels without components
-    float* panel = coefficients_.data() + FrameKernel::panelOffset(order.vertex[p], components);
-    for (uint32_t k = 0; k < components; ++k)
-      panel[size_t(k) * kLanes] =
-          dequantisedCoefficient(g.coefficients[size_t(p) * components + k], g.coefficient_step);
-  }
+  // Panels: a kernel step reads one front to back instead of K rows far apart. Each vertex is
+  // at one position, so the positions fill every lane but those past the last vertex.
+  coefficients_.resize(FrameKernel::panelFloats(vertices_, components));
+  for (size_t i = FrameKernel::panelOffset(vertices_ & ~(kLanes - 1), components); i < coefficients_.size(); ++i)
+    if (i % kLanes >= vertices_ % kLanes) coefficients_[i] = 0.0f;
+  const size_t tasks = (vertices_ + kVerticesPerTask - 1) / kVerticesPerTask;
+  parallelFor(tasks, double(kVerticesPerTask) * components, [&](size_t i) {
+    const uint32_t end = uint32_t(std::min<size_t>(vertices_, (i + 1) * kVerticesPerTask));
+    for (uint32_t p = uint32_t(i * kVerticesPerTask); components > 0 && p < end; ++p) {
+      float* panel = coefficients_.data() + FrameKernel::panelOffset(order.vertex[p], components);
+      const int32_t* c = g.coefficients.data() + size_t(p) * components;
+      for (uint32_t k = 0; k < components; ++k) panel[size_t(k) * kLanes] = dequantisedCoefficient(c[k], g.coefficient_step);
+    }
+  });
   batch_.resize(size_t(kBatch) * 3 * vertices_);
   batch_first_ = UINT32_MAX;
 }
@@ -281,9 +287,6 @@ ANIMC_TARGET_AVX2 __attribute__((noinline)) void batchAvx2(const float* c, const
   batchKernel(c, b, m, k, g, n, v_begin, v_end, first, out);
 }
 #endif
-
-// Vertices a thread takes at a time when a batch is split.
-constexpr uint32_t kVerticesPerTask = 4096;
 
 }  // namespace
 

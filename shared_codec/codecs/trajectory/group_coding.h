@@ -9,6 +9,7 @@
 #include "core/sequence.h"
 #include "core/simd_math.h"
 #include "core/status.h"
+#include "core/uninitialised_vector.h"
 #include "io/byte_reader.h"
 
 namespace animc {
@@ -32,7 +33,7 @@ struct TrajectoryGroup {
   std::vector<int32_t> mean;          // 3G, in units of mean_step
   std::vector<float> basis_step;      // K
   std::vector<int32_t> basis;         // K rows of 3G, in units of their basis_step
-  std::vector<int32_t> coefficients;  // per coding position, K values, in units of coefficient_step
+  UninitialisedVector<int32_t> coefficients;  // per coding position, K values, in units of coefficient_step
 };
 
 // Components are coded in bands of doubling width (0, 1, 2-3, 4-7, ..., the last one open):
@@ -109,8 +110,8 @@ class GroupFrames {
   SimdPath path_ = SimdPath::kPortable;
   uint32_t vertices_ = 0;
   GroupBasis basis_;
-  std::vector<float> coefficients_;   // panels, vertex order
-  mutable std::vector<float> batch_;  // frames batch_first_ .. + kBatch, 3N floats each
+  UninitialisedVector<float> coefficients_;   // panels, vertex order
+  mutable UninitialisedVector<float> batch_;  // frames batch_first_ .. + kBatch, 3N floats each
   mutable uint32_t batch_first_ = UINT32_MAX;
 };
 
