@@ -9,6 +9,7 @@
 #include <map>
 
 #include "animc/animc.h"
+#include "codecs/auto/sampling.h"
 #include "container/container_reader.h"
 #include "io/byte_source.h"
 #include "group_codec_support.h"
@@ -92,6 +93,32 @@ TEST(AutoCodec, TargetKgHoldsAndTheFileNamesItsCandidates) {
   EXPECT_EQ(decoder.value().info().codec, "auto");
   EXPECT_NE(decoder.value().info().settings_text.find("trajectory or wavelet"), std::string::npos)
       << decoder.value().info().settings_text;
+}
+
+// The sample that decides whether the affine-octree or wavelet candidate codes a whole group
+// costs at most half the group: runs inside it, in order, not overlapping, the first at its
+// start and the last at its end, and four runs once the group is long enough.
+TEST(AutoCodec, ASampleCodesAtMostHalfAGroupAndSpansIt) {
+  EXPECT_TRUE(sampleRunStarts(2 * kSampleRunFrames - 1).empty());
+  EXPECT_EQ(sampleRunStarts(15), (std::vector<uint32_t>{0}));
+  EXPECT_EQ(sampleRunStarts(64), (std::vector<uint32_t>{0, 20, 40, 60}));
+  for (uint32_t frames = 1; frames <= 1024; ++frames) {
+    const std::vector<uint32_t> starts = sampleRunStarts(frames);
+    ASSERT_LE(2 * starts.size() * kSampleRunFrames, frames) << frames;
+    ASSERT_EQ(starts.empty(), frames < 2 * kSampleRunFrames) << frames;
+    ASSERT_LE(starts.size(), kMostSampleRuns) << frames;
+    if (frames >= 2 * kMostSampleRuns * kSampleRunFrames) {
+      ASSERT_EQ(starts.size(), kMostSampleRuns) << frames;
+    }
+    for (size_t i = 1; i < starts.size(); ++i) ASSERT_GE(starts[i], starts[i - 1] + kSampleRunFrames) << frames;
+    if (!starts.empty()) {
+      ASSERT_EQ(starts.front(), 0u) << frames;
+      ASSERT_LE(starts.back() + kSampleRunFrames, frames) << frames;
+    }
+    if (starts.size() > 1) {
+      ASSERT_EQ(starts.back() + kSampleRunFrames, frames) << frames;
+    }
+  }
 }
 
 TEST(AutoCodec, OptionsAreChecked) {

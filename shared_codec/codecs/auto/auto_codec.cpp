@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <cstring>
 
+#include "codecs/auto/sampling.h"
 #include "codecs/codec_registry.h"
 #include "codecs/frame_group_encoder.h"
 #include "core/parallel.h"
@@ -28,13 +29,13 @@ Result<Candidate> candidateOf(const AutoCandidate& c) {
   return out;
 }
 
-// Frames of a group a frame-by-frame candidate codes first, to estimate the whole group, and
-// how much smaller than that estimate a group codec's payload must be for that candidate to
-// be skipped.
-constexpr uint32_t kSampleRuns = 4;
-constexpr uint32_t kRunFrames = 4;
-constexpr uint32_t kSampleFrames = kSampleRuns * kRunFrames;
+// How much smaller than a frame-by-frame candidate's estimate (sampling.h) a group codec's
+// payload must be for that candidate to be skipped.
 constexpr double kSkipShare = 0.75;
+// The first frame of a run whose size stands for the group's other frames: the one before it
+// (the first inter frame) predicts from one decoded frame where the affine-octree codec's
+// later frames use two, and cost more than the group's frames do.
+constexpr uint32_t kSteadyRunFrame = 2;
 // A group of more frames than this (as floats) runs its candidates one after the other even
 // with threads to spare: beside each other, their working sets (each a few times the group's)
 // would add up. The group codecs still split their own work over the threads.
@@ -62,19 +63,20 @@ class AutoEncoder final : public GroupEncoder {
   }
 
   // Every candidate codes the group and the smallest is kept (the first of equal ones), but
-  // in a long group a frame-by-frame candidate first codes a sample of it: when the group
-  // codecs' best is well below the whole group's size estimated from the sample, that
-  // candidate is not run in full. With more than one thread the frame-by-frame candidates
+  // in a group of 2 x kSampleRunFrames frames or more a frame-by-frame candidate first codes
+  // a sample of it (sampling.h): when the group codecs' best is well below the whole group's
+  // size estimated from the sample, that candidate is not run in full. With more than one thread the frame-by-frame candidates
   // (sample or group) run on a thread of their own beside the group codecs, which keep the
   // caller's threads, unless the group is large.
   void encodeGroup(const float* frames, uint32_t frame_count, std::vector<std::vector<uint8_t>>& payloads) override {
-    const bool sampled = frame_count >= 2 * kSampleFrames;
+    const std::vector<uint32_t> sample = sampleRunStarts(frame_count);
+    const bool sampled = !sample.empty();
     std::vector<double> estimates(encoders_.size(), 0);
     auto codeFrameByFrame = [&] {
       for (size_t i = 0; i < encoders_.size(); ++i) {
         if (!frame_by_frame_[i]) continue;
         if (sampled)
-          estimates[i] = estimatedBytes(*encoders_[i], frames, frame_count);
+          estimates[i] = estimatedBytes(*encoders_[i], frames, frame_count, sample);
         else
           encoders_[i]->encodeGroup(frames, frame_count, payloads_[i]);
       }
@@ -107,18 +109,19 @@ class AutoEncoder final : public GroupEncoder {
   bool reconstruction(uint32_t k, float* xyz) const override { return encoders_[best_]->reconstruction(k, xyz); }
 
  private:
-  // A group's bytes from runs of frames spread over it, each coded as a group of its own:
-  // the first run's intra frame, then the mean of the other frames.
-  double estimatedBytes(GroupEncoder& encoder, const float* frames, uint32_t frame_count) {
+  // A group's bytes from the runs of frames that sample it, each coded as a group of its own:
+  // the first run's intra frame, then the mean of the runs' frames from kSteadyRunFrame on.
+  double estimatedBytes(GroupEncoder& encoder, const float* frames, uint32_t frame_count,
+                        const std::vector<uint32_t>& run_starts) {
     const size_t frame_floats = size_t(3) * topology_.vertex_count;
     double intra = 0, others = 0;
-    for (uint32_t run = 0; run < kSampleRuns; ++run) {
-      const uint32_t first = uint32_t(uint64_t(frame_count - kRunFrames) * run / (kSampleRuns - 1));
-      encoder.encodeGroup(frames + first * frame_floats, kRunFrames, sample_);
-      if (run == 0) intra = double(sample_[0].size());
-      for (uint32_t k = 1; k < kRunFrames; ++k) others += double(sample_[k].size());
+    for (uint32_t first : run_starts) {
+      encoder.encodeGroup(frames + first * frame_floats, kSampleRunFrames, sample_);
+      if (first == run_starts.front()) intra = double(sample_[0].size());
+      for (uint32_t k = kSteadyRunFrame; k < kSampleRunFrames; ++k) others += double(sample_[k].size());
     }
-    return intra + others / double(kSampleRuns * (kRunFrames - 1)) * (frame_count - 1);
+    const double per_frame = others / double(run_starts.size() * (kSampleRunFrames - kSteadyRunFrame));
+    return intra + per_frame * (frame_count - 1);
   }
 
   static size_t bytes(const std::vector<std::vector<uint8_t>>& payloads) {
@@ -162,6 +165,14 @@ class AutoDecoder final : public FrameDecoder {
 };
 
 }  // namespace
+
+std::vector<uint32_t> sampleRunStarts(uint32_t frame_count) {
+  const uint32_t runs = std::min(kMostSampleRuns, frame_count / (2 * kSampleRunFrames));
+  std::vector<uint32_t> starts;
+  for (uint32_t run = 0; run < runs; ++run)
+    starts.push_back(runs == 1 ? 0 : uint32_t(uint64_t(frame_count - kSampleRunFrames) * run / (runs - 1)));
+  return starts;
+}
 
 std::unique_ptr<GroupEncoder> makeAutoEncoder(const AutoOptions& options, const Topology& topology, SimdPath path) {
   return std::make_unique<AutoEncoder>(options, topology, path);
