@@ -12,6 +12,7 @@
 #include "codecs/wavelet/collapse_choice.h"
 #include "codecs/wavelet/progressive_mesh.h"
 #include "codecs/wavelet/wavelet_transform.h"
+#include "core/parallel.h"
 #include "test_sequences.h"
 #include "wavelet_test_support.h"
 
@@ -154,6 +155,25 @@ TEST(WaveletHierarchy, OpenGridLosesMostOfItsBorderAndReconstructsExactly) {
   EXPECT_LT(pm.base.size(), size_t(20));
   EXPECT_GT(pm.level_count, 2);
   expectExactReconstruction(topology, xyz, toDouble(gridFrame(nx, ny, 7, 1.0, 1.0)));
+}
+
+// A level's collapse options are prepared on threads, a block of vertices at a time, when the
+// mesh holds several blocks: the hierarchy is the one a single thread builds.
+TEST(WaveletHierarchy, IsTheSameOnAnyNumberOfThreads) {
+  const int nx = 120, ny = 90;  // 10 800 vertices: three blocks of options
+  const Topology topology = gridTopology(nx, ny);
+  const auto xyz = toDouble(gridFrame(nx, ny, 3, 1.0, 1.0));
+  ProgressiveMesh one;
+  {
+    ThreadBudget budget(1);
+    one = buildProgressiveMesh(topology, xyz);
+  }
+  expectValidHierarchy(one);
+  EXPECT_GT(one.level_count, 2);
+  for (unsigned threads : {2u, 3u}) {
+    ThreadBudget budget(threads);
+    EXPECT_TRUE(sameHierarchy(one, buildProgressiveMesh(topology, xyz))) << threads << " threads";
+  }
 }
 
 TEST(WaveletHierarchy, BoundaryCollapsesCanBeTurnedOff) {
@@ -338,9 +358,9 @@ std::vector<std::vector<Triangle>> incidence(const LevelMesh& mesh, uint32_t ver
   return out;
 }
 
-std::vector<uint32_t> closedRing(const LevelMesh& mesh, uint32_t v) {
+std::vector<uint32_t> closedRing(const LevelMesh& mesh, uint32_t v, FanQuery& query) {
   VertexRing ring;
-  if (!mesh.orderedRing(v, ring)) return {};
+  if (!mesh.orderedRing(v, ring, query)) return {};
   return std::vector<uint32_t>(ring.begin(), ring.end());
 }
 
@@ -362,12 +382,13 @@ bool sameCycle(std::vector<uint32_t> a, const std::vector<uint32_t>& b) {
 TEST(WaveletLevelMesh, CollapsesUpdateListsAndNeighbourRingsAsARebuildWould) {
   for (const Topology& topology : {torusTopology(9, 7), gridTopology(9, 8)}) {
     LevelMesh mesh(topology);
+    FanQuery query(topology.vertex_count);
     std::vector<uint8_t> removed(topology.vertex_count, 0);
     std::mt19937 random(5);
     int collapses = 0;
     for (int attempt = 0; attempt < 400 && collapses < 30; ++attempt) {
       const uint32_t v = uint32_t(random() % topology.vertex_count);
-      const std::vector<uint32_t> ring = closedRing(mesh, v);
+      const std::vector<uint32_t> ring = closedRing(mesh, v, query);
       if (removed[v] || ring.empty()) continue;
       const size_t at = random() % ring.size();
       const uint32_t u = ring[at];
@@ -377,7 +398,7 @@ TEST(WaveletLevelMesh, CollapsesUpdateListsAndNeighbourRingsAsARebuildWould) {
                       [&](uint32_t w) { return w != u && w != before && w != after && mesh.markedNeighbour(w); }))
         continue;
       std::map<uint32_t, std::vector<uint32_t>> rings_before;
-      for (uint32_t w : ring) rings_before[w] = closedRing(mesh, w);
+      for (uint32_t w : ring) rings_before[w] = closedRing(mesh, w, query);
       mesh.collapse(v, u);
       removed[v] = 1;
       ++collapses;
@@ -391,10 +412,10 @@ TEST(WaveletLevelMesh, CollapsesUpdateListsAndNeighbourRingsAsARebuildWould) {
         if (w == before || w == after) {
           if (old_ring.size() < 4) continue;  // becomes two: no ring
           expected.erase(std::find(expected.begin(), expected.end(), v));
-          EXPECT_TRUE(sameCycle(expected, closedRing(rebuilt, w))) << "flank " << w;
+          EXPECT_TRUE(sameCycle(expected, closedRing(rebuilt, w, query))) << "flank " << w;
         } else {
           std::replace(expected.begin(), expected.end(), v, u);
-          EXPECT_EQ(closedRing(rebuilt, w), expected) << "neighbour " << w;
+          EXPECT_EQ(closedRing(rebuilt, w, query), expected) << "neighbour " << w;
         }
       }
     }

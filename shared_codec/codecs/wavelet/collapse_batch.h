@@ -93,6 +93,7 @@ class Batch {
  private:
   // Prepares every removable vertex and proposes its cheapest option within the bound.
   std::vector<Proposal> propose(bool& nan_cost) {
+    cache_.prepareStale(mesh_, xyz_, vertices_.live, settings_);
     std::vector<Proposal> out(vertices_.live.size());  // at most one per live vertex
     size_t count = 0;
     for (uint32_t v : vertices_.live) {

@@ -5,6 +5,7 @@
 #pragma once
 #include <algorithm>
 #include <cstdint>
+#include <memory>
 #include <memory_resource>
 #include <vector>
 
@@ -32,39 +33,27 @@ class CollapseOptionCache {
     VertexCollapses collapses;  // its ring is v's closed ring, or open fan on a boundary
   };
 
-  CollapseOptionCache(uint32_t vertex_count, SimdPath path) : changed_by_(vertex_count, 0) {
+  CollapseOptionCache(uint32_t vertex_count, SimdPath path)
+      : changed_by_(vertex_count, 0), query_(vertex_count), vertex_count_(vertex_count) {
     fan_.path = path;
+    arenas_.resize((size_t(vertex_count) + kArenaVertices - 1) / kArenaVertices);
+    for (auto& arena : arenas_) arena = std::make_unique<std::pmr::monotonic_buffer_resource>();
     entries_.reserve(vertex_count);
-    for (uint32_t v = 0; v < vertex_count; ++v) entries_.emplace_back(&arena_);
+    for (uint32_t v = 0; v < vertex_count; ++v) entries_.emplace_back(arenas_[v / kArenaVertices].get());
   }
 
+  // v's entry, prepared first if its triangles changed since.
   Entry& at(const LevelMesh& mesh, const std::vector<double>& xyz, uint32_t v, const HierarchySettings& settings) {
     Entry& e = entries_[v];
-    if (!e.stale) return e;
-    e.stale = false;
-    VertexCollapses& c = e.collapses;
-    if (e.ring_kept) {  // same fan shape, new geometry
-      e.ring_kept = false;
-      c.prepare(xyz, v, e.closed_ring, fan_);
-      return e;
-    }
-    e.ring_found = e.closed_ring = false;
-    e.kind = CollapseKind::kInterior;
-    if (mesh.triangleCount(v) > kMaxCollapseTriangles) {
-      c.clear();  // not removable; its ring is not even walked
-    } else if (mesh.orderedRing(v, c.ring)) {
-      e.ring_found = e.closed_ring = true;
-      c.prepare(xyz, v, true, fan_);
-    } else if (settings.collapse_boundaries && mesh.openFan(v, c.ring)) {
-      e.ring_found = true;
-      e.kind = CollapseKind::kBoundary;
-      c.prepare(xyz, v, false, fan_);
-    } else {
-      c.clear();
-    }
+    if (e.stale) prepare(e, mesh, xyz, v, settings, fan_, query_);
     return e;
   }
 
+  // Prepares the stale entries of `vertices` (ascending) on threads, a block of vertices
+  // (one arena) at a time, each thread with its own scratch: the entries come out the same
+  // as at() makes them one by one, on any number of threads.
+  void prepareStale(const LevelMesh& mesh, const std::vector<double>& xyz, const std::vector<uint32_t>& vertices,
+                    const HierarchySettings& settings);
   // Before the batch is applied: v collapses onto u, and w is in v's ring without flanking the
   // edge (v, u). Then w's triangles that hold v become u's and none dies, and u is no neighbour
   // of w (the link condition), so w's steps stay the same with v replaced by u, from the same
@@ -137,14 +126,25 @@ class CollapseOptionCache {
   }
 
  private:
+  // Vertices whose entries share an arena, which one thread at a time prepares.
+  static constexpr uint32_t kArenaVertices = 4096;
+
+  static void prepare(Entry& e, const LevelMesh& mesh, const std::vector<double>& xyz, uint32_t v,
+                      const HierarchySettings& settings, FanGeometry& fan, FanQuery& query);
+
   // Every entry's ring and options: allocated as they grow, never freed one by one (a
   // vertex's arrays grow geometrically, and there are a few per vertex), all released with
   // the cache. Saves a malloc and a free per array.
-  std::pmr::monotonic_buffer_resource arena_;
+  std::vector<std::unique_ptr<std::pmr::monotonic_buffer_resource>> arenas_;
   std::vector<Entry> entries_;
   std::vector<uint32_t> changed_by_;  // CollapseChecks::changed_by
   uint32_t batches_ = 0;
   FanGeometry fan_;  // the fan of the vertex being prepared or checked, shared by every entry
+  FanQuery query_;   // at()'s
+  uint32_t vertex_count_;
+  // prepareStale()'s scratch, one for each of its tasks, made on first use.
+  std::vector<std::unique_ptr<FanGeometry>> task_fans_;
+  std::vector<std::unique_ptr<FanQuery>> task_queries_;
 };
 
 }  // namespace animc

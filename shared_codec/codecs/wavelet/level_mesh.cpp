@@ -7,8 +7,7 @@ namespace animc {
 
 LevelMesh::LevelMesh(const Topology& topology)
     : vertex_count_(topology.vertex_count), triangles_(topology.triangles),
-      alive_(topology.triangles.size(), 1), step_from_(topology.vertex_count), entered_(topology.vertex_count),
-      neighbours_(topology.vertex_count) {
+      alive_(topology.triangles.size(), 1), neighbours_(topology.vertex_count) {
   rebuildIncidence();
 }
 
@@ -53,7 +52,7 @@ void LevelMesh::reclaimSpace() {
 }
 
 // Each query takes two tokens (leaving, passed); when they run out, all marks restart.
-void LevelMesh::nextStepToken() const {
+void FanQuery::nextStepToken() {
   if (step_token_ >= UINT32_MAX - 2) {
     std::fill(step_from_.begin(), step_from_.end(), StepMark());
     step_token_ = 0;
@@ -61,14 +60,14 @@ void LevelMesh::nextStepToken() const {
   step_token_ += 2;
 }
 
-bool LevelMesh::fanSteps(uint32_t v) const {
-  nextStepToken();
+bool LevelMesh::fanSteps(uint32_t v, FanQuery& query) const {
+  query.nextStepToken();
   const size_t triangles = triangleCount(v);
-  if (steps_.size() < triangles) steps_.resize(triangles);
+  if (query.steps_.size() < triangles) query.steps_.resize(triangles);
   // Locals, not members, in the loop: its stores could alias them for the compiler.
-  const uint32_t token = step_token_;
-  std::pair<uint32_t, uint32_t>* const steps = steps_.data();
-  StepMark* const from_vertex = step_from_.data();
+  const uint32_t token = query.step_token_;
+  std::pair<uint32_t, uint32_t>* const steps = query.steps_.data();
+  FanQuery::StepMark* const from_vertex = query.step_from_.data();
   size_t count = 0;
   for (const uint32_t *t = trianglesBegin(v), *end = trianglesEnd(v); t != end; ++t) {
     const Triangle& tri = triangles_[*t];
@@ -82,11 +81,11 @@ bool LevelMesh::fanSteps(uint32_t v) const {
     }
     if (a == v || b == v || a == b) return false;
     steps[count++] = {a, b};
-    StepMark& from = from_vertex[a];
+    FanQuery::StepMark& from = from_vertex[a];
     from.to = from.token == token ? kNoVertex : b;
     from.token = token;
   }
-  step_count_ = count;
+  query.step_count_ = count;
   return true;
 }
 
@@ -94,15 +93,15 @@ bool LevelMesh::fanSteps(uint32_t v) const {
 // kNoVertex when some vertex has two ways out (non-manifold or inconsistent orientation) or
 // none before the steps are used up, or is passed twice. ring (resized to `size`) receives
 // the vertices passed, start first.
-uint32_t LevelMesh::walkSteps(uint32_t start, VertexRing& ring, size_t size) const {
-  const size_t count = step_count_;
+uint32_t LevelMesh::walkSteps(FanQuery& query, uint32_t start, VertexRing& ring, size_t size) const {
+  const size_t count = query.step_count_;
   ring.resize(size);  // as a vertex's rings keep their size, usually no change
-  const uint32_t token = step_token_, passed = token + 1;
-  StepMark* const from_vertex = step_from_.data();
+  const uint32_t token = query.step_token_, passed = token + 1;
+  FanQuery::StepMark* const from_vertex = query.step_from_.data();
   uint32_t* const out = ring.data();
   uint32_t current = start;
   for (size_t i = 0; i < count; ++i) {
-    StepMark& from = from_vertex[current];
+    FanQuery::StepMark& from = from_vertex[current];
     if (from.token != token || from.to == kNoVertex) return kNoVertex;  // a boundary, a flipped
     from.token = passed;                                                // or non-manifold neighbour
     out[i] = current;
@@ -111,27 +110,29 @@ uint32_t LevelMesh::walkSteps(uint32_t start, VertexRing& ring, size_t size) con
   return current;
 }
 
-bool LevelMesh::orderedRing(uint32_t v, VertexRing& ring) const {
+bool LevelMesh::orderedRing(uint32_t v, VertexRing& ring, FanQuery& query) const {
   // A closed fan is one cycle through all the steps, back to where it started.
-  if (!fanSteps(v) || step_count_ < 3) return false;
-  const uint32_t start = steps_[0].first;
-  return walkSteps(start, ring, step_count_) == start;
+  if (!fanSteps(v, query) || query.step_count_ < 3) return false;
+  const uint32_t start = query.steps_[0].first;
+  return walkSteps(query, start, ring, query.step_count_) == start;
 }
 
-bool LevelMesh::openFan(uint32_t v, VertexRing& ring) const {
+bool LevelMesh::openFan(uint32_t v, VertexRing& ring, FanQuery& query) const {
   // An open fan is one chain through all the steps, from the one spoke no step enters.
-  if (!fanSteps(v) || step_count_ == 0) return false;
-  entered_.clearAll();
-  for (size_t i = 0; i < step_count_; ++i) entered_.mark(steps_[i].second);
+  if (!fanSteps(v, query) || query.step_count_ == 0) return false;
+  const size_t count = query.step_count_;
+  const auto& steps = query.steps_;
+  query.entered_.clearAll();
+  for (size_t i = 0; i < count; ++i) query.entered_.mark(steps[i].second);
   uint32_t start = kNoVertex;
-  for (size_t i = 0; i < step_count_; ++i) {
-    if (entered_.marked(steps_[i].first)) continue;
+  for (size_t i = 0; i < count; ++i) {
+    if (query.entered_.marked(steps[i].first)) continue;
     if (start != kNoVertex) return false;  // several fans meet at v
-    start = steps_[i].first;
+    start = steps[i].first;
   }
   if (start == kNoVertex) return false;
-  const uint32_t end = walkSteps(start, ring, step_count_ + 1);
-  if (end == kNoVertex || step_from_[end].token == step_token_ + 1) return false;  // the end was passed
+  const uint32_t end = walkSteps(query, start, ring, count + 1);
+  if (end == kNoVertex || query.step_from_[end].token == query.step_token_ + 1) return false;  // the end was passed
   ring.back() = end;
   return true;
 }

@@ -44,6 +44,30 @@ class VertexMarks {
   uint32_t current_ = 1;
 };
 
+// The scratch of LevelMesh's fan queries (orderedRing, openFan), reused so that they do not
+// allocate: one for each thread that queries a mesh.
+class FanQuery {
+ public:
+  explicit FanQuery(uint32_t vertex_count) : step_from_(vertex_count), entered_(vertex_count) {}
+
+ private:
+  friend class LevelMesh;
+  // Where the current query's steps leave a vertex: `to` while `token` is the query's
+  // step_token_ (kNoVertex when several steps leave it); a walk that passes the vertex sets
+  // `token` to step_token_ + 1, so that a second visit fails.
+  struct StepMark {
+    uint32_t token = 0;
+    uint32_t to = kNoVertex;
+  };
+  void nextStepToken();
+
+  std::vector<std::pair<uint32_t, uint32_t>> steps_;  // grows only; step_count_ are used
+  size_t step_count_ = 0;
+  std::vector<StepMark> step_from_;  // per vertex
+  uint32_t step_token_ = 0;
+  VertexMarks entered_;  // a step enters the vertex (openFan)
+};
+
 class LevelMesh {
  public:
   explicit LevelMesh(const Topology& topology);
@@ -57,13 +81,13 @@ class LevelMesh {
   // The neighbours of v in cyclic order, following the orientation of its triangles, so that
   // (v, ring[k], ring[k+1]) are its triangles. False when v is on a boundary, non-manifold,
   // in a degenerate triangle or where its triangles disagree on orientation: such vertices
-  // are never removed.
-  bool orderedRing(uint32_t v, VertexRing& ring) const;
+  // are never removed. Queries with different FanQuery objects may run on different threads.
+  bool orderedRing(uint32_t v, VertexRing& ring, FanQuery& query) const;
   // The neighbours of a boundary vertex v whose triangles form one open, consistently
   // oriented fan: (v, ring[k], ring[k+1]) are its triangles, ring.front() and ring.back() its
   // two boundary neighbours (edges with one triangle). False otherwise (interior,
   // non-manifold, several fans, degenerate or inconsistently oriented triangles).
-  bool openFan(uint32_t v, VertexRing& ring) const;
+  bool openFan(uint32_t v, VertexRing& ring, FanQuery& query) const;
   // The third vertex of the one triangle on edge (a, b) that does not contain v; kNoVertex
   // when the edge has no such triangle or several (boundary, non-manifold).
   uint32_t flapAcross(uint32_t a, uint32_t b, uint32_t v) const;
@@ -89,19 +113,10 @@ class LevelMesh {
   std::vector<Triangle> liveTriangles() const;
 
  private:
-  // Where the current fan query's steps leave a vertex: `to` while `token` is the query's
-  // step_token_ (kNoVertex when several steps leave it); a walk that passes the vertex sets
-  // `token` to step_token_ + 1, so that a second visit fails.
-  struct StepMark {
-    uint32_t token = 0;
-    uint32_t to = kNoVertex;
-  };
-
-  // Each triangle (v, a, b) of v as the step a -> b around v, into steps_[0, step_count_) and
-  // step_from_[a]; false on a degenerate triangle.
-  bool fanSteps(uint32_t v) const;
-  uint32_t walkSteps(uint32_t start, VertexRing& ring, size_t size) const;
-  void nextStepToken() const;
+  // Each triangle (v, a, b) of v as the step a -> b around v, into the query's steps and
+  // step marks; false on a degenerate triangle.
+  bool fanSteps(uint32_t v, FanQuery& query) const;
+  uint32_t walkSteps(FanQuery& query, uint32_t start, VertexRing& ring, size_t size) const;
   // v's triangles: those that hold u die (dies(t) for each), v becomes u in the others.
   template <class Dies>
   void replaceVertex(uint32_t v, uint32_t u, Dies dies);
@@ -116,13 +131,7 @@ class LevelMesh {
   std::vector<uint32_t> count_;     // and how long it is
   std::vector<uint32_t> incident_;  // the lists; a moved list leaves its old place unused
   size_t rebuilt_size_ = 0;         // incident_'s size at the last rebuild
-  // Scratch of the queries, reused so that they do not allocate (one thread per mesh).
-  mutable std::vector<std::pair<uint32_t, uint32_t>> steps_;  // grows only; step_count_ are used
-  mutable size_t step_count_ = 0;
-  mutable std::vector<StepMark> step_from_;  // per vertex
-  mutable uint32_t step_token_ = 0;
-  mutable VertexMarks entered_;     // a step enters the vertex (openFan)
-  mutable VertexMarks neighbours_;  // markNeighbours
+  mutable VertexMarks neighbours_;  // markNeighbours' scratch (one thread per mesh)
 };
 
 }  // namespace animc
