@@ -11,8 +11,8 @@
 #include "animc/animc.h"
 #include "codecs/auto/sampling.h"
 #include "container/container_reader.h"
-#include "io/byte_source.h"
 #include "group_codec_support.h"
+#include "io/byte_source.h"
 #include "test_sequences.h"
 
 namespace animc {

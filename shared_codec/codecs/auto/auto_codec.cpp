@@ -65,9 +65,9 @@ class AutoEncoder final : public GroupEncoder {
   // Every candidate codes the group and the smallest is kept (the first of equal ones), but
   // in a group of 2 x kSampleRunFrames frames or more a frame-by-frame candidate first codes
   // a sample of it (sampling.h): when the group codecs' best is well below the whole group's
-  // size estimated from the sample, that candidate is not run in full. With more than one thread the frame-by-frame candidates
-  // (sample or group) run on a thread of their own beside the group codecs, which keep the
-  // caller's threads, unless the group is large.
+  // size estimated from the sample, that candidate is not run in full. With more than one
+  // thread the frame-by-frame candidates (sample or group) run on a thread of their own beside
+  // the group codecs, which keep the caller's threads, unless the group is large.
   void encodeGroup(const float* frames, uint32_t frame_count, std::vector<std::vector<uint8_t>>& payloads) override {
     const std::vector<uint32_t> sample = sampleRunStarts(frame_count);
     const bool sampled = !sample.empty();

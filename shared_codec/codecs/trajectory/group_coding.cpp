@@ -222,7 +222,8 @@ void GroupFrames::reset(const TrajectoryGroup& g, const CodingOrder& order, Simd
     for (uint32_t p = uint32_t(i * kVerticesPerTask); components > 0 && p < end; ++p) {
       float* panel = coefficients_.data() + FrameKernel::panelOffset(order.vertex[p], components);
       const int32_t* c = g.coefficients.data() + size_t(p) * components;
-      for (uint32_t k = 0; k < components; ++k) panel[size_t(k) * kLanes] = dequantisedCoefficient(c[k], g.coefficient_step);
+      for (uint32_t k = 0; k < components; ++k)
+        panel[size_t(k) * kLanes] = dequantisedCoefficient(c[k], g.coefficient_step);
     }
   });
   batch_.resize(size_t(kBatch) * 3 * vertices_);

@@ -36,8 +36,10 @@ void CollapseOptionCache::prepareStale(const LevelMesh& mesh, const std::vector<
   // mesh vertex, too much to make for each arena.
   const size_t arenas = arenas_.size();
   const size_t tasks = std::min<size_t>(ThreadBudget::current(), arenas);
-  constexpr double kCostPerVertex = 400;  // a ring walk, its fan and its options
-  if (tasks <= 1 || double(vertices.size()) * kCostPerVertex < 1e6) return;  // at() prepares them
+  // Operations a vertex costs (a ring walk, its fan and its options), and the fewest worth
+  // threads; below that, at() prepares them one by one.
+  constexpr double kCostPerVertex = 400, kMinCost = 1e6;
+  if (tasks <= 1 || double(vertices.size()) * kCostPerVertex < kMinCost) return;
   while (task_fans_.size() < tasks) {
     task_fans_.push_back(std::make_unique<FanGeometry>());
     task_fans_.back()->path = fan_.path;

@@ -6,8 +6,8 @@
 namespace animc {
 
 LevelMesh::LevelMesh(const Topology& topology)
-    : vertex_count_(topology.vertex_count), triangles_(topology.triangles),
-      alive_(topology.triangles.size(), 1), neighbours_(topology.vertex_count) {
+    : vertex_count_(topology.vertex_count), triangles_(topology.triangles), alive_(topology.triangles.size(), 1),
+      neighbours_(topology.vertex_count) {
   rebuildIncidence();
 }
 
