@@ -25,21 +25,39 @@ struct GroupModels {
   ClassedIntegerModel coefficient[kCoefficientBands * kPredictionKinds];
 };
 
-// The rounded mean of the earlier neighbours' values of component k (half away from
-// -infinity), and the context it gives.
+// A coefficient's prediction and the context it gives.
 struct Prediction {
   int64_t value = 0;
   int kind = 0;
 };
-Prediction predict(const CodingOrder& order, const int32_t* values, uint32_t components, uint32_t position,
-                   uint32_t k) {
-  const uint32_t begin = order.first[position], end = order.first[position + 1];
-  if (begin == end) return {};
-  int64_t sum = 0;
-  for (uint32_t i = begin; i < end; ++i) sum += values[size_t(order.earlier[i]) * components + k];
-  const int64_t mean = roundedMean(sum, end - begin);
-  return {mean, mean == 0 ? 1 : 2};
-}
+
+// The predictions of every component of the vertex at one coding position: the rounded mean
+// of its earlier neighbours' values (half away from -infinity), and the context each gives.
+// The neighbours' rows are summed whole, once for all components.
+class Predictions {
+ public:
+  explicit Predictions(uint32_t components) : sum_(components), components_(components) {}
+
+  void at(const CodingOrder& order, const int32_t* values, uint32_t position) {
+    const uint32_t begin = order.first[position], end = order.first[position + 1];
+    count_ = end - begin;
+    std::fill(sum_.begin(), sum_.end(), 0);
+    for (uint32_t i = begin; i < end; ++i) {
+      const int32_t* row = values + size_t(order.earlier[i]) * components_;
+      for (uint32_t k = 0; k < components_; ++k) sum_[k] += row[k];
+    }
+  }
+  Prediction operator[](uint32_t k) const {
+    if (count_ == 0) return {};
+    const int64_t mean = roundedMean(sum_[k], count_);
+    return {mean, mean == 0 ? 1 : 2};
+  }
+
+ private:
+  std::vector<int64_t> sum_;
+  uint32_t components_;
+  int64_t count_ = 0;
+};
 
 // Values coded as differences along time within each of the three coordinate runs of a
 // trajectory row, which are smooth.
@@ -123,12 +141,15 @@ void writeTrajectoryGroup(const TrajectoryGroup& g, const CodingOrder& order, st
   for (uint32_t k = 0; k < g.components; ++k)
     encodeRow(rc, raw, models->basis[coefficientBand(k)], g.basis.data() + k * row, g.frames);
   const uint32_t n = uint32_t(order.vertex.size());
-  for (uint32_t p = 0; p < n; ++p)
+  Predictions predictions(g.components);
+  for (uint32_t p = 0; p < n; ++p) {
+    predictions.at(order, g.coefficients.data(), p);
     for (uint32_t k = 0; k < g.components; ++k) {
-      const Prediction pred = predict(order, g.coefficients.data(), g.components, p, k);
+      const Prediction pred = predictions[k];
       const int64_t v = g.coefficients[size_t(p) * g.components + k];
       encodeClassed(rc, raw, models->coefficient[coefficientBand(k) * kPredictionKinds + pred.kind], v - pred.value);
     }
+  }
   rc.finish();
   raw.appendTo(out);
 }
@@ -179,14 +200,17 @@ Status readTrajectoryGroup(ByteReader payload, const CodingOrder& order, uint64_
     fits = decodeRow(rc, raw, models->basis[coefficientBand(k)], g.basis.data() + k * row, frames);
   // Damaged data is found at the end: the loops are as long whatever the bytes, and a
   // decoder that reads past its input gets zeros.
-  for (uint32_t p = 0; fits && p < n; ++p)
+  Predictions predictions(components);
+  for (uint32_t p = 0; fits && p < n; ++p) {
+    predictions.at(order, g.coefficients.data(), p);
     for (uint32_t k = 0; k < components; ++k) {
-      const Prediction pred = predict(order, g.coefficients.data(), components, p, k);
+      const Prediction pred = predictions[k];
       const int64_t v =
           pred.value + decodeClassed(rc, raw, models->coefficient[coefficientBand(k) * kPredictionKinds + pred.kind]);
       if (!fitsInt32(v)) fits = false;
       g.coefficients[size_t(p) * components + k] = int32_t(v);
     }
+  }
   const size_t coded_bytes = size_t(rc.position() - payload.cursor());
   if (!fits || rc.overran() || raw.overran() || coded_bytes + raw.bytesUsed() > payload.remaining() + kFinishReadAhead)
     return corrupt("trajectory group: coded data ends early or is damaged");
