@@ -37,8 +37,9 @@ SAMPLE_SCRIPT = os.path.join(REPO, 'samples', 'compress.mlx')
 
 
 def filter_script(output, layers):
-    """samples/compress.mlx with this benchmark's max error, output and layer options."""
-    return with_values(SAMPLE_SCRIPT, {'MaxErrorPercent': str(MAX_ERROR_PERCENT), 'OutputFile': output,
+    """samples/compress.mlx with this benchmark's codec (Affine-Octree, enum value 0), max error,
+    output and layer options."""
+    return with_values(SAMPLE_SCRIPT, {'Codec': '0', 'MaxErrorPercent': str(MAX_ERROR_PERCENT), 'OutputFile': output,
                                        'AddReconstructed': layers, 'ColourByError': layers})
 
 
