@@ -31,14 +31,8 @@ VertexAdjacency::VertexAdjacency(const Topology& topology, Neighbours kept) : fi
         all[fill[t[i]]++] = t[(i + 2) % 3];
       }
   }
-  const size_t tasks = (size_t(n) + kVerticesPerTask - 1) / kVerticesPerTask;
-  const double task_cost = double(kVerticesPerTask) * 40;
-  auto task_rows = [&](size_t i, auto&& row) {
-    const uint32_t end = uint32_t(std::min<size_t>(n, (i + 1) * kVerticesPerTask));
-    for (uint32_t v = uint32_t(i * kVerticesPerTask); v < end; ++v) row(v);
-  };
-  parallelFor(tasks, task_cost, [&](size_t i) {
-    task_rows(i, [&](uint32_t v) {
+  parallelForBlocks(n, kVerticesPerTask, 40, [&](size_t, size_t v_begin, size_t v_end) {
+    for (uint32_t v = uint32_t(v_begin); v < v_end; ++v) {
       uint32_t* const begin = all.data() + listed[v];
       uint32_t* const end = all.data() + listed[v + 1];
       std::sort(begin, end);
@@ -46,15 +40,14 @@ VertexAdjacency::VertexAdjacency(const Topology& topology, Neighbours kept) : fi
       for (const uint32_t* it = begin; it != end; ++it)
         if ((it == begin || *it != *(it - 1)) && *it != v && (kept == Neighbours::kAll || *it < v)) *out++ = *it;
       first_[v + 1] = uint32_t(out - begin);  // the row's length, until the sum below
-    });
+    }
   });
   for (uint32_t v = 0; v < n; ++v) first_[v + 1] += first_[v];
   neighbours_.resize(first_[n] + 1);  // +1 keeps &neighbours_[first_[v]] valid when empty
-  parallelFor(tasks, task_cost / 4, [&](size_t i) {
-    task_rows(i, [&](uint32_t v) {
+  parallelForBlocks(n, kVerticesPerTask, 10, [&](size_t, size_t v_begin, size_t v_end) {
+    for (size_t v = v_begin; v < v_end; ++v)
       std::copy(all.data() + listed[v], all.data() + listed[v] + (first_[v + 1] - first_[v]),
                 neighbours_.data() + first_[v]);
-    });
   });
 }
 

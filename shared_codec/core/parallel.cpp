@@ -70,6 +70,14 @@ void parallelFor(size_t count, double item_cost, const std::function<void(size_t
   parallelFor(count, item);
 }
 
+void parallelForBlocks(size_t count, size_t block, double element_cost,
+                       const std::function<void(size_t, size_t, size_t)>& item) {
+  parallelFor((count + block - 1) / block, element_cost * double(block), [&](size_t b) {
+    const size_t begin = b * block;
+    item(b, begin, std::min(count, begin + block));
+  });
+}
+
 void runBeside(const std::function<void()>& side, const std::function<void()>& main) {
   if (budget <= 1) {
     side();

@@ -38,6 +38,12 @@ void parallelFor(size_t count, const std::function<void(size_t i)>& item);
 // item_cost operations each run on one thread below min_cost operations in all.
 void parallelFor(size_t count, double item_cost, const std::function<void(size_t i)>& item);
 
+// item(b, begin, end) for the fixed blocks [b x block, min(count, (b + 1) x block)) of
+// [0, count), through parallelFor with element_cost the cost of one element: the blocks never
+// depend on the thread count, so neither does what each one computes.
+void parallelForBlocks(size_t count, size_t block, double element_cost,
+                       const std::function<void(size_t b, size_t begin, size_t end)>& item);
+
 // Runs side() and main() at once when the budget allows more than one thread: side() on a
 // thread of its own with a budget of one, main() on the caller with the caller's budget (the
 // two then share the cores with more threads than cores while side() runs). Otherwise one

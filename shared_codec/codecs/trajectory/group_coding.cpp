@@ -240,12 +240,10 @@ void GroupFrames::reset(const TrajectoryGroup& g, const CodingOrder& order, Simd
   coefficients_.resize(FrameKernel::panelFloats(vertices_, components));
   for (size_t i = FrameKernel::panelOffset(vertices_ & ~(kLanes - 1), components); i < coefficients_.size(); ++i)
     if (i % kLanes >= vertices_ % kLanes) coefficients_[i] = 0.0f;
-  const size_t tasks = (vertices_ + kVerticesPerTask - 1) / kVerticesPerTask;
-  parallelFor(tasks, double(kVerticesPerTask) * components, [&](size_t i) {
-    const uint32_t end = uint32_t(std::min<size_t>(vertices_, (i + 1) * kVerticesPerTask));
-    for (uint32_t p = uint32_t(i * kVerticesPerTask); components > 0 && p < end; ++p) {
+  parallelForBlocks(vertices_, kVerticesPerTask, components, [&](size_t, size_t begin, size_t end) {
+    for (size_t p = begin; components > 0 && p < end; ++p) {
       float* panel = coefficients_.data() + FrameKernel::panelOffset(order.vertex[p], components);
-      const int32_t* c = g.coefficients.data() + size_t(p) * components;
+      const int32_t* c = g.coefficients.data() + p * components;
       for (uint32_t k = 0; k < components; ++k)
         panel[size_t(k) * kLanes] = dequantisedCoefficient(c[k], g.coefficient_step);
     }
@@ -327,12 +325,10 @@ void FrameKernel::run(SimdPath path, const GroupBasis& b, const float* panels, u
 }
 
 void GroupFrames::computeBatch(uint32_t first) const {
-  const size_t tasks = (vertices_ + kVerticesPerTask - 1) / kVerticesPerTask;
-  const double task_cost = double(kVerticesPerTask) * basis_.components * kBatch * 3;
-  parallelFor(tasks, task_cost, [&](size_t i) {
-    const uint32_t v_begin = uint32_t(i) * kVerticesPerTask;
-    const uint32_t v_end = std::min(vertices_, v_begin + kVerticesPerTask);
-    FrameKernel::run(path_, basis_, coefficients_.data(), vertices_, v_begin, v_end, first, batch_.data());
+  const double vertex_cost = double(basis_.components) * kBatch * 3;
+  parallelForBlocks(vertices_, kVerticesPerTask, vertex_cost, [&](size_t, size_t begin, size_t end) {
+    FrameKernel::run(path_, basis_, coefficients_.data(), vertices_, uint32_t(begin), uint32_t(end), first,
+                     batch_.data());
   });
   batch_first_ = first;
 }

@@ -38,10 +38,8 @@ size_t vertexBlocks(uint32_t vertices) { return (vertices + kVertexBlock - 1) / 
 // cost of one vertex.
 void forVertexBlocks(uint32_t vertices, double vertex_cost,
                      const std::function<void(size_t b, uint32_t begin, uint32_t end)>& block) {
-  parallelFor(vertexBlocks(vertices), vertex_cost * kVertexBlock, [&](size_t b) {
-    const uint32_t begin = uint32_t(b) * kVertexBlock;
-    block(b, begin, std::min<uint32_t>(vertices, begin + kVertexBlock));
-  });
+  parallelForBlocks(vertices, kVertexBlock, vertex_cost,
+                    [&](size_t b, size_t begin, size_t end) { block(b, uint32_t(begin), uint32_t(end)); });
 }
 
 int32_t quantise(double value, double step) {

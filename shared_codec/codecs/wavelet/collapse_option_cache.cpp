@@ -33,21 +33,19 @@ void CollapseOptionCache::prepare(Entry& e, const LevelMesh& mesh, const std::ve
 void CollapseOptionCache::prepareStale(const LevelMesh& mesh, const std::vector<double>& xyz,
                                        const std::vector<uint32_t>& vertices, const HierarchySettings& settings) {
   // A task per thread, each a run of whole arenas' vertices: a task's scratch holds a mark per
-  // mesh vertex, too much to make for each arena.
-  const size_t arenas = arenas_.size();
+  // mesh vertex, too much to make for each arena. On one thread, at() prepares them one by one.
+  const size_t arenas = arenas_.size(), vertex_count = entries_.size();
   const size_t tasks = std::min<size_t>(ThreadBudget::current(), arenas);
-  // Operations a vertex costs (a ring walk, its fan and its options), and the fewest worth
-  // threads; below that, at() prepares them one by one.
-  constexpr double kCostPerVertex = 400, kMinCost = 1e6;
-  if (tasks <= 1 || double(vertices.size()) * kCostPerVertex < kMinCost) return;
+  if (tasks <= 1) return;
   while (task_fans_.size() < tasks) {
     task_fans_.push_back(std::make_unique<FanGeometry>());
     task_fans_.back()->path = fan_.path;
-    task_queries_.push_back(std::make_unique<FanQuery>(vertex_count_));
+    task_queries_.push_back(std::make_unique<FanQuery>(uint32_t(vertex_count)));
   }
-  parallelFor(tasks, [&](size_t task) {
+  constexpr double kCostPerVertex = 400;  // operations: a ring walk, its fan and its options
+  parallelFor(tasks, kCostPerVertex * double(vertices.size()) / double(tasks), [&](size_t task) {
     const uint32_t first = uint32_t(arenas * task / tasks * kArenaVertices);
-    const uint32_t end = uint32_t(std::min<size_t>(vertex_count_, arenas * (task + 1) / tasks * kArenaVertices));
+    const uint32_t end = uint32_t(std::min<size_t>(vertex_count, arenas * (task + 1) / tasks * kArenaVertices));
     auto v = std::lower_bound(vertices.begin(), vertices.end(), first);
     for (; v != vertices.end() && *v < end; ++v) {
       Entry& e = entries_[*v];

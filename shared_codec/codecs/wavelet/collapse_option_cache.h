@@ -33,8 +33,7 @@ class CollapseOptionCache {
     VertexCollapses collapses;  // its ring is v's closed ring, or open fan on a boundary
   };
 
-  CollapseOptionCache(uint32_t vertex_count, SimdPath path)
-      : changed_by_(vertex_count, 0), query_(vertex_count), vertex_count_(vertex_count) {
+  CollapseOptionCache(uint32_t vertex_count, SimdPath path) : changed_by_(vertex_count, 0), query_(vertex_count) {
     fan_.path = path;
     arenas_.resize((size_t(vertex_count) + kArenaVertices - 1) / kArenaVertices);
     for (auto& arena : arenas_) arena = std::make_unique<std::pmr::monotonic_buffer_resource>();
@@ -141,7 +140,6 @@ class CollapseOptionCache {
   uint32_t batches_ = 0;
   FanGeometry fan_;  // the fan of the vertex being prepared or checked, shared by every entry
   FanQuery query_;   // at()'s
-  uint32_t vertex_count_;
   // prepareStale()'s scratch, one for each of its tasks, made on first use.
   std::vector<std::unique_ptr<FanGeometry>> task_fans_;
   std::vector<std::unique_ptr<FanQuery>> task_queries_;
