@@ -62,8 +62,11 @@ inline int64_t decodeMagnitudeAndSign(RangeDecoder& rc, Model& m, int ctx) {
 
 // Kept out of line so the common zero case inlines.
 template <class Model>
-__attribute__((noinline)) int64_t decodeNonZero(RangeDecoder& rc, Model& m, int ctx) {
-  return decodeMagnitudeAndSign(rc, m, ctx);
+__attribute__((noinline)) int64_t decodeNonZero(RangeDecoder& decoder, Model& m, int ctx) {
+  RangeDecoder rc = decoder;  // a local copy the compiler can keep in registers
+  const int64_t v = decodeMagnitudeAndSign(rc, m, ctx);
+  decoder = rc;
+  return v;
 }
 
 template <class Model>

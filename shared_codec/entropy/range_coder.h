@@ -3,6 +3,7 @@
 // Header-only so the per-bit calls inline into the codec loops. The decoder reads zeros past
 // the end of its input and counts them; callers turn too many into kCorrupt.
 #pragma once
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -54,6 +55,11 @@ struct BitModel {
   void moveTowards(int32_t target, int shift) { p0 = uint16_t(int32_t(p0) + ((target - int32_t(p0)) >> shift)); }
 };
 
+// Raw bits that can be coded from `range` with one normalisation, after the last: each halves
+// the range, and all but the last leave it at 2^24 or more, where normalise() does nothing.
+// (At least one, which is what a bit at a time did, should a range below 2^24 ever come.)
+inline int rawBitsBeforeNormalise(uint32_t range) { return std::max(1, (31 - __builtin_clz(range | 1)) - 23); }
+
 // The decoder reads 4 bytes ahead and finish() writes 1 to 4, so after the last symbol the
 // decoder may have read up to this many bytes past the encoder's output.
 constexpr size_t kFinishReadAhead = 3;
@@ -83,9 +89,13 @@ class RangeEncoder {
   }
   // Equiprobable bits (signs, low mantissa bits): no model, no adaptation.
   void encodeRaw(uint32_t value, int bits) {
-    for (int i = bits - 1; i >= 0; --i) {
-      range_ >>= 1;
-      if ((value >> i) & 1) low_ += range_;
+    while (bits > 0) {  // runs of bits with one normalise() after each
+      const int run = std::min(bits, rawBitsBeforeNormalise(range_));
+      for (int i = bits - 1; i >= bits - run; --i) {
+        range_ >>= 1;
+        if ((value >> i) & 1) low_ += range_;
+      }
+      bits -= run;
       normalise();
     }
   }
@@ -186,11 +196,16 @@ class RangeDecoder {
   }
   uint32_t decodeRaw(int bits) {
     uint32_t v = 0;
-    for (int i = 0; i < bits; ++i) {
-      range_ >>= 1;
-      const uint32_t bit = code_ >= range_;
-      code_ -= range_ & BitModel::maskOf(int(bit));
-      v = (v << 1) | bit;
+    while (bits > 0) {
+      // As in encodeRaw(): runs of bits with one normalise() after each.
+      const int run = std::min(bits, rawBitsBeforeNormalise(range_));
+      for (int i = 0; i < run; ++i) {
+        range_ >>= 1;
+        v = (v << 1) | uint32_t(code_ >= range_);
+        // code_ - range_ wraps above code_ exactly when the bit is 0.
+        code_ = std::min(code_, code_ - range_);
+      }
+      bits -= run;
       normalise();
     }
     return v;
