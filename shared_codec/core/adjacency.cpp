@@ -11,26 +11,45 @@ namespace {
 // Rows a thread takes at a time when they are sorted and packed.
 constexpr uint32_t kVerticesPerTask = 16384;
 
+// Every directed edge is listed once from each of its triangles, in triangle order, into the
+// rows of `all` (made here) that listed[] starts; listed[v + 1] counts them first. The
+// vertices are cut into one range per thread, and each thread reads every triangle but
+// writes only the rows of its own range: no two threads write the same row, and each row
+// comes out the same however the vertices are cut.
+UninitialisedVector<uint32_t> listEdges(const Topology& topology, std::vector<uint32_t>& listed) {
+  const uint32_t n = topology.vertex_count;
+  const auto& triangles = topology.triangles;
+  const size_t ranges = std::max<size_t>(1, std::min<size_t>(ThreadBudget::current(), n / kVerticesPerTask));
+  const double cost = 3.0 * double(triangles.size());
+  auto forOwnCorners = [&](size_t range, const auto& corner) {
+    const uint32_t first = uint32_t(uint64_t(n) * range / ranges),
+                   span = uint32_t(uint64_t(n) * (range + 1) / ranges) - first;
+    for (const Triangle& t : triangles)
+      for (int k = 0; k < 3; ++k)
+        if (t[k] - first < span) corner(t, k);
+  };
+  parallelFor(ranges, cost,
+              [&](size_t range) { forOwnCorners(range, [&](const Triangle& t, int k) { listed[t[k] + 1] += 2; }); });
+  for (uint32_t v = 0; v < n; ++v) listed[v + 1] += listed[v];
+  UninitialisedVector<uint32_t> all(listed[n]);
+  std::vector<uint32_t> fill(listed.begin(), listed.end() - 1);
+  parallelFor(ranges, 2 * cost, [&](size_t range) {
+    forOwnCorners(range, [&](const Triangle& t, int k) {
+      all[fill[t[k]]++] = t[(k + 1) % 3];
+      all[fill[t[k]]++] = t[(k + 2) % 3];
+    });
+  });
+  return all;
+}
+
 }  // namespace
 
 VertexAdjacency::VertexAdjacency(const Topology& topology, Neighbours kept) : first_(topology.vertex_count + 1, 0) {
   const uint32_t n = topology.vertex_count;
-  // Every directed edge is listed once from each of its triangles (counted, then filled); the
-  // rows are then sorted and stripped of repeats on threads, each into its own rows, and
-  // packed: the same rows on any thread count.
   std::vector<uint32_t> listed(n + 1, 0);  // start of each vertex's listing
-  for (const Triangle& t : topology.triangles)
-    for (int i = 0; i < 3; ++i) listed[t[i] + 1] += 2;
-  for (uint32_t v = 0; v < n; ++v) listed[v + 1] += listed[v];
-  UninitialisedVector<uint32_t> all(listed[n]);
-  {
-    std::vector<uint32_t> fill(listed.begin(), listed.end() - 1);
-    for (const Triangle& t : topology.triangles)
-      for (int i = 0; i < 3; ++i) {
-        all[fill[t[i]]++] = t[(i + 1) % 3];
-        all[fill[t[i]]++] = t[(i + 2) % 3];
-      }
-  }
+  UninitialisedVector<uint32_t> all = listEdges(topology, listed);
+  // The rows are sorted and stripped of repeats on threads, each into its own rows, and
+  // packed: the same rows on any thread count.
   parallelForBlocks(n, kVerticesPerTask, 40, [&](size_t, size_t v_begin, size_t v_end) {
     for (uint32_t v = uint32_t(v_begin); v < v_end; ++v) {
       uint32_t* const begin = all.data() + listed[v];

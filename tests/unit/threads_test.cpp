@@ -12,6 +12,7 @@
 
 #include "animc/animc.h"
 #include "api.h"
+#include "core/adjacency.h"
 #include "core/parallel.h"
 #include "group_codec_support.h"
 #include "test_sequences.h"
@@ -64,6 +65,22 @@ TEST(ParallelFor, AnItemsExceptionReachesTheCaller) {
 TEST(ParallelFor, ZeroMeansOneThreadPerCore) {
   EXPECT_GE(resolveThreads(0), 1u);
   EXPECT_EQ(resolveThreads(5), 5u);
+}
+
+TEST(MeshTables, AdjacencyRowsAreTheSameOnAnyNumberOfThreads) {
+  // Triangles enough for several blocks of the edge listing, whose rows fill in any order.
+  const Topology mesh = testing_support::gridTopology(300, 300);
+  auto rowsOn = [&](unsigned threads) {
+    ThreadBudget budget(threads);
+    const VertexAdjacency adjacency(mesh);
+    std::vector<std::vector<uint32_t>> rows;
+    for (uint32_t v = 0; v < mesh.vertex_count; ++v) rows.emplace_back(adjacency.begin(v), adjacency.end(v));
+    return rows;
+  };
+  const auto one = rowsOn(1);
+  EXPECT_EQ(one[301], (std::vector<uint32_t>{0, 1, 300, 302, 601, 602}));  // sorted, each once
+  EXPECT_EQ(rowsOn(2), one);
+  EXPECT_EQ(rowsOn(3), one);
 }
 
 struct Mode {
