@@ -8,6 +8,7 @@
 
 #include "api.h"
 #include "codecs/frame_group_encoder.h"
+#include "container/connectivity_coder.h"
 #include "container/container_writer.h"
 #include "core/parallel.h"
 #include "encoder_access.h"
@@ -78,6 +79,9 @@ std::vector<uint8_t> codecParameters(const EncodeSettings& s) {
 struct Encoder::Impl {
   EncodeSettings settings;
   Topology topology;
+  // The CONN section's bytes, coded beside the work that comes before the first frame is
+  // written (the group coders' tables, the frames gathered); valid until they are written.
+  std::future<std::vector<uint8_t>> connectivity;
   ContainerWriter writer;
   unsigned threads = 1;
   // A frame-by-frame codec on one thread codes each frame as it comes (codec). Otherwise the
@@ -114,6 +118,7 @@ struct Encoder::Impl {
   int64_t pendingFrames() const;
   bool groupEnds(int64_t next_frame) const;
   Status codeBatch();
+  Status writeConnectivity();
   Status writeFrame(const std::vector<uint8_t>& payload, const FrameCodingStats& stats);
 };
 
@@ -161,7 +166,15 @@ Status Encoder::Impl::codeBatch() {
   return Status();
 }
 
+Status Encoder::Impl::writeConnectivity() {
+  ANIMC_RETURN_IF_ERROR(writer.addConnectivity(connectivity.get()));
+  // A group codec's first frame record carries the whole group: not static.
+  if (settings.entry().makeGroupEncoder) summary.static_bytes = writer.bytesWritten();
+  return Status();
+}
+
 Status Encoder::Impl::writeFrame(const std::vector<uint8_t>& bytes, const FrameCodingStats& stats) {
+  if (connectivity.valid()) ANIMC_RETURN_IF_ERROR(writeConnectivity());
   ANIMC_RETURN_IF_ERROR(writer.addFrame(bytes, stats.intra));
   if (summary.static_bytes == 0) summary.static_bytes = writer.bytesWritten();
   summary.intra_frames += stats.intra;
@@ -179,6 +192,12 @@ Result<Encoder> EncoderAccess::create(const EncodeSettings& settings, Topology t
   auto impl = std::make_unique<Encoder::Impl>();
   impl->settings = settings;
   impl->topology = std::move(topology);
+  impl->threads = resolveThreads(settings.threads);
+  impl->connectivity = startBeside<std::vector<uint8_t>>(impl->threads, [&mesh = impl->topology] {
+    std::vector<uint8_t> coded;
+    encodeConnectivity(mesh, coded);
+    return coded;
+  });
   ContainerHeader header;
   header.codec = settings.codec();
   header.codec_params = codecParameters(settings);
@@ -186,17 +205,15 @@ Result<Encoder> EncoderAccess::create(const EncodeSettings& settings, Topology t
   header.triangle_count = impl->topology.triangles.size();
   header.frame_rate = frame_rate;
   header.iframe_interval = settings.iframe_interval;
-  ANIMC_RETURN_IF_ERROR(impl->writer.open(std::move(sink), header, impl->topology));
+  ANIMC_RETURN_IF_ERROR(impl->writer.open(std::move(sink), header));
   const CodecEntry& codec = settings.entry();
-  // A group codec's first frame record carries the whole group: not static.
-  if (codec.makeGroupEncoder) impl->summary.static_bytes = impl->writer.bytesWritten();
-  impl->threads = resolveThreads(settings.threads);
   // A frame-by-frame codec gathers its groups for the threads only while a group's frames
   // stay small: otherwise it streams, one frame at a time, as on one thread (the bytes are
   // the same either way).
   const uint64_t group_bytes = uint64_t(settings.iframe_interval) * 12 * impl->topology.vertex_count;
   const bool batch_frames = impl->threads > 1 && settings.iframe_interval > 0 && group_bytes <= kMaxGatheredGroupBytes;
   if (codec.makeGroupEncoder || batch_frames) {
+    ThreadBudget budget(impl->threads);  // the group coder's mesh tables
     impl->group_coders.push_back(makeAnyGroupEncoder(codec, settings.options, impl->topology, bestSimdPath()));
     impl->max_group_frames = impl->group_coders[0]->maxGroupFrames();
   } else {
@@ -293,6 +310,7 @@ Status Encoder::addFrame(const float* xyz) {
   FrameCodingStats stats;
   e.payload.clear();
   const auto start = Clock::now();
+  ThreadBudget budget(e.threads);
   e.codec->encodeFrame(xyz, intra, e.payload, stats);
   e.summary.encode_seconds += std::chrono::duration<double>(Clock::now() - start).count();
   e.reconstruction_frame = -1;

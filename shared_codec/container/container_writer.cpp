@@ -1,7 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "container/container_writer.h"
 
-#include "container/connectivity_coder.h"
 #include "container/crc32.h"
 #include "container/format.h"
 #include "io/byte_writer.h"
@@ -22,7 +21,7 @@ Status ContainerWriter::writeSection(const char* tag, const std::vector<uint8_t>
   return sink_->write(w.bytes().data(), w.size());
 }
 
-Status ContainerWriter::open(std::unique_ptr<ByteSink> sink, const ContainerHeader& header, const Topology& topology) {
+Status ContainerWriter::open(std::unique_ptr<ByteSink> sink, const ContainerHeader& header) {
   if (sink_) return invalidArgument("the container writer is already open");
   sink_ = std::move(sink);
   ByteWriter start;
@@ -38,10 +37,12 @@ Status ContainerWriter::open(std::unique_ptr<ByteSink> sink, const ContainerHead
   head.u64(header.triangle_count);
   head.f64(header.frame_rate);
   head.u32(header.iframe_interval);
-  ANIMC_RETURN_IF_ERROR(writeSection(kTagHead, head.bytes()));
-  std::vector<uint8_t> conn;
-  encodeConnectivity(topology, conn);
-  return writeSection(kTagConnectivity, conn);
+  return writeSection(kTagHead, head.bytes());
+}
+
+Status ContainerWriter::addConnectivity(const std::vector<uint8_t>& coded) {
+  if (!sink_) return invalidArgument("the container writer is not open");
+  return writeSection(kTagConnectivity, coded);
 }
 
 Status ContainerWriter::openCopy(std::unique_ptr<ByteSink> sink, const std::vector<uint8_t>& start) {

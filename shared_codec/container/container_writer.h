@@ -25,7 +25,10 @@ struct ContainerHeader {
 
 class ContainerWriter {
  public:
-  Status open(std::unique_ptr<ByteSink> sink, const ContainerHeader& header, const Topology& topology);
+  // Writes File_Header and HEAD; CONN follows with addConnectivity(), before the first frame.
+  Status open(std::unique_ptr<ByteSink> sink, const ContainerHeader& header);
+  // The CONN section of coded connectivity (encodeConnectivity()).
+  Status addConnectivity(const std::vector<uint8_t>& coded);
   // Opens with File_Header, HEAD and CONN as another file holds them (`start`, its bytes up to
   // its first GRUP), for a file joined from parts.
   Status openCopy(std::unique_ptr<ByteSink> sink, const std::vector<uint8_t>& start);
