@@ -97,6 +97,21 @@ TEST(MeshTables, AdjacencyRowsAreTheSameOnAnyNumberOfThreads) {
   EXPECT_EQ(rowsOn(3), one);
 }
 
+TEST(AffineOctreeThreads, SubtreesSearchedOnThreadsCodeTheSameBytes) {
+  // More vertices than the root cell searches on one thread: its children go to threads.
+  const MemorySequence seq = gridSequence(200, 200, 5, 1.0, 1.0);
+  EncoderOptions options;
+  options.codec = "affine-octree";
+  options.set("max-error", 0.002);
+  options.threads = 1;
+  const Coded one = encodeCollecting(seq, options);
+  ASSERT_FALSE(one.bytes.empty());
+  for (uint32_t threads : {2u, 3u}) {
+    options.threads = threads;
+    EXPECT_EQ(encodeCollecting(seq, options).bytes, one.bytes) << threads << " threads";
+  }
+}
+
 struct Mode {
   std::string name;
   std::string codec;

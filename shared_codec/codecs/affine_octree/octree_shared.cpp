@@ -121,6 +121,13 @@ Cell OctreePartition::reset(const std::vector<double>& unit_xyz, int levels) {
   return restart();
 }
 
+OctreePartition::OctreePartition(const OctreePartition& whole, const Cell& cell) : whole_(&whole), path_(whole.path_) {
+  const uint32_t n = cell.end - cell.begin;
+  for (int b = 0; b < 2; ++b) order_[b].resize(kPadding + size_t(n));
+  buckets_.resize(kPadding + 8 * size_t(std::min(n, kBucketCell)));
+  std::copy(whole.vertices(cell), whole.vertices(cell) + n, &order_[cell.depth & 1][kPadding]);
+}
+
 Cell OctreePartition::restart() {
   const uint32_t n = uint32_t(key_.size());
   uint32_t* order = &order_[0][kPadding];
@@ -240,10 +247,11 @@ void OctreePartition::split(const Cell& cell, Cell children[8]) {
   static_assert(kCopyChunk <= kPadding, "a copy may reach kCopyChunk slots before its range");
   uint32_t count[8];
 #if ANIMC_AVX2_PATH
-  if (useAvx2(path_)) fillBucketsAvx2(key_.data(), order, n, shift, &buckets_[kPadding], count);
+  if (useAvx2(path_))
+    fillBucketsAvx2(keys(), order, n, shift, &buckets_[kPadding], count);
   else
 #endif
-    fillBucketsPortable(key_.data(), order, n, shift, &buckets_[kPadding], count);
+    fillBucketsPortable(keys(), order, n, shift, &buckets_[kPadding], count);
   uint32_t* out = &order_[(cell.depth & 1) ^ 1][kPadding + cell.begin];
   const uint32_t* buckets = &buckets_[kPadding];
   uint32_t end = n;
@@ -262,7 +270,8 @@ void OctreePartition::splitLarge(const Cell& cell, Cell children[8]) {
   const int shift = octantShift(cell.depth);
   uint32_t* out = &order_[(cell.depth & 1) ^ 1][kPadding + cell.begin];
   uint32_t count[8] = {}, slot[8];
-  for (uint32_t i = 0; i < n; ++i) ++count[octant(key_[order[i]], shift)];
+  const uint64_t* key = keys();
+  for (uint32_t i = 0; i < n; ++i) ++count[octant(key[order[i]], shift)];
   uint32_t begin = 0;
   for (int c = 0; c < 8; ++c) {
     slot[c] = begin;
@@ -271,7 +280,7 @@ void OctreePartition::splitLarge(const Cell& cell, Cell children[8]) {
   }
   for (uint32_t i = 0; i < n; ++i) {
     const uint32_t v = order[i];
-    out[slot[octant(key_[v], shift)]++] = v;
+    out[slot[octant(key[v], shift)]++] = v;
   }
 }
 
@@ -281,10 +290,10 @@ void OctreePartition::splitSmall(const Cell& cell, Cell children[8]) {
   const int shift = octantShift(cell.depth);
   uint32_t* out = &order_[(cell.depth & 1) ^ 1][kPadding + cell.begin];
 #if ANIMC_AVX2_PATH
-  const uint64_t counts = useAvx2(path_) ? splitSmallAvx2(key_.data(), order, n, shift, out)
-                                       : splitSmallPortable(key_.data(), order, n, shift, out);
+  const uint64_t counts =
+      useAvx2(path_) ? splitSmallAvx2(keys(), order, n, shift, out) : splitSmallPortable(keys(), order, n, shift, out);
 #else
-  const uint64_t counts = splitSmallPortable(key_.data(), order, n, shift, out);
+  const uint64_t counts = splitSmallPortable(keys(), order, n, shift, out);
 #endif
   const uint64_t starts = lanesBelow(counts);
   for (int c = 0; c < 8; ++c) {

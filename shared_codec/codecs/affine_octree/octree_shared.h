@@ -27,6 +27,11 @@ class OctreePartition {
   static constexpr int kGridBits = 16;  // >= the deepest allowed octree level
 
   explicit OctreePartition(SimdPath path) : path_(path) {}
+  // A partition of one cell of `whole` alone, with lists of its own, so that the cell's subtree
+  // can be walked on another thread: its root is rebased(cell). It reads whole's keys, which
+  // must stay as they are while it is used.
+  OctreePartition(const OctreePartition& whole, const Cell& cell);
+  static Cell rebased(const Cell& cell) { return Cell{0, cell.end - cell.begin, cell.depth}; }
 
   // Takes a new reference frame and returns the root cell holding all its vertices. Cells
   // split down to depth `levels` at most (the tree's depth limit).
@@ -43,6 +48,8 @@ class OctreePartition {
   // indices increase within a cell, so the reads stream forward through this array, and a
   // split moves 4 bytes per vertex instead of 12.
   std::vector<uint64_t> key_;
+  const OctreePartition* whole_ = nullptr;  // a branch's: the partition whose keys it reads
+  const uint64_t* keys() const { return whole_ ? whole_->keys() : key_.data(); }
   // The vertices in partition order. A cell at depth d holds its range of buffer d % 2 and
   // its children are written to the other buffer: the parent's copy is dead once split, so
   // nothing is copied back.

@@ -154,12 +154,19 @@ class PredictiveOctreeEncoder {
     int64_t coded[12];
   };
   struct Walk;
-  double search(Walk& w, const Cell& cell);
+  // What a search writes as it goes: the encoder's own, or a subtree's on a thread.
+  struct Search {
+    OctreePartition& partition;
+    CellPoints& points;
+    std::vector<Node>& plan;
+  };
+  double search(Walk& w, Search& s, const Cell& cell);
+  double searchChildren(Walk& w, Search& s, const Cell& cell, const Cell children[8], double leaf_cost);
   struct LeafCost {
     bool all_zero = false;       // no residual to code
     double distortion_bits = 0;  // the distortion's share of the cost
   };
-  double evaluateLeaf(Walk& w, const Cell& cell, Node& node, LeafCost& out);
+  double evaluateLeaf(Walk& w, Search& s, const Cell& cell, Node& node, LeafCost& out);
   void codeCell(Walk& w, const Cell& cell);
   void codeLeaf(Walk& w, const Cell& cell, const Node& node);
 

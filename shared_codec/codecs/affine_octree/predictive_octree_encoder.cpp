@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "codecs/affine_octree/predictive_octree.h"
+#include "core/parallel.h"
 
 namespace animc {
 namespace {
@@ -36,6 +37,10 @@ int64_t nearestSteps(double x) {
   if (x > kLimit) return int64_t(kLimit);
   return int64_t(x + std::copysign(0.5, x));  // no branch on the sign: it is random
 }
+
+// Cells of fewer vertices search their children on the caller's thread: below this, a
+// subtree's search costs less than starting a thread and copying its vertex list.
+constexpr uint32_t kMinThreadedSearch = 1u << 15;
 
 }  // namespace
 
@@ -99,7 +104,8 @@ bool PredictiveOctreeEncoder::encode(const PFrameInput& in, std::vector<uint8_t>
   contexts_.beginFrame();
   // Pass 1: choose the tree by estimated cost (the search reorders the partition freely).
   plan_.clear();
-  search(w, partition_.reset(*in.reference, in.max_depth));
+  Search whole{partition_, points_, plan_};
+  search(w, whole, partition_.reset(*in.reference, in.max_depth));
   if (w.overflow) return false;
   // Pass 2: code the chosen tree exactly as the decoder will walk it.
   const Cell root = partition_.restart();
@@ -116,41 +122,76 @@ bool PredictiveOctreeEncoder::encode(const PFrameInput& in, std::vector<uint8_t>
   return true;
 }
 
-double PredictiveOctreeEncoder::search(Walk& w, const Cell& cell) {
+double PredictiveOctreeEncoder::search(Walk& w, Search& s, const Cell& cell) {
   const uint32_t n = cell.end - cell.begin;
   if (n == 0) return 0;
-  const size_t mark = plan_.size();
-  plan_.push_back(Node{false, {}});
+  const size_t mark = s.plan.size();
+  s.plan.push_back(Node{false, {}});
   LeafCost leaf_eval;
-  const double leaf_bits = evaluateLeaf(w, cell, plan_[mark], leaf_eval);
+  const double leaf_bits = evaluateLeaf(w, s, cell, s.plan[mark], leaf_eval);
   const bool can_split = canSplit(cell, w.in.max_depth);
   if (!can_split) return leaf_bits;
   const double leaf_cost = leaf_bits + bitCost(models_->split[cell.depth], 0);
   // A leaf with nothing to correct and little error left is not worth searching below.
   if (leaf_eval.all_zero && leaf_eval.distortion_bits < kPruneDistortionBits) return leaf_cost;
-  const Node leaf = plan_[mark];
-  plan_[mark].split = true;
-  double split_cost = bitCost(models_->split[cell.depth], 1);
+  const Node leaf = s.plan[mark];
+  s.plan[mark].split = true;
   Cell children[8];
-  partition_.split(cell, children);
-  for (const Cell& child : children) {
-    split_cost += search(w, child);
-    if (split_cost >= leaf_cost) break;
-  }
+  s.partition.split(cell, children);
+  const double split_cost = searchChildren(w, s, cell, children, leaf_cost);
   if (split_cost < leaf_cost) return split_cost;
-  plan_.resize(mark + 1);
-  plan_[mark] = leaf;
+  s.plan.resize(mark + 1);
+  s.plan[mark] = leaf;
   return leaf_cost;
 }
 
-double PredictiveOctreeEncoder::evaluateLeaf(Walk& w, const Cell& cell, Node& node, LeafCost& out) {
+// The children's subtrees in order, while their cost stays below the leaf's. A large cell's
+// are searched on threads, each in a partition, points and plan of its own; then added up and
+// appended in order, up to where the serial walk would have stopped: the same plan, cost and
+// overflow either way (a search reads only the frame and the models, which it leaves as they
+// are; the partition lists each cell's vertices in increasing order however it is walked).
+double PredictiveOctreeEncoder::searchChildren(Walk& w, Search& s, const Cell& cell, const Cell children[8],
+                                               double leaf_cost) {
+  double cost = bitCost(models_->split[cell.depth], 1);
+  if (cell.end - cell.begin < kMinThreadedSearch || ThreadBudget::current() == 1) {
+    for (int c = 0; c < 8; ++c) {
+      cost += search(w, s, children[c]);
+      if (cost >= leaf_cost) break;
+    }
+    return cost;
+  }
+  struct Subtree {
+    double cost = 0;
+    bool overflow = false;
+    std::vector<Node> plan;
+  };
+  Subtree subtrees[8];
+  parallelFor(8, [&](size_t c) {
+    OctreePartition partition(s.partition, children[c]);
+    CellPoints points(path_);
+    Search own{partition, points, subtrees[c].plan};
+    Walk walk = w;
+    subtrees[c].cost = search(walk, own, OctreePartition::rebased(children[c]));
+    subtrees[c].overflow = walk.overflow;
+  });
+  for (int c = 0; c < 8; ++c) {
+    cost += subtrees[c].cost;
+    w.overflow = w.overflow || subtrees[c].overflow;
+    s.plan.insert(s.plan.end(), subtrees[c].plan.begin(), subtrees[c].plan.end());
+    if (cost >= leaf_cost) break;
+  }
+  return cost;
+}
+
+double PredictiveOctreeEncoder::evaluateLeaf(Walk& w, Search& s, const Cell& cell, Node& node, LeafCost& out) {
   const uint32_t n = cell.end - cell.begin;
-  const uint32_t* idx = partition_.vertices(cell);
-  points_.gather(w.in, idx, n);
-  const LeafModel& m = points_.model;
+  const uint32_t* idx = s.partition.vertices(cell);
+  CellPoints& points = s.points;
+  points.gather(w.in, idx, n);
+  const LeafModel& m = points.model;
   CentredAffine fit;
   double normal[9];
-  fitCentred(path_, points_.reference.data(), points_.target.data(), n, m.frame, m.prior.L, fit, normal);
+  fitCentred(path_, points.reference.data(), points.target.data(), n, m.frame, m.prior.L, fit, normal);
   const CorrectionSteps steps = correctionSteps(m.frame, n, w.step);
   const PredictiveModels& pm = *models_;
   double bits = quantiseCorrections(pm, fit, m.prior, steps, n, normal, w.bits_per_squared_error, node.coded);
@@ -161,9 +202,9 @@ double PredictiveOctreeEncoder::evaluateLeaf(Walk& w, const Cell& cell, Node& no
   bool all_zero = true;
   for (uint32_t i = 0; i < n; ++i) {
     double p[3];
-    const double* t = points_.targetPoint(i);
+    const double* t = points.targetPoint(i);
     const size_t v = 3 * size_t(idx[i]);
-    predictVertex(points_, m, a, i, p);
+    predictVertex(points, m, a, i, p);
     double vertex_bits = 0;
     bool vertex_zero = true;
     for (int ax = 0; ax < 3; ++ax) {
