@@ -79,9 +79,6 @@ std::vector<uint8_t> codecParameters(const EncodeSettings& s) {
 struct Encoder::Impl {
   EncodeSettings settings;
   Topology topology;
-  // The CONN section's bytes, coded beside the work that comes before the first frame is
-  // written (the group coders' tables, the frames gathered); valid until they are written.
-  std::future<std::vector<uint8_t>> connectivity;
   ContainerWriter writer;
   unsigned threads = 1;
   // A frame-by-frame codec on one thread codes each frame as it comes (codec). Otherwise the
@@ -118,7 +115,6 @@ struct Encoder::Impl {
   int64_t pendingFrames() const;
   bool groupEnds(int64_t next_frame) const;
   Status codeBatch();
-  Status writeConnectivity();
   Status writeFrame(const std::vector<uint8_t>& payload, const FrameCodingStats& stats);
 };
 
@@ -166,15 +162,7 @@ Status Encoder::Impl::codeBatch() {
   return Status();
 }
 
-Status Encoder::Impl::writeConnectivity() {
-  ANIMC_RETURN_IF_ERROR(writer.addConnectivity(connectivity.get()));
-  // A group codec's first frame record carries the whole group: not static.
-  if (settings.entry().makeGroupEncoder) summary.static_bytes = writer.bytesWritten();
-  return Status();
-}
-
 Status Encoder::Impl::writeFrame(const std::vector<uint8_t>& bytes, const FrameCodingStats& stats) {
-  if (connectivity.valid()) ANIMC_RETURN_IF_ERROR(writeConnectivity());
   ANIMC_RETURN_IF_ERROR(writer.addFrame(bytes, stats.intra));
   if (summary.static_bytes == 0) summary.static_bytes = writer.bytesWritten();
   summary.intra_frames += stats.intra;
@@ -193,11 +181,14 @@ Result<Encoder> EncoderAccess::create(const EncodeSettings& settings, Topology t
   impl->settings = settings;
   impl->topology = std::move(topology);
   impl->threads = resolveThreads(settings.threads);
-  impl->connectivity = startBeside<std::vector<uint8_t>>(impl->threads, [&mesh = impl->topology] {
-    std::vector<uint8_t> coded;
-    encodeConnectivity(mesh, coded);
-    return coded;
-  });
+  // Coded beside the group coders' construction (their mesh tables), and written after it, into
+  // a buffer reserved here: memory the coding thread allocated would stay with that thread's
+  // heap once freed, where the caller's heap takes it back. A mesh in a poor triangle order
+  // codes to about 5 bytes a triangle; beyond the reservation the buffer grows as usual.
+  std::vector<uint8_t> connectivity;
+  connectivity.reserve(6 * impl->topology.triangles.size());
+  std::future<void> connectivity_coded = startBeside<void>(
+      impl->threads, [&connectivity, &mesh = impl->topology] { encodeConnectivity(mesh, connectivity); });
   ContainerHeader header;
   header.codec = settings.codec();
   header.codec_params = codecParameters(settings);
@@ -219,6 +210,10 @@ Result<Encoder> EncoderAccess::create(const EncodeSettings& settings, Topology t
   } else {
     impl->codec = codec.makeEncoder(settings.options, impl->topology, bestSimdPath());
   }
+  connectivity_coded.get();
+  ANIMC_RETURN_IF_ERROR(impl->writer.addConnectivity(connectivity));
+  // A group codec's first frame record carries the whole group: not static.
+  if (codec.makeGroupEncoder) impl->summary.static_bytes = impl->writer.bytesWritten();
   impl->summary.vertices = impl->topology.vertex_count;
   impl->summary.triangles = impl->topology.triangles.size();
   return Encoder(std::move(impl));

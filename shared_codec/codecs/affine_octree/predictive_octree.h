@@ -80,15 +80,35 @@ struct LeafModel {
 // (cell_kernels.h), so that the per-cell passes (fits, predictions) stream through memory
 // instead of hopping through the vertex index; the leaf's model is found on the way. The
 // buffers only grow, so cells allocate nothing.
-struct CellPoints {
+class CellPoints {
+ public:
   explicit CellPoints(SimdPath simd_path) : path(simd_path) {}
-  SimdPath path;
-  std::vector<double> reference, target;  // target: when the input has it
-  std::vector<double> scratch;            // the portable path: frame f-2's points
-  LeafModel model;
+  // A window of whole's buffers from its point `first` on, for the cells of one subtree of
+  // the cell whole gathered last (a subtree searched on a thread): they all lie inside the
+  // subtree's range of that cell, which whole's buffers hold, so the window needs no memory
+  // of its own, and windows of disjoint subtrees do not overlap.
+  CellPoints(CellPoints& whole, size_t first);
+  CellPoints(const CellPoints&) = delete;
+  CellPoints& operator=(const CellPoints&) = delete;
+
   void gather(const PFrameInput& in, const uint32_t* idx, size_t n);
-  const double* referencePoint(size_t i) const { return &reference[kPointStride * i]; }
-  const double* targetPoint(size_t i) const { return &target[kPointStride * i]; }
+  const double* reference() const { return reference_; }
+  const double* target() const { return target_; }  // when the input has it
+  const double* referencePoint(size_t i) const { return reference_ + kPointStride * i; }
+  const double* targetPoint(size_t i) const { return target_ + kPointStride * i; }
+
+  SimdPath path;
+  LeafModel model;
+
+ private:
+  // Each as large as the largest cell gathered: the root's, every vertex. The target only
+  // when encoding, the scratch (frame f-2's points) only for the portable kernel (the AVX2
+  // one keeps no copy of them). Empty in a window.
+  std::vector<double> own_reference_, own_target_, own_scratch_;
+  double* reference_ = nullptr;  // own_reference_'s data, or whole's
+  double* target_ = nullptr;
+  double* scratch_ = nullptr;
+  bool window_ = false;
 };
 
 // Prediction of the cell's i-th vertex from the reference frame with the leaf's coded affine.

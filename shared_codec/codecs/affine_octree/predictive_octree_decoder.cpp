@@ -53,7 +53,7 @@ void PredictiveOctreeDecoder::decodeLeaf(Walk& w, const Cell& cell) {
   points_.gather(w.in, idx, n);
   const LeafModel& m = points_.model;
   const CentredAffine a = codedAffine(m, correctionSteps(m.frame, n, w.step), coded);
-  predictPoints(path_, points_.reference.data(), n, m.frame.centroid, a, idx, w.recon.data());
+  predictPoints(path_, points_.reference(), n, m.frame.centroid, a, idx, w.recon.data());
   if (!w.rc.decode(pm.residuals_zero[n <= kMinLinearVertices])) decodeResiduals(w, idx, n);
 }
 

@@ -146,7 +146,8 @@ double PredictiveOctreeEncoder::search(Walk& w, Search& s, const Cell& cell) {
 }
 
 // The children's subtrees in order, while their cost stays below the leaf's. A large cell's
-// are searched on threads, each in a partition, points and plan of its own; then added up and
+// are searched on threads, each in a partition and plan of its own and in its own window of
+// the cell's gathered points (just gathered by the cell's evaluateLeaf()); then added up and
 // appended in order, up to where the serial walk would have stopped: the same plan, cost and
 // overflow either way (a search reads only the frame and the models, which it leaves as they
 // are; the partition lists each cell's vertices in increasing order however it is walked).
@@ -168,7 +169,7 @@ double PredictiveOctreeEncoder::searchChildren(Walk& w, Search& s, const Cell& c
   Subtree subtrees[8];
   parallelFor(8, [&](size_t c) {
     OctreePartition partition(s.partition, children[c]);
-    CellPoints points(path_);
+    CellPoints points(s.points, children[c].begin - cell.begin);
     Search own{partition, points, subtrees[c].plan};
     Walk walk = w;
     subtrees[c].cost = search(walk, own, OctreePartition::rebased(children[c]));
@@ -191,7 +192,7 @@ double PredictiveOctreeEncoder::evaluateLeaf(Walk& w, Search& s, const Cell& cel
   const LeafModel& m = points.model;
   CentredAffine fit;
   double normal[9];
-  fitCentred(path_, points.reference.data(), points.target.data(), n, m.frame, m.prior.L, fit, normal);
+  fitCentred(path_, points.reference(), points.target(), n, m.frame, m.prior.L, fit, normal);
   const CorrectionSteps steps = correctionSteps(m.frame, n, w.step);
   const PredictiveModels& pm = *models_;
   double bits = quantiseCorrections(pm, fit, m.prior, steps, n, normal, w.bits_per_squared_error, node.coded);
@@ -255,7 +256,7 @@ void PredictiveOctreeEncoder::codeLeaf(Walk& w, const Cell& cell, const Node& no
   points_.gather(w.in, idx, n);
   const LeafModel& m = points_.model;
   const CentredAffine a = codedAffine(m, correctionSteps(m.frame, n, w.step), node.coded);
-  predictPoints(path_, points_.reference.data(), n, m.frame.centroid, a, idx, w.recon->data());
+  predictPoints(path_, points_.reference(), n, m.frame.centroid, a, idx, w.recon->data());
   residual_.resize(3 * size_t(n));
   bool all_zero = true;
   for (uint32_t i = 0; i < n; ++i) {

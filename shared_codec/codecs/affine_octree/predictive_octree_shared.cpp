@@ -8,22 +8,29 @@ namespace animc {
 
 double residualStep(double max_error) { return 2.0 * max_error / std::sqrt(3.0) * 0.999; }
 
+CellPoints::CellPoints(CellPoints& whole, size_t first)
+    : path(whole.path), reference_(whole.reference_ + kPointStride * first),
+      target_(whole.target_ ? whole.target_ + kPointStride * first : nullptr),
+      scratch_(whole.scratch_ ? whole.scratch_ + kPointStride * first : nullptr), window_(true) {}
+
 void CellPoints::gather(const PFrameInput& in, const uint32_t* idx, size_t n) {
-  const size_t size = kPointStride * n;
-  // Each as large as the largest cell gathered: the root's, every vertex. The target only
-  // when encoding, the scratch only for the portable kernel (the AVX2 one keeps no copy of
-  // frame f-2's points).
-  if (reference.size() < size) reference.resize(size);
-  if (in.target && target.size() < size) target.resize(size);
-  if (!useAvx2(path) && scratch.size() < size) scratch.resize(size);
+  if (!window_) {
+    const size_t size = kPointStride * n;
+    if (own_reference_.size() < size) own_reference_.resize(size);
+    if (in.target && own_target_.size() < size) own_target_.resize(size);
+    if (!useAvx2(path) && own_scratch_.size() < size) own_scratch_.resize(size);
+    reference_ = own_reference_.data();
+    target_ = own_target_.data();
+    scratch_ = own_scratch_.data();
+  }
   if (in.before) {
-    gatherWithMotion(path, in.reference->data(), in.before->data(), in.cube, idx, n, reference.data(), scratch.data(),
-                     model.frame, model.prior);
+    gatherWithMotion(path, in.reference->data(), in.before->data(), in.cube, idx, n, reference_, scratch_, model.frame,
+                     model.prior);
   } else {
-    model.frame = gatherPoints(path, in.reference->data(), idx, n, reference.data());
+    model.frame = gatherPoints(path, in.reference->data(), idx, n, reference_);
     model.prior = CentredAffine();
   }
-  if (in.target) copyPoints(path, in.target->data(), idx, n, target.data());
+  if (in.target) copyPoints(path, in.target->data(), idx, n, target_);
 }
 
 }  // namespace animc
