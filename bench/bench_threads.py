@@ -12,7 +12,7 @@ docs/benchmarks.md; run alone, this script replaces that section in place.
 usage: bench/bench_threads.py [--animc PATH] [--data DIR] [--runs R] [--out FILE]"""
 import filecmp
 import os
-import subprocess
+import statistics
 import tempfile
 
 import numpy as np
@@ -28,7 +28,8 @@ GROUP_FRAMES = 64
 MEMORY_CODECS = ('auto', 'trajectory')
 LARGE_VERTICES = 500_000
 GROUP_VALUES = 2**25  # a trajectory group holds at most this many trajectory values (3 x frames x vertices)
-LARGE_RUNS = 3  # encoding the large sequence takes seconds: the median of a few runs
+LARGE_RUNS = 5  # encoding the large sequence takes seconds: one run a round
+ROUNDS = 5  # the thread counts take turns this many times (measure())
 
 
 def subdivide(frames, faces):
@@ -65,29 +66,42 @@ def make_large(seq, work):
 
 def measure(animc, name, pc2_path, ply, extra, runs, work):
     """(a table row of both thread counts, encode speed-up, decode speed-up), or None when a
-    run failed or the bytes differ."""
-    encoded, decoded, files = {}, {}, {}
-    for threads in THREADS:
-        files[threads] = os.path.join(work, f'{name}.t{threads}.ams')
-        log(f'{name} {" ".join(extra)}: {threads} thread(s), {runs} run(s)')
-        r = run_bench(animc, pc2_path, ply, extra + ['--threads', str(threads), '-o', files[threads]], runs)
-        if 'error' in r:
+    run failed or the bytes differ. The thread counts take turns, ROUNDS rounds of runs / ROUNDS
+    runs each (one for the large sequence), so that a slow spell of this shared machine falls on
+    both; each figure is the median over the rounds of a round's median."""
+    rounds = ROUNDS
+    per_round = max(1, round(runs / ROUNDS))
+    encode_s = {t: [] for t in THREADS}
+    decode_s = {t: [] for t in THREADS}
+    files, first = {}, None
+    for r in range(rounds):
+        for threads in THREADS:
+            files[threads] = os.path.join(work, f'{name}.t{threads}.ams')
+            log(f'{name} {" ".join(extra)}: {threads} thread(s), round {r + 1} of {rounds}, {per_round} run(s)')
+            result = run_bench(animc, pc2_path, ply, extra + ['--threads', str(threads), '-o', files[threads]],
+                               per_round)
+            if 'error' in result:
+                return None
+            first = first or result
+            encode_s[threads].append(result['encode_seconds_median'])
+        if not filecmp.cmp(files[1], files[2], shallow=False):
+            log(f'  {name}: the two thread counts wrote different bytes')
             return None
-        encoded[threads] = r
-    if not filecmp.cmp(files[1], files[2], shallow=False):
-        log(f'  {name}: the two thread counts wrote different bytes')
-        return None
-    for threads in THREADS:  # decoding alone, of the same file, more runs: it takes milliseconds
-        decoded[threads] = animc_json([animc, 'bench', files[1], '--threads', str(threads), '--runs',
-                                       str(max(runs, 9)), '--json'])
-        if not decoded[threads]:
-            return None
-    one, two = encoded[1], encoded[2]
-    enc = one['encode_seconds_median'] / two['encode_seconds_median']
-    dec = decoded[2]['decode_mvps'] / decoded[1]['decode_mvps']
-    return [name, one['vertices'], one['frames'], num(one['bpvf'], 3),
-            num(one['encode_mvps']), num(two['encode_mvps']), num(enc) + '×',
-            num(decoded[1]['decode_mvps']), num(decoded[2]['decode_mvps']), num(dec) + '×'], enc, dec
+    for r in range(rounds):  # decoding alone, of the same file, more runs: it takes milliseconds
+        for threads in THREADS:
+            decoded = animc_json([animc, 'bench', files[1], '--threads', str(threads), '--runs',
+                                  str(max(per_round, 3)), '--json'])
+            if not decoded:
+                return None
+            decode_s[threads].append(decoded['decode_seconds_median'])
+    vertex_frames = first['vertices'] * first['frames']
+    enc_s = {t: statistics.median(encode_s[t]) for t in THREADS}
+    dec_s = {t: statistics.median(decode_s[t]) for t in THREADS}
+    enc, dec = enc_s[1] / enc_s[2], dec_s[1] / dec_s[2]
+    mvps = lambda seconds: num(vertex_frames / seconds / 1e6)
+    return [name, first['vertices'], first['frames'], num(first['bpvf'], 3),
+            mvps(enc_s[1]), mvps(enc_s[2]), num(enc) + '×',
+            mvps(dec_s[1]), mvps(dec_s[2]), num(dec) + '×'], enc, dec
 
 
 def amdahl(speedup, threads):
@@ -129,10 +143,13 @@ def threads_section(animc, sequences, runs):
                 memory.append([f'`{codec}`', threads, f'{mib:.0f} MiB',
                                num(mib / (large[2] * large[3] * 12 / 2**20)) + '×'])
     lines = [HEADING, '',
-             f'Encoding: `animc bench IN --mesh M --threads N --runs {runs} --json` (`--runs {min(runs, LARGE_RUNS)}` for '
-             'the large sequence) at animc\'s default settings (auto, max error 1 %), which includes the rate search; '
-             f'decoding: `animc bench X.ams --threads N --runs {max(runs, 9)} --json` of the file written, which '
-             'decodes in the runs of groups a reader takes (`decodeChunkEnd`). Medians in million vertices '
+             f'Encoding: `animc bench IN --mesh M --threads N --runs {max(1, round(runs / ROUNDS))} --json` '
+             f'(`--runs {max(1, round(min(runs, LARGE_RUNS) / ROUNDS))}` for the large sequence) at animc\'s default '
+             'settings (auto, max error 1 %), which includes the rate search; decoding: '
+             f'`animc bench X.ams --threads N --runs {max(3, round(runs / ROUNDS))} --json` of the file written, which '
+             'decodes in the runs of groups a reader takes (`decodeChunkEnd`). The two thread counts take turns, '
+             f'{ROUNDS} rounds each, so that a slow spell of the machine falls on both; each figure is the median of '
+             'the rounds\' medians, in million vertices '
              '(× frames) per second; both thread counts wrote identical bytes (checked). Without an I-frame '
              'interval each of these sequences is one group: its work is split inside the group (the '
              'trajectory Gram matrix and products; the rate search in blocks of 2048 vertices; decoding\'s frame reconstruction over ranges of 4096 '
