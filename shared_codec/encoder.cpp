@@ -181,14 +181,6 @@ Result<Encoder> EncoderAccess::create(const EncodeSettings& settings, Topology t
   impl->settings = settings;
   impl->topology = std::move(topology);
   impl->threads = resolveThreads(settings.threads);
-  // Coded beside the group coders' construction (their mesh tables), and written after it, into
-  // a buffer reserved here: memory the coding thread allocated would stay with that thread's
-  // heap once freed, where the caller's heap takes it back. A mesh in a poor triangle order
-  // codes to about 5 bytes a triangle; beyond the reservation the buffer grows as usual.
-  std::vector<uint8_t> connectivity;
-  connectivity.reserve(6 * impl->topology.triangles.size());
-  std::future<void> connectivity_coded = startBeside<void>(
-      impl->threads, [&connectivity, &mesh = impl->topology] { encodeConnectivity(mesh, connectivity); });
   ContainerHeader header;
   header.codec = settings.codec();
   header.codec_params = codecParameters(settings);
@@ -203,14 +195,25 @@ Result<Encoder> EncoderAccess::create(const EncodeSettings& settings, Topology t
   // the same either way).
   const uint64_t group_bytes = uint64_t(settings.iframe_interval) * 12 * impl->topology.vertex_count;
   const bool batch_frames = impl->threads > 1 && settings.iframe_interval > 0 && group_bytes <= kMaxGatheredGroupBytes;
-  if (codec.makeGroupEncoder || batch_frames) {
-    ThreadBudget budget(impl->threads);  // the group coder's mesh tables
-    impl->group_coders.push_back(makeAnyGroupEncoder(codec, settings.options, impl->topology, bestSimdPath()));
-    impl->max_group_frames = impl->group_coders[0]->maxGroupFrames();
-  } else {
-    impl->codec = codec.makeEncoder(settings.options, impl->topology, bestSimdPath());
+  // The connectivity is coded beside the coders' construction (their mesh tables, on the
+  // encoder's threads), into a buffer reserved here: memory the coding thread allocated would
+  // stay with that thread's heap once freed, where the caller's heap takes it back. A mesh in
+  // a poor triangle order codes to about 5 bytes a triangle; beyond that the buffer grows.
+  std::vector<uint8_t> connectivity;
+  connectivity.reserve(6 * impl->topology.triangles.size());
+  {
+    ThreadBudget budget(impl->threads);
+    runBeside(
+        [&] { encodeConnectivity(impl->topology, connectivity); },
+        [&] {
+          if (codec.makeGroupEncoder || batch_frames) {
+            impl->group_coders.push_back(makeAnyGroupEncoder(codec, settings.options, impl->topology, bestSimdPath()));
+            impl->max_group_frames = impl->group_coders[0]->maxGroupFrames();
+          } else {
+            impl->codec = codec.makeEncoder(settings.options, impl->topology, bestSimdPath());
+          }
+        });
   }
-  connectivity_coded.get();
   ANIMC_RETURN_IF_ERROR(impl->writer.addConnectivity(connectivity));
   // A group codec's first frame record carries the whole group: not static.
   if (codec.makeGroupEncoder) impl->summary.static_bytes = impl->writer.bytesWritten();

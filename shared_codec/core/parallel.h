@@ -8,8 +8,6 @@
 #pragma once
 #include <cstddef>
 #include <functional>
-#include <future>
-#include <system_error>
 
 namespace animc {
 
@@ -51,20 +49,5 @@ void parallelForBlocks(size_t count, size_t block, double element_cost,
 // two then share the cores with more threads than cores while side() runs). Otherwise one
 // after the other. An exception of either is rethrown here after both have ended.
 void runBeside(const std::function<void()>& side, const std::function<void()>& main);
-
-// Starts work() for a result that get() waits for, to run beside whatever the caller does
-// meanwhile: on a thread of its own (with a budget of one) when `threads` > 1 and a thread can
-// be had; otherwise work() runs in get(), on the caller. An exception of work() is rethrown by
-// get(); the future's destructor waits for a running work().
-template <class T>
-std::future<T> startBeside(unsigned threads, std::function<T()> work) {
-  if (threads > 1) {
-    try {
-      return std::async(std::launch::async, work);
-    } catch (const std::system_error&) {  // no thread to be had
-    }
-  }
-  return std::async(std::launch::deferred, std::move(work));
-}
 
 }  // namespace animc

@@ -62,20 +62,6 @@ TEST(ParallelFor, AnItemsExceptionReachesTheCaller) {
   EXPECT_EQ(both, 3);
 }
 
-TEST(ParallelFor, StartBesideRunsItsWorkOnceAndRethrowsItsException) {
-  for (unsigned threads : {1u, 2u}) {
-    int runs = 0;
-    std::future<int> result = startBeside<int>(threads, [&] {
-      ++runs;
-      return int(ThreadBudget::current());
-    });
-    EXPECT_EQ(result.get(), 1) << threads;  // its own work is serial either way
-    EXPECT_EQ(runs, 1) << threads;
-    std::future<int> failing = startBeside<int>(threads, []() -> int { throw std::bad_alloc(); });
-    EXPECT_THROW(failing.get(), std::bad_alloc) << threads;
-  }
-}
-
 TEST(ParallelFor, ZeroMeansOneThreadPerCore) {
   EXPECT_GE(resolveThreads(0), 1u);
   EXPECT_EQ(resolveThreads(5), 5u);
