@@ -61,7 +61,7 @@ std::set<std::string> flagsOfEveryCodec(bool switches) {
 const std::set<std::string>& encodeOptions() {
   static const std::set<std::string> names = [] {
     std::set<std::string> names = flagsOfEveryCodec(false);
-    names.insert({"codec", "iframe-interval", "threads", "frames"});
+    names.insert({"codec", "iframe-interval", "threads", "frames", "connectivity-piece"});
     return names;
   }();
   return names;
@@ -98,6 +98,10 @@ Result<EncodeSettings> encodeSettingsFrom(const Args& args) {
   ANIMC_ASSIGN_OR_RETURN(long long interval, args.integer("iframe-interval", 0));
   if (interval < 0 || interval > 0x7fffffff) return invalidArgument("--iframe-interval must be >= 0");
   options.iframe_interval = uint32_t(interval);
+  ANIMC_ASSIGN_OR_RETURN(long long piece, args.integer("connectivity-piece", kDefaultConnectivityPiece));
+  if (piece < 0 || piece > 0xffffffffll)
+    return invalidArgument("--connectivity-piece must be in [0, 2^32 - 1] (0 = one piece, .ams format 1)");
+  options.connectivity_piece = uint32_t(piece);
   ANIMC_ASSIGN_OR_RETURN(options.threads, threadsFrom(args));
   return animc::encodeSettingsFrom(options);
 }

@@ -11,7 +11,11 @@
 namespace {
 
 std::string usageAfterEncode() {
-  return "         [--progress] [--json]\n"
+  return "         [--connectivity-piece T]: triangles per independently decoded piece of the\n"
+         "         mesh (default " +
+         std::to_string(animc::kDefaultConnectivityPiece) +
+         "; more triangles write .ams format 2, 0 = always format 1)\n"
+         "         [--progress] [--json]\n"
          "  decode IN.ams -o OUT [--format " +
          animc::formatNames("|") +
          "] [--frames A:B] [--progress]\n"
@@ -66,7 +70,7 @@ int main(int argc, char** argv) {
   }
   const std::string command = argv[1];
   if (command == "--version" || command == "version") {
-    std::printf("animc %s (.ams format %u)\n", animc::animcVersion(), unsigned(animc::kFormatVersion));
+    std::printf("animc %s (.ams formats up to %u)\n", animc::animcVersion(), unsigned(animc::kNewestFormatVersion));
     return 0;
   }
   removeTemporariesOnSignals();

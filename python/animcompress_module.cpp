@@ -77,14 +77,17 @@ void setOption(EncoderOptions& options, const std::string& name, py::handle valu
 }
 
 EncoderOptions encoderOptions(const std::string& codec, int64_t iframe_interval, double frame_rate, int64_t threads,
-                              const py::kwargs& keywords) {
+                              int64_t connectivity_piece, const py::kwargs& keywords) {
   if (iframe_interval < 0 || iframe_interval > int64_t(std::numeric_limits<uint32_t>::max()))
     throw py::value_error("iframe_interval must be in [0, 2^32 - 1]");
+  if (connectivity_piece < 0 || connectivity_piece > int64_t(std::numeric_limits<uint32_t>::max()))
+    throw py::value_error("connectivity_piece must be in [0, 2^32 - 1]");
   EncoderOptions options;
   options.codec = codec;
   options.iframe_interval = uint32_t(iframe_interval);
   options.frame_rate = frame_rate;
   options.threads = threadCount(threads);
+  options.connectivity_piece = uint32_t(connectivity_piece);
   for (auto [key, value] : keywords) {
     std::string name = key.cast<std::string>();
     for (char& c : name) c = c == '_' ? '-' : c;  // max_error -> max-error, as animc's flags
@@ -107,8 +110,9 @@ Status encodeFrames(const EncoderOptions& options, const std::vector<float>& fra
 }
 
 py::bytes encode(py::handle frames, py::handle faces, const std::string& codec, int64_t iframe_interval,
-                 double frame_rate, int64_t threads, const py::kwargs& keywords) {
-  const EncoderOptions options = encoderOptions(codec, iframe_interval, frame_rate, threads, keywords);
+                 double frame_rate, int64_t threads, int64_t connectivity_piece, const py::kwargs& keywords) {
+  const EncoderOptions options =
+      encoderOptions(codec, iframe_interval, frame_rate, threads, connectivity_piece, keywords);
   const FloatArray xyz = framesArray(frames, "frames");
   // Owned copies: the coding runs without the GIL, while other threads could change arrays.
   const std::vector<float> owned(xyz.data(), xyz.data() + xyz.size());
@@ -208,8 +212,11 @@ PYBIND11_MODULE(animcompress, module) {
   module.def("codecs", &animc::codecNames, "The codecs this build writes and reads, by name.");
   module.def("encode", &encode, py::arg("frames"), py::arg("faces"), py::arg("codec") = "affine-octree",
              py::arg("iframe_interval") = 0, py::arg("frame_rate") = 25.0, py::arg("threads") = 0,
+             py::arg("connectivity_piece") = animc::kDefaultConnectivityPiece,
              "The .ams bytes of frames (F, N, 3) over faces (T, 3), coded on `threads` threads (0 = one per "
-             "core; the bytes are the same for any number); keyword options are the codec's "
+             "core; the bytes are the same for any number). Faces are coded in pieces of connectivity_piece "
+             "triangles that decode at once; more than one piece makes an .ams format 2 stream, which "
+             "animcompress before 1.2 cannot read (0 = one piece, format 1). Keyword options are the codec's "
              "(max_error=0.01 is animc encode's --max-error 0.01; True sets a switch). The codec is "
              "'affine-octree' unless codec= says otherwise, as in the C++ library and in 1.0, so that 1.0 "
              "programs and their options (profile=, bits=) keep working; animc encode and the MeshLab filter "

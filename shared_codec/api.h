@@ -21,6 +21,7 @@ struct EncodeSettings {
   CodecOptions options;          // the chosen codec's options (Affine-Octree's defaults by default)
   uint32_t iframe_interval = 0;  // an intra frame every K frames; 0 = the first frame only
   uint32_t threads = 1;          // EncoderOptions::threads (not written to the stream)
+  uint32_t connectivity_piece = kDefaultConnectivityPiece;  // EncoderOptions::connectivity_piece
 
   CodecId codec() const { return codecOf(options).id; }
   const CodecEntry& entry() const { return codecOf(options); }

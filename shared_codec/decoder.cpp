@@ -187,7 +187,10 @@ struct DecoderAccess {
     impl->name = name;
     impl->threads = resolveThreads(options.threads);
     impl->decoding = options;
-    ANIMC_ASSIGN_OR_RETURN(impl->reader, ContainerReader::open(std::move(source), name, options.limits));
+    {
+      ThreadBudget budget(impl->threads);  // for the connectivity's pieces (format 2)
+      ANIMC_ASSIGN_OR_RETURN(impl->reader, ContainerReader::open(std::move(source), name, options.limits));
+    }
     auto settings = readSettings(impl->reader->info().header);
     if (!settings.ok()) return settings.status().withContext(name);
     impl->settings = settings.value();

@@ -182,6 +182,7 @@ Result<Encoder> EncoderAccess::create(const EncodeSettings& settings, Topology t
   impl->topology = std::move(topology);
   impl->threads = resolveThreads(settings.threads);
   ContainerHeader header;
+  header.format_version = formatVersionFor(impl->topology.triangles.size(), settings.connectivity_piece);
   header.codec = settings.codec();
   header.codec_params = codecParameters(settings);
   header.vertex_count = impl->topology.vertex_count;
@@ -204,7 +205,7 @@ Result<Encoder> EncoderAccess::create(const EncodeSettings& settings, Topology t
   {
     ThreadBudget budget(impl->threads);
     runBeside(
-        [&] { encodeConnectivity(impl->topology, connectivity); },
+        [&] { encodeConnectivity(impl->topology, settings.connectivity_piece, connectivity); },
         [&] {
           if (codec.makeGroupEncoder || batch_frames) {
             impl->group_coders.push_back(makeAnyGroupEncoder(codec, settings.options, impl->topology, bestSimdPath()));
@@ -237,6 +238,7 @@ Result<EncodeSettings> encodeSettingsFrom(const EncoderOptions& options) {
   ANIMC_ASSIGN_OR_RETURN(s.options, codec->fromFlags(MapOptionValues(options.values)));
   s.iframe_interval = options.iframe_interval;
   s.threads = options.threads;
+  s.connectivity_piece = options.connectivity_piece;
   ANIMC_RETURN_IF_ERROR(s.validate());
   return s;
 }

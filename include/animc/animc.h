@@ -106,6 +106,10 @@ using ProgressFn = std::function<bool(int percent, const char* what)>;
 // What to write. Codec options are named as `animc encode`'s flags without the dashes
 // ("max-error", "target-kg", "bits", "profile", ...; `animc --help` lists each codec's);
 // a switch is set with the value "1". An option the chosen codec does not have is an error.
+// EncoderOptions::connectivity_piece's default: a few bytes a piece against megabytes of
+// connectivity, and a mesh of fewer triangles is written as format 1, as before.
+constexpr uint32_t kDefaultConnectivityPiece = 65536;
+
 struct EncoderOptions {
   // "affine-octree" (the default), "wavelet", "trajectory" or "auto". `animc encode` and the
   // MeshLab filter default to "auto", the smallest files at about affine-octree's speed
@@ -124,6 +128,10 @@ struct EncoderOptions {
   // knows a frame later (reconstructedFrames() says when), and a program written for 1.x that
   // reads the reconstruction of each frame as it adds it keeps working.
   uint32_t threads = 1;
+  // Triangles per piece of the connectivity: a mesh of more triangles is written as .ams
+  // format 2, whose connectivity pieces a decoder's threads decode at once, and which
+  // animcompress before 1.2 cannot read. 0 = one piece: format 1, for those readers.
+  uint32_t connectivity_piece = kDefaultConnectivityPiece;
 
   EncoderOptions& set(const std::string& name, const std::string& value) {
     values[name] = value;

@@ -161,6 +161,20 @@ def test_threads_change_neither_bytes_nor_frames(sequence, codec, options):
         animcompress.decode(one, threads=5000)
 
 
+def test_connectivity_in_pieces_is_format_2_and_decodes_the_same(sequence):
+    args = (sequence['frames'][:20], sequence['faces'])
+    whole = animcompress.encode(*args, codec='trajectory', max_error=0.01, connectivity_piece=0)
+    pieces = animcompress.encode(*args, codec='trajectory', max_error=0.01, connectivity_piece=100)
+    assert animcompress.encode(*args, codec='trajectory', max_error=0.01) == whole  # 680 triangles: one piece
+    assert (whole[4], pieces[4]) == (1, 2)  # Format_Version
+    assert animcompress.info(pieces)['format_version'] == 2
+    frames, faces = animcompress.decode(pieces, threads=2)
+    assert np.array_equal(frames, animcompress.decode(whole)[0])
+    assert np.array_equal(faces, sequence['faces'])
+    with pytest.raises(ValueError, match='connectivity_piece'):
+        animcompress.encode(*args, connectivity_piece=-1)
+
+
 def test_join_equals_the_whole_encode(sequence, tmp_path):
     frames, faces = sequence['frames'], sequence['faces']
     whole = animcompress.encode(frames, faces, codec='auto', iframe_interval=40)

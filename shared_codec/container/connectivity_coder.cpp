@@ -4,8 +4,10 @@
 #include <algorithm>
 #include <string>
 
+#include "core/parallel.h"
 #include "entropy/bit_tree.h"
 #include "entropy/integer_coder.h"
+#include "io/byte_writer.h"
 
 namespace animc {
 namespace {
@@ -17,45 +19,47 @@ struct ConnectivityModels {
   IntegerModel<3> delta;
 };
 
+// A format-2 piece's entry in CONN's table: its stream's length and the Next_New it starts from.
+constexpr uint64_t kPieceEntryBytes = 8 + 4;
+// Range decoding costs about this many operations a triangle (parallelFor's unit).
+constexpr double kTriangleCost = 100;
+
 uint32_t chooseFor(uint32_t index, const Triangle& previous, uint32_t next_new) {
   for (uint32_t k = 0; k < 3; ++k)
     if (previous[k] == index) return k;
   return index == next_new ? kNextNew : kDelta;
 }
 
-}  // namespace
-
-void encodeConnectivity(const Topology& topology, std::vector<uint8_t>& out) {
+// One range-coded stream of triangles (format 1's whole CONN, or a piece of format 2), from
+// fresh models, no previous triangle and Last = Next_New = next_new.
+void encodeStream(const Triangle* begin, const Triangle* end, uint32_t next_new, std::vector<uint8_t>& out) {
   ConnectivityModels m;
   RangeEncoder rc(out);
   Triangle previous = {~0u, ~0u, ~0u};
-  uint32_t next_new = 0;
-  int64_t last = 0;
-  for (const Triangle& t : topology.triangles) {
+  int64_t last = next_new;
+  for (const Triangle* t = begin; t != end; ++t) {
     for (int c = 0; c < 3; ++c) {
-      const uint32_t choice = chooseFor(t[c], previous, next_new);
+      const uint32_t choice = chooseFor((*t)[c], previous, next_new);
       encodeTree(rc, m.choice[c], choice);
-      if (choice == kDelta) encodeInt(rc, m.delta, c, int64_t(t[c]) - last);
-      last = t[c];
-      if (t[c] >= next_new) next_new = t[c] + 1;
+      if (choice == kDelta) encodeInt(rc, m.delta, c, int64_t((*t)[c]) - last);
+      last = (*t)[c];
+      if ((*t)[c] >= next_new) next_new = (*t)[c] + 1;
     }
-    previous = t;
+    previous = *t;
   }
   rc.finish();
 }
 
-Status decodeConnectivity(ByteReader in, uint32_t vertex_count, uint64_t triangle_count,
-                          Topology& topology) {
+// Appends `count` triangles from a stream encodeStream() wrote; `first` numbers them in messages.
+Status decodeStream(ByteReader in, uint32_t vertex_count, uint64_t first, uint64_t count, uint32_t next_new,
+                    std::vector<Triangle>& out) {
   ConnectivityModels m;
   RangeDecoder rc(in.cursor(), in.remaining());
-  topology.vertex_count = vertex_count;
-  topology.triangles.clear();
-  // A section cannot honestly hold more than ~100 triangles per byte; reserve no more.
-  topology.triangles.reserve(size_t(std::min<uint64_t>(triangle_count, 100 * uint64_t(in.remaining()) + 16)));
+  // A stream cannot honestly hold more than ~100 triangles per byte; reserve no more.
+  out.reserve(out.size() + size_t(std::min<uint64_t>(count, 100 * uint64_t(in.remaining()) + 16)));
   Triangle previous = {~0u, ~0u, ~0u};
-  uint32_t next_new = 0;
-  int64_t last = 0;
-  for (uint64_t i = 0; i < triangle_count; ++i) {
+  int64_t last = next_new;
+  for (uint64_t i = first; i < first + count; ++i) {
     Triangle t;
     for (int c = 0; c < 3; ++c) {
       const uint32_t choice = decodeTree(rc, m.choice[c]);
@@ -65,17 +69,118 @@ Status decodeConnectivity(ByteReader in, uint32_t vertex_count, uint64_t triangl
       else if (choice == kDelta) index = last + decodeInt(rc, m.delta, c);
       else return corrupt("connectivity: unknown index code in triangle " + std::to_string(i));
       if (index < 0 || index >= int64_t(vertex_count))
-        return corrupt("connectivity: triangle " + std::to_string(i) + " uses vertex " +
-                       std::to_string(index) + " of " + std::to_string(vertex_count));
+        return corrupt("connectivity: triangle " + std::to_string(i) + " uses vertex " + std::to_string(index) +
+                       " of " + std::to_string(vertex_count));
       t[c] = uint32_t(index);
       last = index;
       if (t[c] >= next_new) next_new = t[c] + 1;
     }
     if (rc.overran()) return corrupt("connectivity: coded data ends early");
-    topology.triangles.push_back(t);
+    out.push_back(t);
     previous = t;
   }
   return Status();
+}
+
+struct Piece {
+  uint64_t first = 0, count = 0;  // triangles
+  uint32_t next_new = 0;
+  uint64_t bytes = 0;
+  ByteReader stream;
+};
+
+void encodePieces(const Topology& topology, uint32_t piece_triangles, std::vector<uint8_t>& out) {
+  const std::vector<Triangle>& triangles = topology.triangles;
+  const size_t pieces = (triangles.size() - 1) / piece_triangles + 1;
+  std::vector<uint32_t> next_new(pieces, 0);
+  uint32_t seen = 0;  // one more than the largest index before the piece
+  for (size_t i = 0; i < triangles.size(); ++i) {
+    if (i % piece_triangles == 0) next_new[i / piece_triangles] = seen;
+    for (uint32_t v : triangles[i]) seen = std::max(seen, v + 1);
+  }
+  std::vector<std::vector<uint8_t>> streams(pieces);
+  parallelFor(pieces, kTriangleCost * piece_triangles, [&](size_t k) {
+    const size_t begin = k * size_t(piece_triangles), end = std::min(triangles.size(), begin + piece_triangles);
+    encodeStream(triangles.data() + begin, triangles.data() + end, next_new[k], streams[k]);
+  });
+  ByteWriter table;
+  table.u32(piece_triangles);
+  for (size_t k = 0; k < pieces; ++k) {
+    table.u64(streams[k].size());
+    table.u32(next_new[k]);
+  }
+  out.insert(out.end(), table.bytes().begin(), table.bytes().end());
+  for (const std::vector<uint8_t>& stream : streams) out.insert(out.end(), stream.begin(), stream.end());
+}
+
+// Format 2's table, checked: the pieces' streams must fill the rest of the payload exactly.
+Result<std::vector<Piece>> readPieces(ByteReader in, uint32_t vertex_count, uint64_t triangle_count) {
+  ANIMC_ASSIGN_OR_RETURN(uint32_t piece_triangles, in.u32("Piece_Triangles"));
+  if (piece_triangles == 0) return corrupt("connectivity: Piece_Triangles is 0");
+  const uint64_t count = triangle_count == 0 ? 0 : (triangle_count - 1) / piece_triangles + 1;
+  if (count > in.remaining() / kPieceEntryBytes) return in.truncatedAt("connectivity piece table");
+  std::vector<Piece> pieces(count);
+  uint64_t stream_bytes = in.remaining() - count * kPieceEntryBytes;
+  for (uint64_t k = 0; k < count; ++k) {
+    Piece& p = pieces[k];
+    p.first = k * piece_triangles;
+    p.count = std::min<uint64_t>(piece_triangles, triangle_count - p.first);
+    ANIMC_ASSIGN_OR_RETURN(uint64_t length, in.u64("Piece_Length"));
+    ANIMC_ASSIGN_OR_RETURN(p.next_new, in.u32("Piece_Start"));
+    if (length > stream_bytes) return corrupt("connectivity: piece " + std::to_string(k) + " runs past CONN");
+    if (p.next_new > vertex_count)
+      return corrupt("connectivity: piece " + std::to_string(k) + " starts past vertex " +
+                     std::to_string(vertex_count));
+    stream_bytes -= length;
+    p.bytes = length;
+  }
+  if (stream_bytes != 0)
+    return corrupt("connectivity: " + std::to_string(stream_bytes) + " bytes after the last piece");
+  for (Piece& p : pieces) {  // the streams follow the table
+    p.stream = ByteReader(in.cursor(), size_t(p.bytes), in.offset());
+    ANIMC_RETURN_IF_ERROR(in.skip(size_t(p.bytes), "connectivity piece"));
+  }
+  return pieces;
+}
+
+Status decodePieces(ByteReader in, uint32_t vertex_count, uint64_t triangle_count, std::vector<Triangle>& out) {
+  ANIMC_ASSIGN_OR_RETURN(std::vector<Piece> pieces, readPieces(in, vertex_count, triangle_count));
+  std::vector<std::vector<Triangle>> decoded(pieces.size());
+  std::vector<Status> status(pieces.size());
+  const double piece_cost = pieces.empty() ? 0 : kTriangleCost * double(pieces[0].count);
+  parallelFor(pieces.size(), piece_cost, [&](size_t k) {
+    const Piece& p = pieces[k];
+    status[k] = decodeStream(p.stream, vertex_count, p.first, p.count, p.next_new, decoded[k]);
+  });
+  for (const Status& s : status) ANIMC_RETURN_IF_ERROR(s);
+  out.reserve(size_t(triangle_count));  // every triangle is decoded by now: no longer a claim
+  for (std::vector<Triangle>& piece : decoded) {
+    out.insert(out.end(), piece.begin(), piece.end());
+    std::vector<Triangle>().swap(piece);
+  }
+  return Status();
+}
+
+}  // namespace
+
+uint16_t formatVersionFor(uint64_t triangle_count, uint32_t piece_triangles) {
+  return piece_triangles > 0 && triangle_count > piece_triangles ? 2 : 1;
+}
+
+void encodeConnectivity(const Topology& topology, uint32_t piece_triangles, std::vector<uint8_t>& out) {
+  if (formatVersionFor(topology.triangles.size(), piece_triangles) == 1) {
+    encodeStream(topology.triangles.data(), topology.triangles.data() + topology.triangles.size(), 0, out);
+    return;
+  }
+  encodePieces(topology, piece_triangles, out);
+}
+
+Status decodeConnectivity(ByteReader in, uint16_t format_version, uint32_t vertex_count, uint64_t triangle_count,
+                          Topology& topology) {
+  topology.vertex_count = vertex_count;
+  topology.triangles.clear();
+  if (format_version == 1) return decodeStream(in, vertex_count, 0, triangle_count, 0, topology.triangles);
+  return decodePieces(in, vertex_count, triangle_count, topology.triangles);
 }
 
 }  // namespace animc

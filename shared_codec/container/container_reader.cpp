@@ -87,9 +87,9 @@ Status ContainerReader::openHeader() {
   ByteReader h(start + 4, 4, 4);
   ANIMC_ASSIGN_OR_RETURN(info_.format_version, h.u16("Format_Version"));
   ANIMC_ASSIGN_OR_RETURN(uint16_t reserved, h.u16("Reserved"));
-  if (info_.format_version != kFormatVersion)
+  if (info_.format_version == 0 || info_.format_version > kNewestFormatVersion)
     return unsupported("format version " + std::to_string(info_.format_version) +
-                       " is not supported (this build reads format " + std::to_string(kFormatVersion) +
+                       " is not supported (this build reads formats 1 to " + std::to_string(kNewestFormatVersion) +
                        "; a newer animcompress may read it)");
   if (reserved != 0) return corrupt("reserved header bits are set");
 
@@ -120,8 +120,8 @@ Status ContainerReader::openHeader() {
 
   const uint64_t conn_offset = kFileHeaderBytes + kSectionOverhead + head.size();
   ANIMC_ASSIGN_OR_RETURN(std::vector<uint8_t> conn, readSection(conn_offset, kTagConnectivity, kNoMaximum));
-  ANIMC_RETURN_IF_ERROR(decodeConnectivity(ByteReader(conn.data(), conn.size(), conn_offset + 12), hd.vertex_count,
-                                           hd.triangle_count, topology_));
+  ANIMC_RETURN_IF_ERROR(decodeConnectivity(ByteReader(conn.data(), conn.size(), conn_offset + 12), info_.format_version,
+                                           hd.vertex_count, hd.triangle_count, topology_));
   ANIMC_RETURN_IF_ERROR(openIndex(conn_offset + kSectionOverhead + conn.size()));
   return measureFirstFrame();
 }

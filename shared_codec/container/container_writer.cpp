@@ -26,7 +26,7 @@ Status ContainerWriter::open(std::unique_ptr<ByteSink> sink, const ContainerHead
   sink_ = std::move(sink);
   ByteWriter start;
   start.append(kMagic, 4);
-  start.u16(kFormatVersion);
+  start.u16(header.format_version);
   start.u16(0);
   ANIMC_RETURN_IF_ERROR(sink_->write(start.bytes().data(), start.size()));
   ByteWriter head;

@@ -14,7 +14,9 @@
 
 namespace animc {
 
+// File_Header's version and HEAD's fields.
 struct ContainerHeader {
+  uint16_t format_version = 1;  // formatVersionFor() the CONN written
   CodecId codec = CodecId::kAffineOctree;
   std::vector<uint8_t> codec_params;  // serialised by the codec's options
   uint32_t vertex_count = 0;

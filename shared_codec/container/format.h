@@ -1,11 +1,12 @@
 // SPDX-License-Identifier: Apache-2.0
-// The .ams container, version 1. docs/format.md describes every byte; this header is its
+// The .ams container, versions 1 and 2. docs/format.md describes every byte; this header is its
 // single home in code. All integers little-endian.
 //
 //   File_Header  Magic "\x89AMS", Format_Version u16, Reserved u16 (= 0)
 //   Section*     Tag[4], Length u64, Payload[Length], CRC32(Payload) u32
 //     HEAD  codec, its parameters, vertex and triangle counts, frame rate, I-frame interval
-//     CONN  the triangle list, order preserved, range coded
+//     CONN  the triangle list, order preserved, range coded: one stream (format 1) or
+//           independent pieces of a fixed number of triangles (format 2, its only change)
 //     GRUP  one per frame group: First_Frame u64, Frame_Count u32, then per frame
 //           Frame_Length varint + codec payload (the first frame of a group is intra);
 //           its CRC covers the frames only, the two counts are checked against INDX
@@ -19,7 +20,8 @@
 namespace animc {
 
 constexpr uint8_t kMagic[4] = {0x89, 'A', 'M', 'S'};
-constexpr uint16_t kFormatVersion = 1;
+// Readers take every version up to this one; writers pick one (formatVersionFor()).
+constexpr uint16_t kNewestFormatVersion = 2;
 constexpr uint64_t kFileHeaderBytes = 8;
 constexpr uint64_t kSectionOverhead = 4 + 8 + 4;  // tag, length, CRC
 constexpr uint64_t kEndSectionBytes = kSectionOverhead + 8;

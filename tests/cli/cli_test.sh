@@ -37,7 +37,7 @@ grep -qx 'checked: header, index and the first group; `animc test` checks every 
   check_failed "animc info does not say what it checked"
 json_check 'd["checked"] == "header, index and first group"' "$TMP/info.out"
 run version "$ANIMC" --version
-[[ $(cat "$TMP/version.out") == "animc $VERSION (.ams format 1)" ]] ||
+[[ $(cat "$TMP/version.out") == "animc $VERSION (.ams formats up to 2)" ]] ||
   check_failed "animc --version printed '$(cat "$TMP/version.out")', not animc $VERSION"
 json_check 'd["file_bytes"] == e["file_bytes"]' "$TMP/info.out" "$TMP/encode.out"
 

@@ -18,6 +18,8 @@
 //       3 OBJ frames, 4 PLY frames, 5 OFF frames, 6 PC2, 7 MDD (0-2: not written)
 //   [3] quality (max error, step, KG target); trajectory and auto: bit 0 set, a max error, else
 //       a KG target
+//   the four bytes XORed, mod 64: below 48, 1 + that many triangles per connectivity piece
+//       (.ams format 2 when there is more than one piece), else one piece (format 1)
 //   then int16 coordinates (scaled by 1/256), x y z per vertex per frame, until they run out
 #include <cmath>
 #include <cstdint>
@@ -70,6 +72,10 @@ animc::EncoderOptions options(const uint8_t* control) {
   animc::EncoderOptions o;
   const int kind = (control[0] >> 1) & 3;
   o.iframe_interval = control[0] >> 3;
+  // The connectivity in pieces of 1 to 48 triangles (format 2 when there is more than one)
+  // for three control words in four, else whole (format 1): the grids have up to 98 triangles.
+  const unsigned mix = (control[0] ^ control[1] ^ control[2] ^ control[3]) % 64;
+  o.connectivity_piece = mix < 48 ? 1 + mix : 0;
   if ((control[0] & 1) == 0 && kind == 2) {
     o.codec = "trajectory";
     if (control[3] & 1) o.set("max-error", 0.0005 + 0.2 * control[3] / 255.0);

@@ -113,6 +113,7 @@ encode grid_trajectory_i3 0 "${G[@]}" --codec trajectory --max-error 0.02 --ifra
 encode grid_auto_i2 0 "${G[@]}" --codec auto --max-error 0.02 --iframe-interval 2
 encode sydney_trajectory 0 "${S[@]}" --codec trajectory --bpvf 4
 encode sydney_auto 0 "${S[@]}" --codec auto --target-kg 0.5
+encode grid_octree_format2 0 "${G[@]}" --codec affine-octree --max-error 0.02 --connectivity-piece 5
 for size in 60 90; do
   P=("$WORK/patch$size.pc2" "$WORK/patch$size.ply")
   encode "patch${size}_octree" 0 "${P[@]}" --codec affine-octree --max-error 0.02
@@ -121,6 +122,8 @@ for size in 60 90; do
   encode "patch${size}_trajectory" 0 "${P[@]}" --codec trajectory --bpvf 4
   encode "patch${size}_auto" 0 "${P[@]}" --codec auto --target-kg 0.5
 done
+encode patch90_trajectory_format2 0 "$WORK/patch90.pc2" "$WORK/patch90.ply" --codec trajectory --bpvf 4 \
+  --connectivity-piece 40
 
 # Sequence readers: control byte 0 picks .ply .off .pc2 .mdd .pc2.xz .mdd.xz .obj, byte 1 is the
 # point caches' vertex count - 1 (the grid has 20 vertices).

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <fstream>
 #include <iterator>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -58,15 +59,27 @@ Status decodesFully(const std::string& path, const DecoderLimits& limits = {}) {
 
 constexpr int kNx = 6, kNy = 5, kFrames = 9;
 
+// The files attacked: both profiles in format 1, and format 2 (the connectivity's 40
+// triangles in pieces of 8).
+struct AttackedFile {
+  Profile profile;
+  uint32_t connectivity_piece;
+  const char* name;
+};
+const AttackedFile kPaperFile{Profile::kPaper, 0, "paper"};
+const AttackedFile kPredictiveFile{Profile::kPredictive, 0, "predictive"};
+const AttackedFile kFormat2File{Profile::kPredictive, 8, "format2"};
+
 // A 30-vertex, 9-frame file with an I-frame every 4 frames: three GRUP sections.
-const Bytes& validFile(Profile profile) {
-  static Bytes files[2];
-  Bytes& bytes = files[profile == Profile::kPaper ? 0 : 1];
+const Bytes& validFile(const AttackedFile& kind) {
+  static std::map<std::string, Bytes> files;
+  Bytes& bytes = files[kind.name];
   if (bytes.empty()) {
     MemorySequence seq = gridSequence(kNx, kNy, kFrames, 1.0, 0.5);
     EncodeSettings settings;
-    settings.octree().profile = profile;
+    settings.octree().profile = kind.profile;
     settings.iframe_interval = 4;
+    settings.connectivity_piece = kind.connectivity_piece;
     const std::string path = tempPath("valid.ams");
     auto report = encodeSequence(seq, settings, path);
     EXPECT_TRUE(report.ok()) << report.status().message();
@@ -97,7 +110,7 @@ std::string fieldAt(const std::string& path, uint64_t offset) {
   return "outside every section";
 }
 
-class ContainerAttack : public ::testing::TestWithParam<Profile> {
+class ContainerAttack : public ::testing::TestWithParam<AttackedFile> {
  protected:
   void TearDown() override { std::remove(path_.c_str()); }
   const std::string path_ = tempPath("attack.ams");
@@ -191,8 +204,30 @@ TEST_P(ContainerAttack, DamageBehindAValidCrcNeverCrashes) {
   EXPECT_GT(refused, 0) << "the structural checks behind the CRCs never fired";
 }
 
-INSTANTIATE_TEST_SUITE_P(Profiles, ContainerAttack, ::testing::Values(Profile::kPaper, Profile::kPredictive),
-                         [](const auto& info) { return std::string(profileName(info.param)); });
+INSTANTIATE_TEST_SUITE_P(Files, ContainerAttack, ::testing::Values(kPaperFile, kPredictiveFile, kFormat2File),
+                         [](const auto& info) { return std::string(info.param.name); });
+
+TEST(ContainerFormats, TheConnectivityInPiecesIsFormatTwoAndDecodesTheSame) {
+  const Bytes& one = validFile(kPredictiveFile);
+  const Bytes& two = validFile(kFormat2File);
+  EXPECT_EQ(one[4], 1);
+  EXPECT_EQ(two[4], 2);
+  std::vector<std::vector<float>> frames[2];
+  int i = 0;
+  for (const Bytes* file : {&one, &two}) {
+    const std::string path = tempPath("format.ams");
+    writeBytes(path, *file);
+    auto ams = AmsSource::open(path);
+    ASSERT_TRUE(ams.ok()) << ams.status().message();
+    EXPECT_EQ(ams.value()->info().format_version, i + 1);
+    std::vector<float> xyz;
+    while (ams.value()->next(xyz).value()) frames[i].push_back(xyz);
+    std::remove(path.c_str());
+    ++i;
+  }
+  EXPECT_EQ(frames[0].size(), size_t(kFrames));
+  EXPECT_EQ(frames[0], frames[1]);
+}
 
 class ContainerErrors : public ::testing::Test {
  protected:
@@ -201,7 +236,7 @@ class ContainerErrors : public ::testing::Test {
     writeBytes(path_, bytes);
     return decodesFully(path_, limits);
   }
-  const Bytes& file_ = validFile(Profile::kPredictive);
+  const Bytes& file_ = validFile(kPredictiveFile);
   const std::string path_ = tempPath("errors.ams");
 };
 
@@ -266,10 +301,12 @@ TEST_F(ContainerErrors, BadMagicVersionAndCrcAreNamed) {
   EXPECT_NE(s.message().find(path_), std::string::npos) << "names the file: " << s.message();
 
   bad = file_;
-  bad[4] = uint8_t(kFormatVersion + 1);
+  bad[4] = uint8_t(kNewestFormatVersion + 1);
   s = openWith(bad);
   EXPECT_EQ(s.code(), StatusCode::kUnsupported) << s.message();
-  EXPECT_NE(s.message().find("version 2"), std::string::npos) << s.message();
+  EXPECT_NE(s.message().find("version " + std::to_string(kNewestFormatVersion + 1)), std::string::npos) << s.message();
+  bad[4] = 0;
+  EXPECT_EQ(openWith(bad).code(), StatusCode::kUnsupported) << "format version 0";
 
   bad = file_;
   bad[kFileHeaderBytes + 12] ^= 0x10;  // first HEAD payload byte (Codec_Id), CRC now wrong
@@ -317,7 +354,7 @@ Bytes craftedHead(uint32_t vertex_count, uint64_t triangle_count) {
   head.u32(0);
   ByteWriter file;
   file.append(kMagic, 4);
-  file.u16(kFormatVersion);
+  file.u16(1);
   file.u16(0);
   file.append(reinterpret_cast<const uint8_t*>(kTagHead), 4);
   file.u64(head.size());
