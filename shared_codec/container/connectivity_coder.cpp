@@ -50,13 +50,13 @@ void encodeStream(const Triangle* begin, const Triangle* end, uint32_t next_new,
   rc.finish();
 }
 
-// Appends `count` triangles from a stream encodeStream() wrote; `first` numbers them in messages.
+// The `count` triangles of a stream encodeStream() wrote, each handed to put(triangle) in
+// order; `first` numbers them in messages.
+template <class Put>
 Status decodeStream(ByteReader in, uint32_t vertex_count, uint64_t first, uint64_t count, uint32_t next_new,
-                    std::vector<Triangle>& out) {
+                    const Put& put) {
   ConnectivityModels m;
   RangeDecoder rc(in.cursor(), in.remaining());
-  // A stream cannot honestly hold more than ~100 triangles per byte; reserve no more.
-  out.reserve(out.size() + size_t(std::min<uint64_t>(count, 100 * uint64_t(in.remaining()) + 16)));
   Triangle previous = {~0u, ~0u, ~0u};
   int64_t last = next_new;
   for (uint64_t i = first; i < first + count; ++i) {
@@ -76,10 +76,21 @@ Status decodeStream(ByteReader in, uint32_t vertex_count, uint64_t first, uint64
       if (t[c] >= next_new) next_new = t[c] + 1;
     }
     if (rc.overran()) return corrupt("connectivity: coded data ends early");
-    out.push_back(t);
+    put(t);
     previous = t;
   }
   return Status();
+}
+
+// A stream cannot honestly hold more than ~100 triangles per byte: no more is allocated up
+// front, so a forged Triangle_Count costs nothing before its stream runs out.
+uint64_t plausibleTriangles(size_t stream_bytes) { return 100 * uint64_t(stream_bytes) + 16; }
+
+// Appends the triangles of a stream, the list growing as they come past what is plausible.
+Status appendStream(const ByteReader& in, uint32_t vertex_count, uint64_t first, uint64_t count, uint32_t next_new,
+                    std::vector<Triangle>& out) {
+  out.reserve(out.size() + size_t(std::min<uint64_t>(count, plausibleTriangles(in.remaining()))));
+  return decodeStream(in, vertex_count, first, count, next_new, [&](const Triangle& t) { out.push_back(t); });
 }
 
 struct Piece {
@@ -143,21 +154,27 @@ Result<std::vector<Piece>> readPieces(ByteReader in, uint32_t vertex_count, uint
   return pieces;
 }
 
+// The pieces at once, each writing its own range of the list; or, when the triangle count is
+// more than the payload plausibly holds, one after the other as appendStream() (the same
+// triangles, or the same first error).
 Status decodePieces(ByteReader in, uint32_t vertex_count, uint64_t triangle_count, std::vector<Triangle>& out) {
+  const size_t payload_bytes = in.remaining();
   ANIMC_ASSIGN_OR_RETURN(std::vector<Piece> pieces, readPieces(in, vertex_count, triangle_count));
-  std::vector<std::vector<Triangle>> decoded(pieces.size());
+  if (triangle_count > plausibleTriangles(payload_bytes)) {
+    for (const Piece& p : pieces)
+      ANIMC_RETURN_IF_ERROR(appendStream(p.stream, vertex_count, p.first, p.count, p.next_new, out));
+    return Status();
+  }
+  out.resize(size_t(triangle_count));
   std::vector<Status> status(pieces.size());
   const double piece_cost = pieces.empty() ? 0 : kTriangleCost * double(pieces[0].count);
   parallelFor(pieces.size(), piece_cost, [&](size_t k) {
     const Piece& p = pieces[k];
-    status[k] = decodeStream(p.stream, vertex_count, p.first, p.count, p.next_new, decoded[k]);
+    Triangle* next = out.data() + p.first;
+    status[k] =
+        decodeStream(p.stream, vertex_count, p.first, p.count, p.next_new, [&](const Triangle& t) { *next++ = t; });
   });
   for (const Status& s : status) ANIMC_RETURN_IF_ERROR(s);
-  out.reserve(size_t(triangle_count));  // every triangle is decoded by now: no longer a claim
-  for (std::vector<Triangle>& piece : decoded) {
-    out.insert(out.end(), piece.begin(), piece.end());
-    std::vector<Triangle>().swap(piece);
-  }
   return Status();
 }
 
@@ -179,8 +196,10 @@ Status decodeConnectivity(ByteReader in, uint16_t format_version, uint32_t verte
                           Topology& topology) {
   topology.vertex_count = vertex_count;
   topology.triangles.clear();
-  if (format_version == 1) return decodeStream(in, vertex_count, 0, triangle_count, 0, topology.triangles);
-  return decodePieces(in, vertex_count, triangle_count, topology.triangles);
+  Status s = format_version == 1 ? appendStream(in, vertex_count, 0, triangle_count, 0, topology.triangles)
+                                 : decodePieces(in, vertex_count, triangle_count, topology.triangles);
+  if (!s.ok()) topology.triangles.clear();
+  return s;
 }
 
 }  // namespace animc

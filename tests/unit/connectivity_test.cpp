@@ -72,6 +72,21 @@ TEST(Connectivity, PiecesDecodeTheSameOnAnyNumberOfThreads) {
   }
 }
 
+// A list that codes to almost nothing (one triangle over and over) claims more triangles than
+// its bytes plausibly hold: the decoder then takes the pieces one after the other, growing the
+// list as they come, and must give back the same triangles.
+TEST(Connectivity, ATinyPayloadOfManyTrianglesDecodesPieceByPiece) {
+  Topology repeated;
+  repeated.vertex_count = 3;
+  repeated.triangles.assign(100000, Triangle{0, 1, 2});
+  const Bytes payload = coded(repeated, 10000);
+  ASSERT_LT(100 * payload.size() + 16, repeated.triangles.size()) << "not the case this test is for";
+  ThreadBudget budget(2);
+  auto out = decoded(payload, 2, repeated);
+  ASSERT_TRUE(out.ok()) << out.status().message();
+  EXPECT_EQ(out.value().triangles, repeated.triangles);
+}
+
 // A format-2 payload with its table rewritten.
 struct Table {
   uint32_t piece_triangles;

@@ -113,14 +113,25 @@ CodingOrder::CodingOrder(const Topology& topology) {
         if (position[*w] == UINT32_MAX) place(*w);
     }
   }
-  first.assign(1, 0);
-  first.reserve(size_t(n) + 1);
-  for (uint32_t p = 0; p < n; ++p) {
+  // Only the walk above is serial. Each position's earlier neighbours are listed on threads:
+  // counted, summed into `first`, then written in place, the same lists on any thread count.
+  auto forEarlier = [&](uint32_t p, const auto& visit) {
     const uint32_t v = vertex[p];
     for (const uint32_t* w = adjacency.begin(v); w != adjacency.end(v); ++w)
-      if (position[*w] < p) earlier.push_back(position[*w]);
-    first.push_back(uint32_t(earlier.size()));
-  }
+      if (position[*w] < p) visit(position[*w]);
+  };
+  first.assign(size_t(n) + 1, 0);
+  parallelForBlocks(n, kVerticesPerTask, 20, [&](size_t, size_t begin, size_t end) {
+    for (size_t p = begin; p < end; ++p) forEarlier(uint32_t(p), [&](uint32_t) { ++first[p + 1]; });
+  });
+  for (uint32_t p = 0; p < n; ++p) first[p + 1] += first[p];
+  earlier.resize(first[n]);
+  parallelForBlocks(n, kVerticesPerTask, 20, [&](size_t, size_t begin, size_t end) {
+    for (size_t p = begin; p < end; ++p) {
+      uint32_t* out = earlier.data() + first[p];
+      forEarlier(uint32_t(p), [&](uint32_t q) { *out++ = q; });
+    }
+  });
 }
 
 void writeTrajectoryGroup(const TrajectoryGroup& g, const CodingOrder& order, std::vector<uint8_t>& out) {
