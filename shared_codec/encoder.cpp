@@ -5,12 +5,14 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 
 #include "api.h"
 #include "codecs/frame_group_encoder.h"
 #include "container/connectivity_coder.h"
 #include "container/container_writer.h"
 #include "core/parallel.h"
+#include "core/uninitialised_vector.h"
 #include "encoder_access.h"
 #include "io/byte_writer.h"
 
@@ -60,9 +62,26 @@ Status checkTopology(const Topology& t, const CodecEntry& codec) {
   return codec.checkMesh(t);
 }
 
-Status checkFrame(const float* xyz, uint32_t vertex_count, int64_t frame) {
-  for (size_t i = 0; i < size_t(vertex_count) * 3; ++i)
-    if (!std::isfinite(xyz[i]) || std::fabs(xyz[i]) > float(kMaxCoordinate))
+// Coordinates a thread checks (and copies) at a time.
+constexpr size_t kFloatsPerTask = size_t(1) << 18;
+
+// Checks every coordinate of a frame and, given `copy`, copies them there, a block at a time
+// on the calling thread's budget: a large frame is a pass over memory (and, into a new
+// buffer, its page faults) that would otherwise hold up the caller. The first bad coordinate
+// is the one named, whatever the threads.
+Status checkFrame(const float* xyz, uint32_t vertex_count, int64_t frame, float* copy = nullptr) {
+  const size_t floats = size_t(vertex_count) * 3;
+  std::vector<size_t> bad((floats + kFloatsPerTask - 1) / kFloatsPerTask, SIZE_MAX);
+  parallelForBlocks(floats, kFloatsPerTask, 2, [&](size_t b, size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i)
+      if (!std::isfinite(xyz[i]) || std::fabs(xyz[i]) > float(kMaxCoordinate)) {
+        bad[b] = i;
+        return;
+      }
+    if (copy) std::memcpy(copy + begin, xyz + begin, (end - begin) * sizeof(float));
+  });
+  for (size_t i : bad)
+    if (i != SIZE_MAX)
       return badInput("frame " + std::to_string(frame) + ": vertex " + std::to_string(i / 3) +
                       " has a NaN, infinite or huge coordinate");
   return Status();
@@ -93,10 +112,10 @@ struct Encoder::Impl {
   int64_t reconstruction_frame = -1;  // the frame `reconstruction` holds
   // Group mode: the frames gathered (3N floats each) in the groups they make, the last one
   // open; and the first frame of each group of the last batch coded, then its end.
-  std::vector<float> pending;
+  UninitialisedVector<float> pending;
   // The frames of the last batch coded, for original() until the next frame comes (then
   // they make room for it: the group's frames are never held twice).
-  std::vector<float> coded;
+  UninitialisedVector<float> coded;
   const float* last_added = nullptr;     // the caller's, frame by frame
   std::vector<uint32_t> pending_groups;  // frame counts of the closed groups
   uint32_t open_frames = 0;
@@ -287,15 +306,21 @@ Status Encoder::addFrame(const float* xyz) {
   if (e.finished) return invalidArgument("the encoder has finished: it takes no more frames");
   if (xyz == nullptr) return invalidArgument("no frame");
   const int64_t frame = e.summary.frames;
-  ANIMC_RETURN_IF_ERROR(checkFrame(xyz, e.topology.vertex_count, frame));
+  ThreadBudget budget(e.threads);
   if (e.groupMode()) {
     if (!e.coded.empty()) {  // the last batch's frames make room for this one
       e.pending.swap(e.coded);
       e.pending.clear();
-      e.coded = std::vector<float>();
+      e.coded = UninitialisedVector<float>();
     }
     if (e.pending.empty()) e.pending.reserve(e.groupFloats());
-    e.pending.insert(e.pending.end(), xyz, xyz + size_t(e.topology.vertex_count) * 3);
+    const size_t at = e.pending.size();
+    e.pending.resize(at + size_t(e.topology.vertex_count) * 3);
+    const Status checked = checkFrame(xyz, e.topology.vertex_count, frame, e.pending.data() + at);
+    if (!checked.ok()) {
+      e.pending.resize(at);
+      return checked;
+    }
     ++e.open_frames;
     ++e.summary.frames;
     if (e.groupEnds(e.summary.frames)) {
@@ -305,12 +330,12 @@ Status Encoder::addFrame(const float* xyz) {
     }
     return Status();
   }
+  ANIMC_RETURN_IF_ERROR(checkFrame(xyz, e.topology.vertex_count, frame));
   const uint32_t interval = e.settings.iframe_interval;
   const bool intra = frame == 0 || (interval > 0 && frame % interval == 0);
   FrameCodingStats stats;
   e.payload.clear();
   const auto start = Clock::now();
-  ThreadBudget budget(e.threads);
   e.codec->encodeFrame(xyz, intra, e.payload, stats);
   e.summary.encode_seconds += std::chrono::duration<double>(Clock::now() - start).count();
   e.reconstruction_frame = -1;

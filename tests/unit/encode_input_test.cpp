@@ -96,6 +96,39 @@ TEST_F(EncodeInput, InfiniteAndHugeCoordinatesAreRefused) {
   EXPECT_NE(encodeSequence(edge, {}, out_).status().code(), StatusCode::kBadInput);
 }
 
+// A frame of several blocks of coordinates is checked (and gathered) on threads: the first bad
+// vertex is still the one named, and a refused frame leaves the encoder as it was.
+TEST_F(EncodeInput, ALargeBadFrameOnThreadsNamesItsFirstVertexAndAddsNothing) {
+  constexpr int kSide = 300;  // 270 000 coordinates: more than one block
+  const Topology mesh = gridTopology(kSide, kSide);
+  std::vector<std::vector<float>> frames;
+  for (int f = 0; f < 2; ++f) frames.push_back(gridFrame(kSide, kSide, f, 1.0, 0.5));
+  EncoderOptions options;
+  options.codec = "trajectory";
+  options.threads = 2;
+  auto encodeWith = [&](bool bad_frame_first, std::vector<uint8_t>& bytes) {
+    auto encoder = Encoder::create(options, mesh.vertex_count, mesh.triangles.front().data(), mesh.triangles.size(),
+                                   memorySink(&bytes));
+    ASSERT_TRUE(encoder.ok()) << encoder.status().message();
+    ASSERT_TRUE(encoder.value().addFrame(frames[0].data()).ok());
+    if (bad_frame_first) {
+      std::vector<float> bad = frames[1];
+      bad[3 * 89000 + 2] = std::numeric_limits<float>::infinity();  // the second block
+      bad[3 * 5000 + 1] = std::numeric_limits<float>::quiet_NaN();  // the first
+      const Status s = encoder.value().addFrame(bad.data());
+      EXPECT_EQ(s.code(), StatusCode::kBadInput);
+      EXPECT_NE(s.message().find("frame 1: vertex 5000 "), std::string::npos) << s.message();
+    }
+    ASSERT_TRUE(encoder.value().addFrame(frames[1].data()).ok());
+    ASSERT_TRUE(encoder.value().finish().ok());
+  };
+  std::vector<uint8_t> plain, after_refusal;
+  encodeWith(false, plain);
+  encodeWith(true, after_refusal);
+  ASSERT_FALSE(plain.empty());
+  EXPECT_EQ(plain, after_refusal);
+}
+
 TEST_F(EncodeInput, ShortFrameIsRefused) {
   std::vector<std::vector<float>> frames;
   for (int f = 0; f < 4; ++f) frames.push_back(gridFrame(kNx, kNy, f, 1.0, 0.5));

@@ -76,6 +76,26 @@ TEST(TrajectoryComponents, NearTheRankEveryComponentIsComputed) {
   EXPECT_NEAR(pc.sigma.squaredNorm(), pc.energy, 1e-6 * pc.energy);
 }
 
+// The mean trajectory is part of what the encoder writes: it must be the bits that Eigen's
+// colwise().mean() of the rows in double gave 1.x's encoder, which adds the rows in order.
+// Rows of very different sizes make any other order give other bits.
+TEST(TrajectoryComponents, TheMeanIsEigensColumnMeanToTheBit) {
+  RowMatrixF x(1001, 45);
+  std::mt19937 random(3);
+  std::normal_distribution<float> normal;
+  for (Eigen::Index r = 0; r < x.rows(); ++r)
+    for (Eigen::Index c = 0; c < x.cols(); ++c) x(r, c) = normal(random) * (r % 4 == 0 ? 1e16f : r % 3 ? 1.0f : 1e-8f);
+  const Eigen::RowVectorXd eigen = x.cast<double>().colwise().mean();
+  const Eigen::RowVectorXd mean = TrajectoryDecomposition(x).none().mean;
+  ASSERT_EQ(mean.size(), eigen.size());
+  for (Eigen::Index c = 0; c < x.cols(); ++c) EXPECT_EQ(mean[c], eigen[c]) << "column " << c;
+  // The order matters for these rows (so the test can fail): pairs of rows first differ.
+  Eigen::RowVectorXd pairwise = Eigen::RowVectorXd::Zero(x.cols());
+  for (Eigen::Index r = 0; r + 1 < x.rows(); r += 2) pairwise += x.row(r).cast<double>() + x.row(r + 1).cast<double>();
+  pairwise = (pairwise + x.row(x.rows() - 1).cast<double>()) / double(x.rows());
+  EXPECT_NE(pairwise, eigen);
+}
+
 TEST(StepSearch, FindsTheBoundaryWithinItsToleranceInFewTrials) {
   for (const double boundary : {-7.3, -2.05, 0.4}) {
     StepSearch s;

@@ -21,6 +21,16 @@ using Columns = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
 template <class Scalar>
 using Rows = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
+// The mean of each column, summed in double from the first row to the last, as Eigen's
+// colwise().mean() sums a row-major matrix (the same additions in the same order, so the same
+// bits), in one pass over the rows where Eigen walks the whole matrix once per column.
+Eigen::RowVectorXd columnMeans(const Rows<float>& x) {
+  if (x.rows() == 0) return x.cast<double>().colwise().mean();
+  Eigen::RowVectorXd sum = x.row(0).cast<double>();
+  for (Eigen::Index r = 1; r < x.rows(); ++r) sum += x.row(r).cast<double>();
+  return sum / double(x.rows());
+}
+
 // The lower triangle of a^T a in double, all that the eigensolver reads (the rest is zero):
 // a block of columns on each thread, summed over blocks of rows converted to double.
 template <class Matrix>
@@ -120,8 +130,7 @@ constexpr double kSettled = 1e-3;
 
 }  // namespace
 
-TrajectoryDecomposition::TrajectoryDecomposition(RowMatrixF x)
-    : mean_(x.cast<double>().colwise().mean()), centred_(std::move(x)) {
+TrajectoryDecomposition::TrajectoryDecomposition(RowMatrixF x) : mean_(columnMeans(x)), centred_(std::move(x)) {
   // Rows are centred and measured a block at a time, on any thread; the energy adds the
   // rows' in order, whatever the thread count.
   const Eigen::RowVectorXf mean = mean_.cast<float>();
