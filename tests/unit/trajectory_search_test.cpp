@@ -9,6 +9,7 @@
 
 #include "codecs/trajectory/components.h"
 #include "codecs/trajectory/step_search.h"
+#include "core/parallel.h"
 
 namespace animc {
 namespace {
@@ -94,6 +95,24 @@ TEST(TrajectoryComponents, TheMeanIsEigensColumnMeanToTheBit) {
   for (Eigen::Index r = 0; r + 1 < x.rows(); r += 2) pairwise += x.row(r).cast<double>() + x.row(r + 1).cast<double>();
   pairwise = (pairwise + x.row(x.rows() - 1).cast<double>()) / double(x.rows());
   EXPECT_NE(pairwise, eigen);
+}
+
+// More trajectories than one chunk of the Gram matrix's rows: the chunks are summed apart on
+// threads and added in order, the same components on any number of threads.
+TEST(TrajectoryComponents, AGramOfManyChunksIsTheSameOnAnyNumberOfThreads) {
+  const RowMatrixF x = spectrumTrajectories(150000, 9, 9);
+  Components one;
+  {
+    ThreadBudget budget(1);
+    one = allOf(x);
+  }
+  ASSERT_TRUE(one.complete);
+  for (unsigned threads : {2u, 3u}) {
+    ThreadBudget budget(threads);
+    const Components got = allOf(x);
+    EXPECT_TRUE(got.sigma == one.sigma) << threads << " threads";
+    EXPECT_TRUE(got.basis == one.basis) << threads << " threads";
+  }
 }
 
 TEST(StepSearch, FindsTheBoundaryWithinItsToleranceInFewTrials) {

@@ -31,20 +31,32 @@ Eigen::RowVectorXd columnMeans(const Rows<float>& x) {
   return sum / double(x.rows());
 }
 
+// Rows of a Gram matrix summed into one partial matrix, from zero and in order; the partial
+// matrices are then added in order. Up to this many rows there is one, and the sums are those
+// of a single pass.
+constexpr Eigen::Index kGramChunkRows = 64 * kProductRows;
+
 // The lower triangle of a^T a in double, all that the eigensolver reads (the rest is zero):
-// a block of columns on each thread, summed over blocks of rows converted to double.
+// on threads by blocks of columns and chunks of rows, each chunk summed over blocks of rows
+// converted to double.
 template <class Matrix>
 Eigen::MatrixXd lowerGram(const Matrix& a) {
   const Eigen::Index d = a.cols(), n = a.rows();
-  Eigen::MatrixXd gram = Eigen::MatrixXd::Zero(d, d);
-  const size_t blocks = size_t((d + kProductColumns - 1) / kProductColumns);
-  parallelFor(blocks, double(n) * double(d) * double(kProductColumns) / 2, [&](size_t b) {
-    const Eigen::Index j = Eigen::Index(b) * kProductColumns, w = std::min(kProductColumns, d - j);
-    for (Eigen::Index r = 0; r < n; r += kProductRows) {
-      const Eigen::MatrixXd tall = a.block(r, j, std::min(kProductRows, n - r), d - j).template cast<double>();
-      gram.block(j, j, d - j, w).noalias() += tall.transpose() * tall.leftCols(w);
+  const size_t column_blocks = size_t((d + kProductColumns - 1) / kProductColumns);
+  const size_t chunks = std::max<size_t>(1, size_t((n + kGramChunkRows - 1) / kGramChunkRows));
+  std::vector<Eigen::MatrixXd> partial(chunks, Eigen::MatrixXd::Zero(d, d));
+  const double task_cost = double(std::min(n, kGramChunkRows)) * double(d) * double(kProductColumns) / 2;
+  parallelFor(column_blocks * chunks, task_cost, [&](size_t task) {
+    const size_t chunk = task / column_blocks;
+    const Eigen::Index j = Eigen::Index(task % column_blocks) * kProductColumns, w = std::min(kProductColumns, d - j);
+    const Eigen::Index end = std::min(n, Eigen::Index(chunk + 1) * kGramChunkRows);
+    for (Eigen::Index r = Eigen::Index(chunk) * kGramChunkRows; r < end; r += kProductRows) {
+      const Eigen::MatrixXd tall = a.block(r, j, std::min(kProductRows, end - r), d - j).template cast<double>();
+      partial[chunk].block(j, j, d - j, w).noalias() += tall.transpose() * tall.leftCols(w);
     }
   });
+  Eigen::MatrixXd gram = std::move(partial[0]);
+  for (size_t chunk = 1; chunk < chunks; ++chunk) gram += partial[chunk];
   return gram;
 }
 
