@@ -244,7 +244,7 @@ Status Decoder::frame(int64_t k, float* xyz) {
   d.positioned = false;  // a failure below leaves the cursor undefined: re-enter next time
   while (d.next_frame <= k) ANIMC_RETURN_IF_ERROR(d.decodeNext());
   d.positioned = true;
-  std::memcpy(xyz, d.xyz.data(), d.xyz.size() * sizeof(float));
+  copyOnThreads(d.xyz.data(), d.xyz.size(), xyz);
   return Status();
 }
 

@@ -16,6 +16,8 @@ thread_local unsigned budget = 1;
 
 // Below this many operations a loop is not worth the start of a thread (tens of microseconds).
 constexpr double kMinParallelCost = 2e5;
+// Floats a thread copies at a time (copyOnThreads()).
+constexpr size_t kFloatsPerCopy = size_t(1) << 18;
 
 }  // namespace
 
@@ -76,6 +78,11 @@ void parallelForBlocks(size_t count, size_t block, double element_cost,
     const size_t begin = b * block;
     item(b, begin, std::min(count, begin + block));
   });
+}
+
+void copyOnThreads(const float* from, size_t n, float* to) {
+  parallelForBlocks(n, kFloatsPerCopy, 1,
+                    [&](size_t, size_t begin, size_t end) { std::copy(from + begin, from + end, to + begin); });
 }
 
 void runBeside(const std::function<void()>& side, const std::function<void()>& main) {

@@ -44,6 +44,10 @@ void parallelFor(size_t count, double item_cost, const std::function<void(size_t
 void parallelForBlocks(size_t count, size_t block, double element_cost,
                        const std::function<void(size_t b, size_t begin, size_t end)>& item);
 
+// Copies n floats in fixed blocks through parallelForBlocks: a large frame's copy, and the page
+// faults of a buffer it fills for the first time, would otherwise hold up one thread.
+void copyOnThreads(const float* from, size_t n, float* to);
+
 // Runs side() and main() at once when the budget allows more than one thread: side() on a
 // thread of its own with a budget of one, main() on the caller with the caller's budget (the
 // two then share the cores with more threads than cores while side() runs). Otherwise one

@@ -159,8 +159,10 @@ TEST(Connectivity, DamageInsideAPieceNeverEscapesIt) {
     t.streams[i] ^= 0xFF;
     auto out = decoded(payloadOf(t), 2, mesh);
     if (!out.ok()) continue;
-    for (size_t tri = 0; tri < mesh.triangles.size(); ++tri)
-      if (tri < 50 || tri >= 100) ASSERT_EQ(out.value().triangles[tri], mesh.triangles[tri]) << i << ", " << tri;
+    for (size_t tri = 0; tri < mesh.triangles.size(); ++tri) {
+      if (tri >= 50 && tri < 100) continue;  // the damaged piece
+      ASSERT_EQ(out.value().triangles[tri], mesh.triangles[tri]) << i << ", " << tri;
+    }
   }
 }
 

@@ -91,6 +91,8 @@ bool usableStep(float s) { return std::isfinite(s) && s > 0; }
 
 // Vertices a thread takes at a time when the panels are filled or a batch is computed.
 constexpr uint32_t kVerticesPerTask = 4096;
+// Coordinates a thread checks and copies at a time when a frame is handed out.
+constexpr size_t kFloatsPerTask = size_t(1) << 18;
 
 }  // namespace
 
@@ -344,10 +346,18 @@ void GroupFrames::computeBatch(uint32_t first) const {
   batch_first_ = first;
 }
 
-void GroupFrames::frame(uint32_t t, float* xyz) const {
+bool GroupFrames::frame(uint32_t t, float* xyz) const {
   if (batch_first_ == UINT32_MAX || t < batch_first_ || t >= batch_first_ + kBatch) computeBatch(t);
   const size_t size = size_t(3) * vertices_;
-  std::copy_n(&batch_[(t - batch_first_) * size], size, xyz);
+  const float* from = &batch_[(t - batch_first_) * size];
+  std::vector<char> within((size + kFloatsPerTask - 1) / kFloatsPerTask, 1);
+  parallelForBlocks(size, kFloatsPerTask, 2, [&](size_t b, size_t begin, size_t end) {
+    bool ok = true;  // a pass without a branch, which the compiler vectorises; NaN fails it
+    for (size_t i = begin; i < end; ++i) ok &= std::fabs(from[i]) <= kMaxDecodedValue;
+    std::copy(from + begin, from + end, xyz + begin);
+    within[b] = ok;
+  });
+  return std::all_of(within.begin(), within.end(), [](char ok) { return ok != 0; });
 }
 
 }  // namespace animc

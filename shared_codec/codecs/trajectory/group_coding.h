@@ -93,6 +93,9 @@ struct FrameKernel {
                   uint32_t v_end, uint32_t first, float* out);
 };
 
+// The largest coordinate a decoder hands out, as for the other codecs.
+constexpr float kMaxDecodedValue = 1e30f;
+
 // The decoded frames of a whole group.
 class GroupFrames {
  public:
@@ -101,8 +104,9 @@ class GroupFrames {
 
   void reset(const TrajectoryGroup& group, const CodingOrder& order, SimdPath path);
   uint32_t frames() const { return basis_.frames; }
-  // Frame t of the group (t < frames()) into xyz (3 floats a vertex, vertex order).
-  void frame(uint32_t t, float* xyz) const;
+  // Frame t of the group (t < frames()) into xyz (3 floats a vertex, vertex order); false if
+  // a value is not finite or above kMaxDecodedValue in size (a damaged group).
+  bool frame(uint32_t t, float* xyz) const;
 
  private:
   void computeBatch(uint32_t first) const;

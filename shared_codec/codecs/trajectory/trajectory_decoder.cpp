@@ -30,12 +30,9 @@ class TrajectoryDecoder final : public FrameDecoder {
     }
     if (intra) *intra = type == kTrajectoryGroupFrame;
     xyz.resize(size_t(topology_.vertex_count) * 3);
-    frames_.frame(next_++, xyz.data());
-    // As for the other codecs: a damaged group may not hand out infinities or huge values
-    // (one pass without a branch, which the compiler vectorises; NaN fails the comparison).
-    bool within = true;
-    for (float v : xyz) within &= std::fabs(v) <= 1e30f;
-    if (!within) return corrupt("trajectory frame: a decoded value is not finite or above 1e30");
+    // As for the other codecs: a damaged group may not hand out infinities or huge values.
+    if (!frames_.frame(next_++, xyz.data()))
+      return corrupt("trajectory frame: a decoded value is not finite or above 1e30");
     return Status();
   }
 
