@@ -7,7 +7,6 @@
 #include "core/parallel.h"
 #include "entropy/bit_tree.h"
 #include "entropy/integer_coder.h"
-#include "io/byte_writer.h"
 
 namespace animc {
 namespace {
@@ -100,28 +99,28 @@ struct Piece {
   ByteReader stream;
 };
 
+// The table, then each piece's stream straight after it in `out`, one piece after the other:
+// the encoder codes the connectivity beside its other setup, so threads would gain nothing,
+// and streams of their own would hold the connectivity twice.
 void encodePieces(const Topology& topology, uint32_t piece_triangles, std::vector<uint8_t>& out) {
   const std::vector<Triangle>& triangles = topology.triangles;
   const size_t pieces = (triangles.size() - 1) / piece_triangles + 1;
-  std::vector<uint32_t> next_new(pieces, 0);
-  uint32_t seen = 0;  // one more than the largest index before the piece
-  for (size_t i = 0; i < triangles.size(); ++i) {
-    if (i % piece_triangles == 0) next_new[i / piece_triangles] = seen;
-    for (uint32_t v : triangles[i]) seen = std::max(seen, v + 1);
-  }
-  std::vector<std::vector<uint8_t>> streams(pieces);
-  parallelFor(pieces, kTriangleCost * piece_triangles, [&](size_t k) {
-    const size_t begin = k * size_t(piece_triangles), end = std::min(triangles.size(), begin + piece_triangles);
-    encodeStream(triangles.data() + begin, triangles.data() + end, next_new[k], streams[k]);
-  });
-  ByteWriter table;
-  table.u32(piece_triangles);
+  const size_t table = out.size();
+  out.resize(table + 4 + pieces * kPieceEntryBytes);
+  auto put = [&](size_t at, uint64_t value, int bytes) {
+    for (int i = 0; i < bytes; ++i) out[at + i] = uint8_t(value >> (8 * i));
+  };
+  put(table, piece_triangles, 4);
+  uint32_t next_new = 0;  // one more than the largest index before the piece
   for (size_t k = 0; k < pieces; ++k) {
-    table.u64(streams[k].size());
-    table.u32(next_new[k]);
+    const size_t begin = k * size_t(piece_triangles), end = std::min(triangles.size(), begin + piece_triangles);
+    const size_t stream = out.size();
+    encodeStream(triangles.data() + begin, triangles.data() + end, next_new, out);
+    put(table + 4 + k * kPieceEntryBytes, out.size() - stream, 8);
+    put(table + 4 + k * kPieceEntryBytes + 8, next_new, 4);
+    for (size_t i = begin; i < end; ++i)
+      for (uint32_t v : triangles[i]) next_new = std::max(next_new, v + 1);
   }
-  out.insert(out.end(), table.bytes().begin(), table.bytes().end());
-  for (const std::vector<uint8_t>& stream : streams) out.insert(out.end(), stream.begin(), stream.end());
 }
 
 // Format 2's table, checked: the pieces' streams must fill the rest of the payload exactly.

@@ -21,7 +21,7 @@ struct CodingOrder {
   explicit CodingOrder(const Topology& topology);
   std::vector<uint32_t> vertex;   // vertex at each position
   std::vector<uint32_t> first;    // earlier[first[p] .. first[p + 1]) for position p
-  std::vector<uint32_t> earlier;  // positions
+  UninitialisedVector<uint32_t> earlier;  // positions
 };
 
 // The group as coded. Trajectory rows are 3G long: x over the G frames, then y, then z.
