@@ -5,7 +5,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 
 #include "api.h"
 #include "codecs/frame_group_encoder.h"
@@ -62,14 +61,10 @@ Status checkTopology(const Topology& t, const CodecEntry& codec) {
   return codec.checkMesh(t);
 }
 
-// Coordinates a thread checks (and copies) at a time.
-constexpr size_t kFloatsPerTask = size_t(1) << 18;
-
-// Checks every coordinate of a frame and, given `copy`, copies them there, a block at a time
-// on the calling thread's budget: a large frame is a pass over memory (and, into a new
-// buffer, its page faults) that would otherwise hold up the caller. The first bad coordinate
-// is the one named, whatever the threads.
-Status checkFrame(const float* xyz, uint32_t vertex_count, int64_t frame, float* copy = nullptr) {
+// Checks every coordinate of a frame, a block at a time on the calling thread's budget: a large
+// frame is a pass over memory that would otherwise hold up the caller. The first bad
+// coordinate is the one named, whatever the threads.
+Status checkFrame(const float* xyz, uint32_t vertex_count, int64_t frame) {
   const size_t floats = size_t(vertex_count) * 3;
   std::vector<size_t> bad((floats + kFloatsPerTask - 1) / kFloatsPerTask, SIZE_MAX);
   parallelForBlocks(floats, kFloatsPerTask, 2, [&](size_t b, size_t begin, size_t end) {
@@ -78,7 +73,6 @@ Status checkFrame(const float* xyz, uint32_t vertex_count, int64_t frame, float*
         bad[b] = i;
         return;
       }
-    if (copy) std::memcpy(copy + begin, xyz + begin, (end - begin) * sizeof(float));
   });
   for (size_t i : bad)
     if (i != SIZE_MAX)
@@ -307,6 +301,8 @@ Status Encoder::addFrame(const float* xyz) {
   if (xyz == nullptr) return invalidArgument("no frame");
   const int64_t frame = e.summary.frames;
   ThreadBudget budget(e.threads);
+  // Before anything changes: a refused frame leaves the encoder as it was.
+  ANIMC_RETURN_IF_ERROR(checkFrame(xyz, e.topology.vertex_count, frame));
   if (e.groupMode()) {
     if (!e.coded.empty()) {  // the last batch's frames make room for this one
       e.pending.swap(e.coded);
@@ -314,13 +310,10 @@ Status Encoder::addFrame(const float* xyz) {
       e.coded = UninitialisedVector<float>();
     }
     if (e.pending.empty()) e.pending.reserve(e.groupFloats());
-    const size_t at = e.pending.size();
-    e.pending.resize(at + size_t(e.topology.vertex_count) * 3);
-    const Status checked = checkFrame(xyz, e.topology.vertex_count, frame, e.pending.data() + at);
-    if (!checked.ok()) {
-      e.pending.resize(at);
-      return checked;
-    }
+    // Gathered on the threads too, into a buffer without a zero fill (its page faults shared).
+    const size_t at = e.pending.size(), floats = size_t(e.topology.vertex_count) * 3;
+    e.pending.resize(at + floats);
+    copyOnThreads(xyz, floats, e.pending.data() + at);
     ++e.open_frames;
     ++e.summary.frames;
     if (e.groupEnds(e.summary.frames)) {
@@ -330,7 +323,6 @@ Status Encoder::addFrame(const float* xyz) {
     }
     return Status();
   }
-  ANIMC_RETURN_IF_ERROR(checkFrame(xyz, e.topology.vertex_count, frame));
   const uint32_t interval = e.settings.iframe_interval;
   const bool intra = frame == 0 || (interval > 0 && frame % interval == 0);
   FrameCodingStats stats;

@@ -7,6 +7,7 @@
 #include "core/parallel.h"
 #include "entropy/bit_tree.h"
 #include "entropy/integer_coder.h"
+#include "io/byte_writer.h"
 
 namespace animc {
 namespace {
@@ -99,28 +100,28 @@ struct Piece {
   ByteReader stream;
 };
 
-// The table, then each piece's stream straight after it in `out`, one piece after the other:
-// the encoder codes the connectivity beside its other setup, so threads would gain nothing,
-// and streams of their own would hold the connectivity twice.
+// Room for the table, then each piece's stream straight after it in `out`, one piece after
+// the other, and the table written over its room: the encoder codes the connectivity beside its
+// other setup, so threads would gain nothing, and streams of their own would hold the
+// connectivity twice.
 void encodePieces(const Topology& topology, uint32_t piece_triangles, std::vector<uint8_t>& out) {
   const std::vector<Triangle>& triangles = topology.triangles;
   const size_t pieces = (triangles.size() - 1) / piece_triangles + 1;
-  const size_t table = out.size();
-  out.resize(table + 4 + pieces * kPieceEntryBytes);
-  auto put = [&](size_t at, uint64_t value, int bytes) {
-    for (int i = 0; i < bytes; ++i) out[at + i] = uint8_t(value >> (8 * i));
-  };
-  put(table, piece_triangles, 4);
+  const size_t table_at = out.size();
+  out.resize(table_at + 4 + pieces * kPieceEntryBytes);
+  ByteWriter table;
+  table.u32(piece_triangles);
   uint32_t next_new = 0;  // one more than the largest index before the piece
   for (size_t k = 0; k < pieces; ++k) {
     const size_t begin = k * size_t(piece_triangles), end = std::min(triangles.size(), begin + piece_triangles);
-    const size_t stream = out.size();
+    const size_t stream_at = out.size();
     encodeStream(triangles.data() + begin, triangles.data() + end, next_new, out);
-    put(table + 4 + k * kPieceEntryBytes, out.size() - stream, 8);
-    put(table + 4 + k * kPieceEntryBytes + 8, next_new, 4);
+    table.u64(out.size() - stream_at);
+    table.u32(next_new);
     for (size_t i = begin; i < end; ++i)
       for (uint32_t v : triangles[i]) next_new = std::max(next_new, v + 1);
   }
+  std::copy(table.bytes().begin(), table.bytes().end(), out.begin() + ptrdiff_t(table_at));
 }
 
 // Format 2's table, checked: the pieces' streams must fill the rest of the payload exactly.

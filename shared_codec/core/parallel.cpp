@@ -16,8 +16,6 @@ thread_local unsigned budget = 1;
 
 // Below this many operations a loop is not worth the start of a thread (tens of microseconds).
 constexpr double kMinParallelCost = 2e5;
-// Floats a thread copies at a time (copyOnThreads()).
-constexpr size_t kFloatsPerCopy = size_t(1) << 18;
 
 }  // namespace
 
@@ -81,7 +79,7 @@ void parallelForBlocks(size_t count, size_t block, double element_cost,
 }
 
 void copyOnThreads(const float* from, size_t n, float* to) {
-  parallelForBlocks(n, kFloatsPerCopy, 1,
+  parallelForBlocks(n, kFloatsPerTask, 1,
                     [&](size_t, size_t begin, size_t end) { std::copy(from + begin, from + end, to + begin); });
 }
 

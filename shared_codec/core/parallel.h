@@ -44,6 +44,10 @@ void parallelFor(size_t count, double item_cost, const std::function<void(size_t
 void parallelForBlocks(size_t count, size_t block, double element_cost,
                        const std::function<void(size_t b, size_t begin, size_t end)>& item);
 
+// Floats a thread takes at a time in a pass over a frame (a check, a copy): a fixed block, so
+// that what each block finds never depends on the thread count.
+constexpr size_t kFloatsPerTask = size_t(1) << 18;
+
 // Copies n floats in fixed blocks through parallelForBlocks: a large frame's copy, and the page
 // faults of a buffer it fills for the first time, would otherwise hold up one thread.
 void copyOnThreads(const float* from, size_t n, float* to);

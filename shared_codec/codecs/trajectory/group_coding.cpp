@@ -91,8 +91,6 @@ bool usableStep(float s) { return std::isfinite(s) && s > 0; }
 
 // Vertices a thread takes at a time when the panels are filled or a batch is computed.
 constexpr uint32_t kVerticesPerTask = 4096;
-// Coordinates a thread checks and copies at a time when a frame is handed out.
-constexpr size_t kFloatsPerTask = size_t(1) << 18;
 
 }  // namespace
 
