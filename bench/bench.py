@@ -19,7 +19,8 @@ For each sequence folder NAME/ (NAME.ply + NAME.pc2.xz) of --data (default
    rate-distortion plot docs/img/rate_distortion.png (bench/rd_plot.py, gnuplot), and the
    parametric archive size against the paper's Cow, and the cost and cuts of progressive
    P-frames (bench/bench_progressive.py);
-5. decoding through the public Decoder from a file and from memory (bench/bench_decode_paths.py);
+5. decoding through the public Decoder from a file and from memory (bench/bench_decode_paths.py),
+   and backwards, a random access a frame, into trajectory files (bench/bench_random_access.py);
    reading every sequence format (bench/bench_readers.py); the glb of `animc decode` beside
    the .ams and gltfpack -cc (bench/bench_gltf.py); the trajectory codec against the other two and FAMC at KG 0.3 % and 1 %, and its decode
    speed against the Affine-Octree codec's (bench/bench_trajectory.py);
@@ -49,6 +50,7 @@ from long_sequence import write_long_sequence  # noqa: E402
 from bench_plugin import plugin_section  # noqa: E402
 from bench_wavelet import wavelet_section  # noqa: E402
 from bench_decode_paths import decode_paths_section  # noqa: E402
+from bench_random_access import random_access_section  # noqa: E402
 from bench_readers import readers_section  # noqa: E402
 from bench_gltf import gltf_section  # noqa: E402
 from bench_trajectory import trajectory_section  # noqa: E402
@@ -451,6 +453,7 @@ SECTIONS = (
     lambda a, s: threads_section(a.animc, s, a.runs),
     lambda a, s: wavelet_section(a.animc, s, a.runs, os.path.dirname(os.path.abspath(a.out))),
     lambda a, s: decode_paths_section(a.animc, s, a.runs),
+    lambda a, s: random_access_section(a.animc, None, s, a.runs),
     lambda a, s: readers_section(a.animc, s, a.runs),
     lambda a, s: gltf_section(a.animc, shutil.which('gltfpack'), s),
     lambda a, s: web_section(a.animc, s, a.runs),

@@ -41,11 +41,13 @@ StreamInfo streamInfo(const ContainerInfo& c, const EncodeSettings& s) {
   return info;
 }
 
-// Decodes one payload into xyz; the first frame of a group must be an intra frame.
+// Decodes one payload into xyz, or only reads it when its frame is not wanted (FrameDecoder::
+// skipFrame); the first frame of a group must be an intra frame.
 Status decodePayload(FrameDecoder& codec, const std::vector<uint8_t>& payload, bool group_start,
-                     std::vector<float>& xyz, const std::string& where) {
+                     std::vector<float>& xyz, const std::string& where, bool wanted = true) {
   bool intra = false;
-  Status s = codec.decodeFrame(ByteReader(payload.data(), payload.size()), xyz, &intra);
+  const ByteReader reader(payload.data(), payload.size());
+  Status s = wanted ? codec.decodeFrame(reader, xyz, &intra) : codec.skipFrame(reader, xyz, &intra);
   if (!s.ok()) return s.withContext(where);
   if (group_start && !intra) return corrupt(where + ": a frame group does not start with an intra frame");
   return Status();
@@ -73,7 +75,8 @@ struct Decoder::Impl {
   std::string where(int64_t frame) const { return name + " frame " + std::to_string(frame); }
   std::string where() const { return where(next_frame); }
   Status enterGroupOf(int64_t frame);
-  Status decodeNext();
+  // Decodes frame next_frame into xyz (when wanted: see FrameDecoder::skipFrame).
+  Status decodeNext(bool wanted = true);
   int64_t groupEnd(size_t g) const;
   Status readPayloads(size_t g, int64_t last, std::vector<std::vector<uint8_t>>& payloads);
   Status decodeGroups(int64_t first, int64_t last, float* xyz, const ProgressFn& progress = {});
@@ -93,8 +96,8 @@ Status Decoder::Impl::enterGroupOf(int64_t frame) {
   return Status();
 }
 
-// Decodes frame next_frame into xyz, entering the next group when the current one ends.
-Status Decoder::Impl::decodeNext() {
+// Decodes frame next_frame, entering the next group when the current one ends.
+Status Decoder::Impl::decodeNext(bool wanted) {
   auto got = reader->nextFrame(payload);
   if (!got.ok()) return got.status().withContext(where());
   if (!got.value()) {  // end of this group: the next one starts with an intra frame
@@ -105,7 +108,7 @@ Status Decoder::Impl::decodeNext() {
     if (!got.value()) return corrupt(where() + ": empty frame group");
   }
   const bool group_start = next_frame == int64_t(reader->groupFirstFrame(group));
-  ANIMC_RETURN_IF_ERROR(decodePayload(*codec, payload, group_start, xyz, where()));
+  ANIMC_RETURN_IF_ERROR(decodePayload(*codec, payload, group_start, xyz, where(), wanted));
   ++next_frame;
   return Status();
 }
@@ -242,7 +245,8 @@ Status Decoder::frame(int64_t k, float* xyz) {
     ANIMC_RETURN_IF_ERROR(d.enterGroupOf(k));
   }
   d.positioned = false;  // a failure below leaves the cursor undefined: re-enter next time
-  while (d.next_frame <= k) ANIMC_RETURN_IF_ERROR(d.decodeNext());
+  // Only frame k is handed out: the frames before it are only read where the codec allows.
+  while (d.next_frame <= k) ANIMC_RETURN_IF_ERROR(d.decodeNext(d.next_frame == k));
   d.positioned = true;
   copyOnThreads(d.xyz.data(), d.xyz.size(), xyz);
   return Status();

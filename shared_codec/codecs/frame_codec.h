@@ -61,6 +61,13 @@ class FrameDecoder {
   // Decodes one payload into xyz (resized to 3 * vertex_count). Returns whether it was an
   // intra frame through *intra when not null.
   virtual Status decodeFrame(ByteReader payload, std::vector<float>& xyz, bool* intra) = 0;
+  // Reads one payload whose frame the caller will not look at: a random access on its way to
+  // a later frame of the group. Codecs whose frames build on the ones before decode it as
+  // decodeFrame() does; a codec that computes every frame from its group alone may only check
+  // the payload and leave xyz as it was.
+  virtual Status skipFrame(ByteReader payload, std::vector<float>& xyz, bool* intra) {
+    return decodeFrame(payload, xyz, intra);
+  }
 };
 
 }  // namespace animc

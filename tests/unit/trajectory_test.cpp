@@ -68,6 +68,41 @@ TEST(Trajectory, ReconstructionsComeWhenTheirGroupCloses) {
   }
 }
 
+// A random access keeps the group it goes back into (the same payload bytes) and computes only
+// the frame it hands out. Groups 0 and 2 hold the same frames, so their payloads are the same
+// bytes too; any order of access must give the encoder's frames.
+TEST(Trajectory, RandomAccessInAnyOrderGivesTheEncodersFrames) {
+  std::vector<std::vector<float>> frames;
+  for (int f = 0; f < 24; ++f) frames.push_back(testing_support::gridFrame(12, 10, f % 16, 1.0, 1.0));
+  const MemorySequence seq(testing_support::gridTopology(12, 10), frames, 25.0, "repeated grid");
+  EncoderOptions options = trajectory(0.5);
+  options.iframe_interval = 8;
+  const Coded coded = encode(seq, options);
+  ASSERT_EQ(coded.reconstructions.size(), 24u);
+  EXPECT_EQ(coded.reconstructions[17], coded.reconstructions[1]);
+  EXPECT_NE(coded.reconstructions[9], coded.reconstructions[1]);
+
+  std::vector<std::vector<int64_t>> orders = {{}, {}, {}};
+  for (int64_t k = 23; k >= 0; --k) orders[0].push_back(k);                                   // backwards
+  for (int64_t k = 0; k < 8; ++k) orders[1].insert(orders[1].end(), {k, 23 - k, 8 + k, 17});  // across groups
+  for (int64_t k = 0; k < 24; k += 3) orders[2].insert(orders[2].end(), {k, k / 2});          // skipping ahead
+  for (const auto& order : orders) {
+    auto decoder = Decoder::openMemory(coded.bytes.data(), coded.bytes.size());
+    ASSERT_TRUE(decoder.ok());
+    std::vector<float> xyz(3 * size_t(seq.topology().vertex_count));
+    for (int64_t k : order) {
+      ASSERT_TRUE(decoder.value().frame(k, xyz.data()).ok());
+      EXPECT_EQ(xyz, coded.reconstructions[size_t(k)]) << "frame " << k;
+    }
+    std::vector<float> range(xyz.size() * 5);
+    ASSERT_TRUE(decoder.value().frames(5, 10, range.data()).ok());
+    for (size_t k = 5; k < 10; ++k)
+      EXPECT_TRUE(std::equal(coded.reconstructions[k].begin(), coded.reconstructions[k].end(),
+                             range.begin() + (k - 5) * xyz.size()))
+          << "frame " << k << " of a range after random access";
+  }
+}
+
 TEST(Trajectory, StaticBytesLeaveTheGroupToMotion) {
   // The first frame record carries the whole group: counting it as static would report almost
   // no motion (animc's "motion only" figure).

@@ -145,13 +145,24 @@ class AutoDecoder final : public FrameDecoder {
   explicit AutoDecoder(std::vector<std::unique_ptr<FrameDecoder>> decoders) : decoders_(std::move(decoders)) {}
 
   Status decodeFrame(ByteReader payload, std::vector<float>& xyz, bool* intra) override {
+    return read(payload, xyz, intra, true);
+  }
+  Status skipFrame(ByteReader payload, std::vector<float>& xyz, bool* intra) override {
+    return read(payload, xyz, intra, false);
+  }
+
+ private:
+  // The frame's candidate decodes it, or skips it when it is not wanted.
+  Status read(ByteReader payload, std::vector<float>& xyz, bool* intra, bool wanted) {
     ANIMC_ASSIGN_OR_RETURN(uint8_t index, payload.u8("Candidate_Index"));
     if (index >= decoders_.size())
       return corrupt("auto frame: candidate " + std::to_string(index) + " of " + std::to_string(decoders_.size()));
     bool candidate_intra = false;
     const int previous = current_;
     current_ = -1;  // until this frame decodes
-    ANIMC_RETURN_IF_ERROR(decoders_[index]->decodeFrame(payload, xyz, &candidate_intra));
+    FrameDecoder& candidate = *decoders_[index];
+    ANIMC_RETURN_IF_ERROR(wanted ? candidate.decodeFrame(payload, xyz, &candidate_intra)
+                                 : candidate.skipFrame(payload, xyz, &candidate_intra));
     if (!candidate_intra && index != previous)
       return corrupt("auto frame: a frame group changes codec after its intra frame");
     current_ = index;
@@ -159,7 +170,6 @@ class AutoDecoder final : public FrameDecoder {
     return Status();
   }
 
- private:
   std::vector<std::unique_ptr<FrameDecoder>> decoders_;
   int current_ = -1;  // the candidate of the group being decoded
 };

@@ -345,7 +345,11 @@ void GroupFrames::computeBatch(uint32_t first) const {
 }
 
 bool GroupFrames::frame(uint32_t t, float* xyz) const {
-  if (batch_first_ == UINT32_MAX || t < batch_first_ || t >= batch_first_ + kBatch) computeBatch(t);
+  if (batch_first_ == UINT32_MAX || t >= batch_first_ + kBatch) {
+    computeBatch(t);
+  } else if (t < batch_first_) {  // going backwards: the batch ends at t, for the frames before it
+    computeBatch(t >= kBatch - 1 ? t - (kBatch - 1) : 0);
+  }
   const size_t size = size_t(3) * vertices_;
   const float* from = &batch_[(t - batch_first_) * size];
   std::vector<char> within((size + kFloatsPerTask - 1) / kFloatsPerTask, 1);

@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
+#include <algorithm>
 #include <cmath>
 #include <memory>
 
@@ -14,12 +15,20 @@ class TrajectoryDecoder final : public FrameDecoder {
       : topology_(topology), max_multiply_adds_(max_multiply_adds), path_(path) {}
 
   Status decodeFrame(ByteReader payload, std::vector<float>& xyz, bool* intra) override {
+    return read(payload, &xyz, intra);
+  }
+  // Every frame is computed from its group alone, so a frame nobody looks at is not computed.
+  Status skipFrame(ByteReader payload, std::vector<float>&, bool* intra) override {
+    return read(payload, nullptr, intra);
+  }
+
+ private:
+  // Reads one frame record, and computes the frame into *xyz when xyz is not null.
+  Status read(ByteReader payload, std::vector<float>* xyz, bool* intra) {
     ANIMC_ASSIGN_OR_RETURN(uint8_t type, payload.u8("Frame_Type"));
     if (type == kTrajectoryGroupFrame) {
       next_ = 0;
-      frames_ = GroupFrames();  // a failed read leaves no group to continue
-      ANIMC_RETURN_IF_ERROR(readTrajectoryGroup(payload, order(), max_multiply_adds_, group_));
-      frames_.reset(group_, order(), path_);
+      ANIMC_RETURN_IF_ERROR(enterGroup(payload));
     } else if (type == kTrajectoryNextFrame) {
       if (payload.remaining() != 0) return corrupt("trajectory frame: bytes after the frame type");
       if (next_ >= frames_.frames())
@@ -29,10 +38,27 @@ class TrajectoryDecoder final : public FrameDecoder {
       return corrupt("trajectory frame: unknown frame type " + std::to_string(type));
     }
     if (intra) *intra = type == kTrajectoryGroupFrame;
-    xyz.resize(size_t(topology_.vertex_count) * 3);
+    const uint32_t t = next_++;
+    if (xyz == nullptr) return Status();
+    xyz->resize(size_t(topology_.vertex_count) * 3);
     // As for the other codecs: a damaged group may not hand out infinities or huge values.
-    if (!frames_.frame(next_++, xyz.data()))
-      return corrupt("trajectory frame: a decoded value is not finite or above 1e30");
+    if (!frames_.frame(t, xyz->data())) return corrupt("trajectory frame: a decoded value is not finite or above 1e30");
+    return Status();
+  }
+
+  // A random access that goes back into the group decoded last meets the same payload again:
+  // the same bytes make the same group, so it is kept rather than decoded again.
+  Status enterGroup(ByteReader payload) {
+    const uint8_t* bytes = payload.cursor();
+    const size_t size = payload.remaining();
+    if (frames_.frames() > 0 && size == group_payload_.size() &&
+        std::equal(bytes, bytes + size, group_payload_.begin()))
+      return Status();
+    frames_ = GroupFrames();  // a failed read leaves no group to continue
+    group_payload_.clear();
+    ANIMC_RETURN_IF_ERROR(readTrajectoryGroup(payload, order(), max_multiply_adds_, group_));
+    frames_.reset(group_, order(), path_);
+    group_payload_.assign(bytes, bytes + size);
     return Status();
   }
 
@@ -50,6 +76,7 @@ class TrajectoryDecoder final : public FrameDecoder {
   SimdPath path_;
   TrajectoryGroup group_;
   GroupFrames frames_;
+  std::vector<uint8_t> group_payload_;  // of frames_, after its Frame_Type
   uint32_t next_ = 0;
 };
 
