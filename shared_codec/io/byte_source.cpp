@@ -3,9 +3,11 @@
 
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <vector>
 
 namespace animc {
 namespace {
@@ -22,8 +24,30 @@ class FileSource final : public ByteSource {
   explicit FileSource(std::FILE* file, uint64_t size) : file_(file), size_(size) {}
   ~FileSource() override { std::fclose(file_); }
   uint64_t size() const override { return size_; }
+  // Frame records are read a few bytes at a time (a length, then its payload), which would be a
+  // seek and a read of the system each, for every frame a random access walks through: small
+  // reads come from a window of the file read at once.
   Status readAt(uint64_t offset, void* out, size_t size) override {
     ANIMC_RETURN_IF_ERROR(checkRange(offset, size, size_));
+    if (size == 0) return Status();
+    if (size > kWindowBytes / 2) return read(offset, out, size);
+    if (offset < window_offset_ || offset + size > window_offset_ + window_.size()) {
+      window_.resize(size_t(std::min<uint64_t>(kWindowBytes, size_ - offset)));
+      window_offset_ = offset;
+      const Status s = read(offset, window_.data(), window_.size());
+      if (!s.ok()) {
+        window_.clear();
+        return s;
+      }
+    }
+    std::memcpy(out, window_.data() + (offset - window_offset_), size);
+    return Status();
+  }
+
+ private:
+  static constexpr size_t kWindowBytes = size_t(1) << 16;
+
+  Status read(uint64_t offset, void* out, size_t size) {
     errno = 0;
     if (fseeko(file_, off_t(offset), SEEK_SET) != 0 || std::fread(out, 1, size, file_) != size) {
       const std::string why = errno ? std::string(": ") + std::strerror(errno) : "";
@@ -32,9 +56,10 @@ class FileSource final : public ByteSource {
     return Status();
   }
 
- private:
   std::FILE* file_;
   uint64_t size_;
+  std::vector<uint8_t> window_;  // bytes [window_offset_, window_offset_ + size) of the file
+  uint64_t window_offset_ = 0;
 };
 
 class MemorySource final : public ByteSource {
