@@ -162,7 +162,7 @@ def section_main(doc, heading, section, add_arguments=None):
     args.animc = os.path.abspath(args.animc)
     sequences = [{'name': n, 'pc2': pc2, 'ply': ply} for n, pc2, ply in find_sequences(args.data)]
     lines, failures = section(args, sequences)
-    command = ' '.join([os.path.relpath(os.path.abspath(sys.argv[0]), repo)] + sys.argv[1:])
+    command = shlex.join([os.path.relpath(os.path.abspath(sys.argv[0]), repo)] + sys.argv[1:])
     text = replace_section(args.out, heading, lines, command)
     with open(args.out, 'w') as f:
         f.write(text)

@@ -7,8 +7,8 @@ both builds decode the same files, in turns, so that the two share the machine's
 bench.py puts the returned Markdown lines into docs/benchmarks.md; run alone, this script
 replaces that section of docs/benchmarks.md (or another report) in place.
 
-usage: bench/bench_random_access.py [--animc PATH] [--reference PATH] [--data DIR] [--runs R]
-                                    [--out FILE]"""
+usage: bench/bench_random_access.py [--animc PATH] [--reference PATH [--reference-name TEXT]]
+                                    [--data DIR] [--runs R] [--out FILE]"""
 import os
 import statistics
 import tempfile
@@ -43,7 +43,7 @@ def timed_row(animc, reference, ams, runs):
     return medians(mine), medians(theirs)
 
 
-def random_access_section(animc, reference, sequences, runs):
+def random_access_section(animc, reference, sequences, runs, reference_name=None):
     """(Markdown lines, failures) for every sequence, encoded with SETTINGS by this build."""
     rows, failures = [], 0
     with tempfile.TemporaryDirectory(prefix='animc_bench_random_') as work:
@@ -72,7 +72,8 @@ def random_access_section(animc, reference, sequences, runs):
              f'{runs} rounds: every frame decoded from the last to the first through `Decoder::openFile` '
              'and `Decoder::openMemory`, each a random access into the group; the median of the rounds, '
              'in milliseconds a frame, opening included.'
-             + (f' The reference is `{reference}`, run in the same rounds on the same files.' if reference else ''),
+             + (f' The reference is `{reference}` ({reference_name or "an earlier build"}), run in the same '
+                'rounds on the same files.' if reference else ''),
              '']
     lines += table(header, rows) + ['']
     return lines, failures
@@ -82,9 +83,11 @@ def main():
     def arguments(p):
         p.add_argument('--runs', type=int, default=5)
         p.add_argument('--reference', help='an earlier animc build to compare with')
+        p.add_argument('--reference-name', help='what the reference is, for the report')
 
     section_main(__doc__, HEADING,
-                 lambda args, sequences: random_access_section(args.animc, args.reference, sequences, args.runs),
+                 lambda args, sequences: random_access_section(args.animc, args.reference, sequences, args.runs,
+                                                               args.reference_name),
                  arguments)
 
 
