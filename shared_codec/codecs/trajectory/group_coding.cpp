@@ -228,8 +228,7 @@ Status readTrajectoryGroup(ByteReader payload, const CodingOrder& order, uint64_
   return Status();
 }
 
-GroupBasis dequantisedBasis(const TrajectoryGroup& g) {
-  GroupBasis b;
+void dequantiseBasis(const TrajectoryGroup& g, GroupBasis& b) {
   b.frames = g.frames;
   b.components = g.components;
   const size_t row = size_t(3) * g.frames;
@@ -238,12 +237,11 @@ GroupBasis dequantisedBasis(const TrajectoryGroup& g) {
   b.basis.resize(g.components * row);
   for (uint32_t k = 0; k < g.components; ++k)
     for (size_t i = 0; i < row; ++i) b.basis[k * row + i] = float(g.basis[k * row + i]) * g.basis_step[k];
-  return b;
 }
 
 void GroupFrames::reset(const TrajectoryGroup& g, const CodingOrder& order, SimdPath path) {
   path_ = path;
-  basis_ = dequantisedBasis(g);
+  dequantiseBasis(g, basis_);
   vertices_ = uint32_t(order.vertex.size());
   const uint32_t components = g.components;
   // Panels: a kernel step reads one front to back instead of K rows far apart. Each vertex is
@@ -266,6 +264,7 @@ void GroupFrames::reset(const TrajectoryGroup& g, const CodingOrder& order, Simd
 namespace {
 
 using Floats8 = float __attribute__((vector_size(32)));
+using Ints8 = int32_t __attribute__((vector_size(32)));
 
 // The sums of kBatch frames (from `first`) for the vertices of one kernel step (its panel of
 // coefficients, components x 8), component by component: each lane does the same float multiply
@@ -289,58 +288,77 @@ __attribute__((always_inline)) inline void sumLanes(const float* panel, const fl
 }
 
 // Vertices [v_begin, v_end) of kBatch frames from `first` (v_begin a multiple of kLanes): any
-// split of the vertices computes each lane alike, so threads may share them.
-__attribute__((always_inline)) inline void batchKernel(const float* coefficients, const float* basis, const float* mean,
-                                                       uint32_t components, uint32_t frames, uint32_t vertices,
-                                                       uint32_t v_begin, uint32_t v_end, uint32_t first, float* out) {
+// split of the vertices computes each lane alike, so threads may share them. Returns
+// FrameKernel::run()'s mask of frames with a bad value.
+__attribute__((always_inline)) inline uint32_t batchKernel(const float* coefficients, const float* basis,
+                                                           const float* mean, uint32_t components, uint32_t frames,
+                                                           uint32_t vertices, uint32_t v_begin, uint32_t v_end,
+                                                           uint32_t first, float* out) {
   constexpr uint32_t kBatch = FrameKernel::kBatch, kLanes = FrameKernel::kLanes;
   const uint32_t count = std::min(kBatch, frames - first);
+  const Ints8 lane_index = {0, 1, 2, 3, 4, 5, 6, 7};
+  Ints8 within[kBatch] = {};  // all ones in a lane while its values are within bounds
+  for (uint32_t f = 0; f < kBatch; ++f) within[f] = ~within[f];
   for (uint32_t v0 = v_begin; v0 < v_end; v0 += kLanes) {
     Floats8 sums[kBatch][3];
     sumLanes(coefficients + size_t(v0) * components, basis, components, frames, first, sums);
     const uint32_t lanes = std::min(kLanes, v_end - v0);
+    const Ints8 past_the_end = lane_index >= int32_t(lanes);  // their zero panels: not vertices
     for (uint32_t f = 0; f < count; ++f) {
       float* xyz = out + (size_t(f) * vertices + v0) * 3;
       for (uint32_t d = 0; d < 3; ++d) {
-        const float m = mean[d * frames + first + f];
-        for (uint32_t l = 0; l < lanes; ++l) xyz[3 * l + d] = m + sums[f][d][l];
+        const Floats8 values = mean[d * frames + first + f] + sums[f][d];
+        // Not finite (NaN compares false) or too large: the lane's bits go to zero.
+        within[f] &= ((values <= kMaxDecodedValue) & (values >= -kMaxDecodedValue)) | past_the_end;
+        for (uint32_t l = 0; l < lanes; ++l) xyz[3 * l + d] = values[l];
       }
     }
   }
+  uint32_t damaged = 0;
+  for (uint32_t f = 0; f < count; ++f) {
+    int32_t all = -1;
+    for (uint32_t l = 0; l < kLanes; ++l) all &= within[f][l];
+    if (all != -1) damaged |= 1u << f;
+  }
+  return damaged;
 }
 
-__attribute__((noinline)) void batchPortable(const float* c, const float* b, const float* m, uint32_t k, uint32_t g,
-                                             uint32_t n, uint32_t v_begin, uint32_t v_end, uint32_t first, float* out) {
-  batchKernel(c, b, m, k, g, n, v_begin, v_end, first, out);
+__attribute__((noinline)) uint32_t batchPortable(const float* c, const float* b, const float* m, uint32_t k, uint32_t g,
+                                                 uint32_t n, uint32_t v_begin, uint32_t v_end, uint32_t first,
+                                                 float* out) {
+  return batchKernel(c, b, m, k, g, n, v_begin, v_end, first, out);
 }
 
 #ifndef ANIMC_NO_AVX2
-ANIMC_TARGET_AVX2 __attribute__((noinline)) void batchAvx2(const float* c, const float* b, const float* m, uint32_t k,
-                                                           uint32_t g, uint32_t n, uint32_t v_begin, uint32_t v_end,
-                                                           uint32_t first, float* out) {
-  batchKernel(c, b, m, k, g, n, v_begin, v_end, first, out);
+ANIMC_TARGET_AVX2 __attribute__((noinline)) uint32_t batchAvx2(const float* c, const float* b, const float* m,
+                                                               uint32_t k, uint32_t g, uint32_t n, uint32_t v_begin,
+                                                               uint32_t v_end, uint32_t first, float* out) {
+  return batchKernel(c, b, m, k, g, n, v_begin, v_end, first, out);
 }
 #endif
 
 }  // namespace
 
-void FrameKernel::run(SimdPath path, const GroupBasis& b, const float* panels, uint32_t vertices, uint32_t v_begin,
-                      uint32_t v_end, uint32_t first, float* out) {
+uint32_t FrameKernel::run(SimdPath path, const GroupBasis& b, const float* panels, uint32_t vertices, uint32_t v_begin,
+                          uint32_t v_end, uint32_t first, float* out) {
 #ifndef ANIMC_NO_AVX2
-  if (path == SimdPath::kAvx2) {
-    batchAvx2(panels, b.basis.data(), b.mean.data(), b.components, b.frames, vertices, v_begin, v_end, first, out);
-    return;
-  }
+  if (path == SimdPath::kAvx2)
+    return batchAvx2(panels, b.basis.data(), b.mean.data(), b.components, b.frames, vertices, v_begin, v_end, first,
+                     out);
 #endif
-  batchPortable(panels, b.basis.data(), b.mean.data(), b.components, b.frames, vertices, v_begin, v_end, first, out);
+  return batchPortable(panels, b.basis.data(), b.mean.data(), b.components, b.frames, vertices, v_begin, v_end, first,
+                       out);
 }
 
 void GroupFrames::computeBatch(uint32_t first) const {
   const double vertex_cost = double(basis_.components) * kBatch * 3;
-  parallelForBlocks(vertices_, kVerticesPerTask, vertex_cost, [&](size_t, size_t begin, size_t end) {
-    FrameKernel::run(path_, basis_, coefficients_.data(), vertices_, uint32_t(begin), uint32_t(end), first,
-                     batch_.data());
+  std::vector<uint32_t> damaged((vertices_ + kVerticesPerTask - 1) / kVerticesPerTask, 0);
+  parallelForBlocks(vertices_, kVerticesPerTask, vertex_cost, [&](size_t block, size_t begin, size_t end) {
+    damaged[block] = FrameKernel::run(path_, basis_, coefficients_.data(), vertices_, uint32_t(begin), uint32_t(end),
+                                      first, batch_.data());
   });
+  batch_damaged_ = 0;
+  for (uint32_t mask : damaged) batch_damaged_ |= mask;
   batch_first_ = first;
 }
 
@@ -351,15 +369,8 @@ bool GroupFrames::frame(uint32_t t, float* xyz) const {
     computeBatch(t >= kBatch - 1 ? t - (kBatch - 1) : 0);
   }
   const size_t size = size_t(3) * vertices_;
-  const float* from = &batch_[(t - batch_first_) * size];
-  std::vector<char> within((size + kFloatsPerTask - 1) / kFloatsPerTask, 1);
-  parallelForBlocks(size, kFloatsPerTask, 2, [&](size_t b, size_t begin, size_t end) {
-    bool ok = true;  // a pass without a branch, which the compiler vectorises; NaN fails it
-    for (size_t i = begin; i < end; ++i) ok &= std::fabs(from[i]) <= kMaxDecodedValue;
-    std::copy(from + begin, from + end, xyz + begin);
-    within[b] = ok;
-  });
-  return std::all_of(within.begin(), within.end(), [](char ok) { return ok != 0; });
+  copyOnThreads(&batch_[(t - batch_first_) * size], size, xyz);
+  return ((batch_damaged_ >> (t - batch_first_)) & 1) == 0;
 }
 
 }  // namespace animc

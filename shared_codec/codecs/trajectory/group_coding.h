@@ -62,10 +62,19 @@ Status readTrajectoryGroup(ByteReader payload, const CodingOrder& order, uint64_
 struct GroupBasis {
   uint32_t frames = 0;
   uint32_t components = 0;
-  std::vector<float> mean;   // 3G
-  std::vector<float> basis;  // K rows of 3G
+  UninitialisedVector<float> mean;   // 3G
+  UninitialisedVector<float> basis;  // K rows of 3G
 };
-GroupBasis dequantisedBasis(const TrajectoryGroup& group);
+// Into `basis`, whose buffers are used again.
+void dequantiseBasis(const TrajectoryGroup& group, GroupBasis& basis);
+inline GroupBasis dequantisedBasis(const TrajectoryGroup& group) {
+  GroupBasis basis;
+  dequantiseBasis(group, basis);
+  return basis;
+}
+
+// The largest coordinate a decoder hands out, as for the other codecs.
+constexpr float kMaxDecodedValue = 1e30f;
 
 // A quantised coefficient as the decoders multiply with it.
 inline float dequantisedCoefficient(int32_t value, float step) { return float(value) * step; }
@@ -88,13 +97,13 @@ struct FrameKernel {
   }
   // Frames [first, first + kBatch) (those in the group) of vertices [v_begin, v_end) of
   // `vertices`, v_begin a multiple of kLanes, into out: 3 floats a vertex, `vertices` a frame.
-  // Any split of the vertices computes each vertex alike, so threads may share them.
-  static void run(SimdPath path, const GroupBasis& basis, const float* panels, uint32_t vertices, uint32_t v_begin,
-                  uint32_t v_end, uint32_t first, float* out);
+  // Any split of the vertices computes each vertex alike, so threads may share them. Returns
+  // the frames (bit f for frame first + f) where one of these vertices has a value that is
+  // not finite or above kMaxDecodedValue in size: found as the values are made, not by a pass
+  // over them afterwards.
+  static uint32_t run(SimdPath path, const GroupBasis& basis, const float* panels, uint32_t vertices, uint32_t v_begin,
+                      uint32_t v_end, uint32_t first, float* out);
 };
-
-// The largest coordinate a decoder hands out, as for the other codecs.
-constexpr float kMaxDecodedValue = 1e30f;
 
 // The decoded frames of a whole group.
 class GroupFrames {
@@ -117,6 +126,7 @@ class GroupFrames {
   UninitialisedVector<float> coefficients_;   // panels, vertex order
   mutable UninitialisedVector<float> batch_;  // frames batch_first_ .. + kBatch, 3N floats each
   mutable uint32_t batch_first_ = UINT32_MAX;
+  mutable uint32_t batch_damaged_ = 0;  // FrameKernel::run()'s frames with a bad value, of the batch
 };
 
 }  // namespace animc
