@@ -58,6 +58,8 @@ struct PointBox {
 // For the functions that make up the AVX2 versions; everything they inline follows. Every
 // CPU with AVX2 also has BMI2 (shifts by a variable amount in one micro-operation).
 #define ANIMC_TARGET_AVX2 __attribute__((target("avx2,bmi2")))
+// For the few kernels that also have a version in 512-bit vectors (SimdPath::kAvx512).
+#define ANIMC_TARGET_AVX512 __attribute__((target("avx512f,avx512dq,avx512vl,avx512bw,avx2,bmi2")))
 
 namespace animc {
 
@@ -105,6 +107,10 @@ ANIMC_TARGET_AVX2 inline void transposeColumns(Quad a, Quad b, Quad c, Quad e, Q
 // initialiser) it is false, which selects the portable versions: same results.
 inline const bool kCpuHasAvx2 =
     (__builtin_cpu_init(), __builtin_cpu_supports("avx2") && __builtin_cpu_supports("bmi2"));
+// F, DQ, VL and BW together, as every CPU with AVX-512 since the first server ones has them.
+inline const bool kCpuHasAvx512 =
+    (__builtin_cpu_init(), kCpuHasAvx2&& __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") &&
+                               __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512bw"));
 
 }  // namespace animc
 #else
@@ -117,20 +123,26 @@ namespace animc {
 // coder is made (the codec table's factories, from bestSimdPath()), and handed down to every
 // kernel, so that all of one coder's kernels agree and a test can run both versions in one
 // build: they must give the same bytes and frames.
-enum class SimdPath : uint8_t { kPortable, kAvx2 };
+// kAvx512 is kAvx2 with the kernels that have a 512-bit version running that version (the
+// trajectory codec's frame kernel); every other kernel runs its AVX2 version.
+enum class SimdPath : uint8_t { kPortable, kAvx2, kAvx512 };
 
 // ANIMC_SIMD=portable in the environment runs the portable versions on any CPU: what CPUs
 // without AVX2 run, for the fuzzers (CI fuzzes both), or to rule the AVX2 versions out when a
-// result looks wrong. Read once, at load time, like kCpuHasAvx2.
-inline const bool kPortableForced = [] {
+// result looks wrong; ANIMC_SIMD=avx2 runs the AVX2 versions on a CPU with AVX-512, to compare
+// them. Read once, at load time, like kCpuHasAvx2.
+inline const std::string_view kSimdAsked = [] {
   const char* value = std::getenv("ANIMC_SIMD");
-  return value != nullptr && std::string_view(value) == "portable";
+  return value != nullptr ? std::string_view(value) : std::string_view();
 }();
+inline const bool kPortableForced = kSimdAsked == "portable";
 
-// kAvx2 when this build has the AVX2 versions, this CPU has AVX2 and BMI2, and ANIMC_SIMD does
-// not ask for the portable ones.
+// kAvx512 when this build has the AVX2 versions and this CPU has AVX-512 (F, DQ, VL, BW) as well
+// as AVX2 and BMI2, kAvx2 when it has only those two, unless ANIMC_SIMD asks for the portable
+// or the AVX2 ones.
 inline SimdPath bestSimdPath() {
 #if ANIMC_AVX2_PATH
+  if (kCpuHasAvx512 && !kPortableForced && kSimdAsked != "avx2") return SimdPath::kAvx512;
   if (kCpuHasAvx2 && !kPortableForced) return SimdPath::kAvx2;
 #endif
   return SimdPath::kPortable;
@@ -138,11 +150,13 @@ inline SimdPath bestSimdPath() {
 
 // Every path this build and CPU can run, portable first (for tests that compare them).
 inline std::vector<SimdPath> availableSimdPaths() {
-  if (bestSimdPath() == SimdPath::kAvx2) return {SimdPath::kPortable, SimdPath::kAvx2};
-  return {SimdPath::kPortable};
+  std::vector<SimdPath> paths = {SimdPath::kPortable};
+  for (SimdPath path : {SimdPath::kAvx2, SimdPath::kAvx512})
+    if (path <= bestSimdPath()) paths.push_back(path);
+  return paths;
 }
 
 // Whether `path` runs the AVX2 versions (never in a build without them).
-inline bool useAvx2(SimdPath path) { return ANIMC_AVX2_PATH && path == SimdPath::kAvx2; }
+inline bool useAvx2(SimdPath path) { return ANIMC_AVX2_PATH && path != SimdPath::kPortable; }
 
 }  // namespace animc
