@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
-// libFuzzer harness: an .ams stream decoded from memory through the public Decoder, both
-// codecs, with random access and the wavelet codec's progressive decoding. Any Status is fine; a
-// crash, sanitizer report, leak, hang or huge allocation is a bug.
+// libFuzzer harness: an .ams stream decoded from memory through the public Decoder, every
+// codec, with random access and the wavelet codec's progressive decoding. Any Status is fine; a
+// crash, sanitizer report, leak, hang or huge allocation is a bug, and so is a random access
+// that gives other bits than the decoding in order (bit 5).
 //
 // Input = 4 control bytes, then the file:
 //   [0] bit 0: repair section CRCs first, so mutations reach the parsers behind them
@@ -11,10 +12,14 @@
 //              (several groups at once) instead of frame() by frame()
 //       bit 4: the file is the start of a stream still arriving: decode the stream of its
 //              whole groups (wholeGroupsOf(), as the WebAssembly player does)
+//       bit 5: after the frames decoded one by one in order, go back to some of them, last
+//              first, each a random access: it must give the same bits (else an abort)
 //   [2] max bitplanes (modulo 65; 0 = all)   [3] max payload bytes / 4 (0 = all)
 #include <algorithm>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <vector>
 
 #include "animc/animc.h"
@@ -80,9 +85,25 @@ void decode(const std::vector<uint8_t>& stream, const uint8_t* control) {
     return;
   }
   std::vector<float> xyz(3 * size_t(decoder.info().vertices));
+  std::vector<std::vector<float>> decoded;  // in order from `first`, for bit 5
   uint64_t work = 0;
-  for (int64_t k = first; k < frames && work < kVertexBudget; ++k, work += decoder.info().vertices)
-    if (!decoder.frame(k, xyz.data()).ok()) return;
+  for (int64_t k = first; k < frames && work < kVertexBudget; ++k, work += decoder.info().vertices) {
+    if (!decoder.frame(k, xyz.data()).ok()) break;
+    if (control[0] & 32) decoded.push_back(xyz);
+  }
+  // At most 16 random accesses, each decoding at most what the pass in order did.
+  const size_t step = std::max<size_t>(1, decoded.size() / 16);
+  for (size_t i = decoded.size(); i-- > 0;) {
+    if (i % step != 0 && i + 1 != decoded.size()) continue;
+    const int64_t k = first + int64_t(i);
+    const bool same = decoder.frame(k, xyz.data()).ok() &&
+                      std::memcmp(xyz.data(), decoded[i].data(), xyz.size() * sizeof(float)) == 0;
+    if (!same) {
+      std::fprintf(stderr, "frame %lld: a random access does not give the frame decoded in order\n",
+                   static_cast<long long>(k));
+      std::abort();
+    }
+  }
 }
 
 }  // namespace
