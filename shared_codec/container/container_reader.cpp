@@ -213,6 +213,15 @@ Status ContainerReader::checkGroupHead(size_t g, uint64_t& frames_begin, uint64_
 Status ContainerReader::beginGroup(size_t g) {
   uint64_t frames_begin = 0, frames_end = 0;
   ANIMC_RETURN_IF_ERROR(checkGroupHead(g, frames_begin, frames_end));
+  if (g != verified_group_) ANIMC_RETURN_IF_ERROR(verifyGroupCrc(g, frames_begin, frames_end));
+  cursor_ = frames_begin;
+  frames_end_ = frames_end;
+  frames_left_ = groupFrameCount(g);
+  return Status();
+}
+
+Status ContainerReader::verifyGroupCrc(size_t g, uint64_t frames_begin, uint64_t frames_end) {
+  verified_group_ = SIZE_MAX;
   // Verify the CRC before decoding anything, streaming so memory stays small.
   std::vector<uint8_t> block(std::min<uint64_t>(frames_end - frames_begin, 1 << 20));
   uint32_t crc = 0;
@@ -227,9 +236,7 @@ Status ContainerReader::beginGroup(size_t g) {
   ByteReader c(stored, 4, frames_end);
   ANIMC_ASSIGN_OR_RETURN(uint32_t expected, c.u32("Section_CRC"));
   if (crc != expected) return corrupt("GRUP section" + at(groups_[g].offset) + ": CRC mismatch");
-  cursor_ = frames_begin;
-  frames_end_ = frames_end;
-  frames_left_ = groupFrameCount(g);
+  verified_group_ = g;
   return Status();
 }
 

@@ -54,7 +54,9 @@ class ContainerReader {
   size_t groupOf(uint64_t frame) const;
   uint64_t groupFirstFrame(size_t group) const { return groups_[group].first_frame; }
 
-  // Verifies group g's CRC and makes nextFrame() return its frames in order.
+  // Verifies group g's CRC and makes nextFrame() return its frames in order. The group whose
+  // CRC was verified last is not read again for it: a random access goes back into the same
+  // group again and again, and the source's bytes do not change (byte_source.h).
   Status beginGroup(size_t group);
   // The file's bytes before its first GRUP (File_Header, HEAD, CONN), as stored.
   Result<std::vector<uint8_t>> startBytes();
@@ -79,6 +81,8 @@ class ContainerReader {
   Status measureFirstFrame();
   // Group g's header against the index (tag, length, frame numbers): its frame records' bytes.
   Status checkGroupHead(size_t group, uint64_t& frames_begin, uint64_t& frames_end);
+  // Group g's CRC over its frame records' bytes [frames_begin, frames_end).
+  Status verifyGroupCrc(size_t group, uint64_t frames_begin, uint64_t frames_end);
   // The length of the frame record at `position` (before frames_end), its payload's start.
   Result<uint64_t> frameRecord(uint64_t position, uint64_t frames_end, uint64_t& payload_start);
 
@@ -92,6 +96,7 @@ class ContainerReader {
   std::vector<Group> groups_;
   // Current group cursor.
   uint64_t cursor_ = 0, frames_end_ = 0, frames_left_ = 0;
+  size_t verified_group_ = SIZE_MAX;  // the group whose CRC beginGroup() verified last
 };
 
 }  // namespace animc

@@ -20,7 +20,8 @@ class ByteSource {
   virtual Status readAt(uint64_t offset, void* out, size_t size) = 0;
 };
 
-// A regular file (or anything that can seek), opened for reading.
+// A regular file (or anything that can seek), opened for reading; it must not change while
+// open (small reads are served from a window read once, and a group checked once is trusted).
 Result<std::unique_ptr<ByteSource>> openFileSource(const std::string& path);
 // `data` is read in place: it must outlive the source and not change.
 std::unique_ptr<ByteSource> memorySource(const void* data, size_t size);
