@@ -36,7 +36,7 @@ double median(std::vector<double> v) {
 
 // Seconds to open a stream and decode all its frames through the public Decoder: in order, in
 // the runs of frames a reader takes (decodeChunkEnd(), several groups at once with threads), or
-// from the last to the first (every frame then a random access from the start of its group).
+// from the last to the first (every frame then a random access into its group).
 Result<double> timeDecode(const std::function<Result<Decoder>()>& open, bool backwards = false) {
   const auto t0 = Clock::now();
   ANIMC_ASSIGN_OR_RETURN(Decoder decoder, open());

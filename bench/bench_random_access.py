@@ -54,7 +54,7 @@ def random_access_section(animc, reference, sequences, runs, reference_name=None
             timed = encoded and timed_row(animc, reference, ams, runs)
             if not timed:
                 failures += 1
-                rows.append([seq['name'], 'failed'] + [''] * 5)
+                rows.append([seq['name'], 'failed'] + [''] * (5 if reference else 2))
                 continue
             (file_s, memory_s), old = timed
             frames = encoded['frames']

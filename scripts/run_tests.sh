@@ -49,3 +49,5 @@ cmake --build build-fuzz -j"$(nproc)"
 bash tests/fuzz/campaign.sh build-fuzz 60 build-fuzz/campaign --parallel
 # The same on the portable kernels, which CPUs without AVX2 run (core/simd_math.h).
 ANIMC_SIMD=portable bash tests/fuzz/campaign.sh build-fuzz 20 build-fuzz/campaign-portable --parallel
+# And on the AVX2 kernels where the CPU would run AVX-512 ones (the same kernels elsewhere).
+ANIMC_SIMD=avx2 bash tests/fuzz/campaign.sh build-fuzz 20 build-fuzz/campaign-avx2 --parallel

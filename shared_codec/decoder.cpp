@@ -118,14 +118,16 @@ int64_t Decoder::Impl::groupEnd(size_t g) const {
 }
 
 // Group g's frames up to `payloads`' count, decoded by `codec`; those from frame `first` on go
-// to xyz, one after the other (3N floats each), unless xyz is null.
+// to xyz, one after the other (3N floats each), unless xyz is null (then every frame is
+// decoded, as verify() checks them all). Frames before `first` are only read, as frame() does.
 Status Decoder::Impl::decodeGroupPart(FrameDecoder& codec, size_t g, const std::vector<std::vector<uint8_t>>& payloads,
                                       int64_t first, float* xyz) const {
   const int64_t start = int64_t(reader->groupFirstFrame(g));
   std::vector<float> frame;
   for (size_t i = 0; i < payloads.size(); ++i) {
     const int64_t k = start + int64_t(i);
-    ANIMC_RETURN_IF_ERROR(decodePayload(codec, payloads[i], i == 0, frame, where(k)));
+    const bool wanted = xyz == nullptr || k >= first;
+    ANIMC_RETURN_IF_ERROR(decodePayload(codec, payloads[i], i == 0, frame, where(k), wanted));
     if (xyz && k >= first) std::copy(frame.begin(), frame.end(), xyz + size_t(k - first) * frame.size());
   }
   return Status();

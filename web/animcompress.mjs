@@ -176,7 +176,8 @@ export class AnimStream {
 
   // Frame k (0 ≤ k < frameCount), in any order: x, y, z per vertex. Into `out` (a Float32Array
   // of 3 × vertexCount) when given, else a new array. The frame after the last one decoded
-  // costs one frame; any other costs the frames from the start of its group.
+  // costs one frame; any other costs reading the frames from the start of its group (decoding
+  // them, but for trajectory groups, where only frame k is computed).
   frame(k, out) {
     if (!Number.isInteger(k) || k < 0 || k >= this.frameCount)
       throw animError('invalid', `animcompress: frame ${k} is outside 0..${this.frameCount - 1}`);

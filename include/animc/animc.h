@@ -294,7 +294,10 @@ class ANIMC_API Decoder {
   const uint32_t* triangles() const;
 
   // Decodes frame k into xyz (3 * info().vertices floats). The frame after the last one
-  // decoded costs one frame; any other costs the frames from the start of its group.
+  // decoded costs one frame; any other costs reading the frames from the start of its group,
+  // which a codec that builds each frame on the one before (affine-octree, wavelet) decodes,
+  // and the trajectory codec only reads (it computes frame k alone, from its group, which it
+  // keeps while the access stays in it).
   Status frame(int64_t k, float* xyz);
   // Decodes frames [first, last) into xyz, one after the other (3 * info().vertices floats
   // each): the same frames as frame() in a loop, with the groups of the range decoded several

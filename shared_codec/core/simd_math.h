@@ -108,9 +108,11 @@ ANIMC_TARGET_AVX2 inline void transposeColumns(Quad a, Quad b, Quad c, Quad e, Q
 inline const bool kCpuHasAvx2 =
     (__builtin_cpu_init(), __builtin_cpu_supports("avx2") && __builtin_cpu_supports("bmi2"));
 // F, DQ, VL and BW together, as every CPU with AVX-512 since the first server ones has them.
-inline const bool kCpuHasAvx512 =
-    (__builtin_cpu_init(), kCpuHasAvx2&& __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") &&
-                               __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512bw"));
+inline const bool kCpuHasAvx512 = [] {
+  __builtin_cpu_init();
+  return kCpuHasAvx2 && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") &&
+         __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512bw");
+}();
 
 }  // namespace animc
 #else
@@ -121,7 +123,7 @@ namespace animc {
 
 // Which version of the kernels an encoder or decoder runs. It is chosen once, where the
 // coder is made (the codec table's factories, from bestSimdPath()), and handed down to every
-// kernel, so that all of one coder's kernels agree and a test can run both versions in one
+// kernel, so that all of one coder's kernels agree and a test can run every version in one
 // build: they must give the same bytes and frames.
 // kAvx512 is kAvx2 with the kernels that have a 512-bit version running that version (the
 // trajectory codec's frame kernel); every other kernel runs its AVX2 version.
@@ -131,24 +133,26 @@ enum class SimdPath : uint8_t { kPortable, kAvx2, kAvx512 };
 // without AVX2 run, for the fuzzers (CI fuzzes both), or to rule the AVX2 versions out when a
 // result looks wrong; ANIMC_SIMD=avx2 runs the AVX2 versions on a CPU with AVX-512, to compare
 // them. Read once, at load time, like kCpuHasAvx2.
-inline const std::string_view kSimdAsked = [] {
+inline bool simdAsked(std::string_view name) {
   const char* value = std::getenv("ANIMC_SIMD");
-  return value != nullptr ? std::string_view(value) : std::string_view();
-}();
-inline const bool kPortableForced = kSimdAsked == "portable";
+  return value != nullptr && std::string_view(value) == name;
+}
+inline const bool kPortableForced = simdAsked("portable");
+inline const bool kAvx2Forced = simdAsked("avx2");
 
 // kAvx512 when this build has the AVX2 versions and this CPU has AVX-512 (F, DQ, VL, BW) as well
 // as AVX2 and BMI2, kAvx2 when it has only those two, unless ANIMC_SIMD asks for the portable
 // or the AVX2 ones.
 inline SimdPath bestSimdPath() {
 #if ANIMC_AVX2_PATH
-  if (kCpuHasAvx512 && !kPortableForced && kSimdAsked != "avx2") return SimdPath::kAvx512;
+  if (kCpuHasAvx512 && !kPortableForced && !kAvx2Forced) return SimdPath::kAvx512;
   if (kCpuHasAvx2 && !kPortableForced) return SimdPath::kAvx2;
 #endif
   return SimdPath::kPortable;
 }
 
-// Every path this build and CPU can run, portable first (for tests that compare them).
+// Every path this build and CPU can run, portable first (for tests that compare them): each
+// path up to the best, in the enum's order, which is that of the instructions each adds.
 inline std::vector<SimdPath> availableSimdPaths() {
   std::vector<SimdPath> paths = {SimdPath::kPortable};
   for (SimdPath path : {SimdPath::kAvx2, SimdPath::kAvx512})

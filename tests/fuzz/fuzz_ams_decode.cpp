@@ -96,8 +96,11 @@ void decode(const std::vector<uint8_t>& stream, const uint8_t* control) {
   for (size_t i = decoded.size(); i-- > 0;) {
     if (i % step != 0 && i + 1 != decoded.size()) continue;
     const int64_t k = first + int64_t(i);
-    const bool same = decoder.frame(k, xyz.data()).ok() &&
-                      std::memcmp(xyz.data(), decoded[i].data(), xyz.size() * sizeof(float)) == 0;
+    const animc::Status status = decoder.frame(k, xyz.data());
+    // Going back into the group re-counts its work from the group's start: a late `first` may
+    // pass the fuzzing limit there, where the pass in order, already inside the group, did not.
+    if (status.code() == animc::StatusCode::kLimitExceeded) continue;
+    const bool same = status.ok() && std::memcmp(xyz.data(), decoded[i].data(), xyz.size() * sizeof(float)) == 0;
     if (!same) {
       std::fprintf(stderr, "frame %lld: a random access does not give the frame decoded in order\n",
                    static_cast<long long>(k));

@@ -90,10 +90,52 @@ TEST(CodecRegistry, EverySimdPathWritesAndDecodesTheSameBytes) {
   }
 }
 
+// The same for the codecs that code whole groups, on a grid of 21 x 7 vertices (147: the
+// trajectory kernel's 16-lane steps, then a step of 3 vertices) in groups of 8 frames.
+TEST(CodecRegistry, EverySimdPathWritesAndDecodesTheSameGroups) {
+  if (availableSimdPaths().size() < 2) GTEST_SKIP() << "not run: this build or CPU has one kernel path only";
+  std::vector<EncodeSettings> settings(3);
+  settings[0].trajectory();
+  settings[1].trajectory().rate_value = 0.05;  // a KG target of 0.05 %: more components
+  settings[2].automatic();
+  const MemorySequence seq = testing_support::gridSequence(21, 7, 20, 1.0, 0.5);
+  const Topology& topology = seq.topology();
+  std::vector<float> all;
+  for (const auto& frame : seq.frames()) all.insert(all.end(), frame.begin(), frame.end());
+  for (const EncodeSettings& s : settings) {
+    SCOPED_TRACE(describeSettings(s));
+    const std::vector<SimdPath> paths = availableSimdPaths();
+    std::vector<std::vector<std::vector<uint8_t>>> payloads(paths.size());
+    std::vector<std::vector<std::vector<float>>> frames(paths.size());
+    for (size_t p = 0; p < paths.size(); ++p) {
+      auto encoder = s.entry().makeGroupEncoder(s.options, topology, paths[p]);
+      auto decoder = s.entry().makeDecoder(s.options, topology, {}, "grid", paths[p]);
+      ASSERT_TRUE(decoder.ok()) << decoder.status().message();
+      const size_t size = 3 * size_t(topology.vertex_count);
+      for (uint32_t first = 0; first < seq.frames().size(); first += 8) {
+        const uint32_t count = std::min<uint32_t>(8, uint32_t(seq.frames().size()) - first);
+        std::vector<std::vector<uint8_t>> group;
+        encoder->encodeGroup(all.data() + first * size, count, group);
+        for (const auto& payload : group) {
+          payloads[p].push_back(payload);
+          frames[p].emplace_back();
+          ASSERT_TRUE(
+              decoder.value()->decodeFrame(ByteReader(payload.data(), payload.size()), frames[p].back(), nullptr).ok());
+        }
+      }
+    }
+    ASSERT_EQ(frames[0].size(), seq.frames().size());
+    for (size_t p = 1; p < paths.size(); ++p) {
+      EXPECT_EQ(payloads[0], payloads[p]) << "path " << int(paths[p]);
+      EXPECT_EQ(frames[0], frames[p]) << "path " << int(paths[p]);
+    }
+  }
+}
+
 // ctest runs this a second time with ANIMC_SIMD=portable (simd_portable_forced in
 // tests/CMakeLists.txt): the fuzzers' way to reach the portable kernels in an AVX2 build.
 // ANIMC_SIMD=avx2 keeps a CPU with AVX-512 on the AVX2 kernels.
-TEST(SimdPathChoice, AnimcSimdPortableSelectsThePortableKernels) {
+TEST(SimdPathChoice, AnimcSimdSelectsTheKernelsAsked) {
   const char* forced = std::getenv("ANIMC_SIMD");
   if (forced != nullptr && std::string(forced) == "portable") {
     EXPECT_EQ(bestSimdPath(), SimdPath::kPortable);

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // The frames a trajectory group gives (GroupFrames): the kernel finds the frames with a value
-// that is not finite or above 1e30 in size as it makes them, frame by frame, whichever way
-// the frames are asked for, and the lanes past the last vertex never count.
+// that is not finite or above 1e30 in size, frame by frame, whichever way the frames are asked
+// for and on every kernel path, and the lanes past the last vertex never count.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -9,6 +9,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "api.h"
+#include "codecs/codec_registry.h"
 #include "codecs/trajectory/group_coding.h"
 #include "core/simd_math.h"
 #include "test_sequences.h"
@@ -18,11 +20,10 @@ namespace {
 
 constexpr uint32_t kFrames = 6;
 
-// One component over a 3 x 5 grid (15 vertices: the last kernel step has 7 lanes of
-// vertices and one past them). Each vertex's coefficient is `coefficient`, but vertex 14's
-// is 1; the mean's and the basis's x runs are given for frames 0..5.
+// One component over a grid. Each vertex's coefficient is `coefficient`, but the last
+// vertex's is `last`; the mean's and the basis's x runs are given for frames 0..5.
 TrajectoryGroup oneComponent(const CodingOrder& order, float mean_step, std::vector<int32_t> mean_x, float basis_step,
-                             std::vector<int32_t> basis_x, int32_t coefficient) {
+                             std::vector<int32_t> basis_x, int32_t coefficient, int32_t last) {
   TrajectoryGroup g;
   g.frames = kFrames;
   g.components = 1;
@@ -33,8 +34,9 @@ TrajectoryGroup oneComponent(const CodingOrder& order, float mean_step, std::vec
   g.basis_step = {basis_step};
   g.basis.assign(3 * kFrames, 0);
   std::copy(basis_x.begin(), basis_x.end(), g.basis.begin());
-  g.coefficients.resize(order.vertex.size());
-  for (size_t p = 0; p < order.vertex.size(); ++p) g.coefficients[p] = order.vertex[p] == 14 ? 1 : coefficient;
+  const size_t n = order.vertex.size();
+  g.coefficients.resize(n);
+  for (size_t p = 0; p < n; ++p) g.coefficients[p] = order.vertex[p] == n - 1 ? last : coefficient;
   return g;
 }
 
@@ -54,25 +56,69 @@ std::vector<std::vector<uint32_t>> refusedFrames(const TrajectoryGroup& g, const
   return refused;
 }
 
+// Grids of 15 vertices (one kernel step of 16 lanes or two of 8, the last lane past the last
+// vertex) and of 21 (with 16 lanes, a step of 16, then one of 5 with 8 lanes).
 TEST(TrajectoryFrames, OnlyTheFramesWithABadValueAreRefused) {
-  const Topology topology = testing_support::gridTopology(3, 5);
-  const CodingOrder order(topology);
-  for (SimdPath path : availableSimdPaths()) {
-    // Vertex 14 alone: 20 x 1e29 = 2e30 at frame 5, infinity at frame 1.
-    const TrajectoryGroup huge = oneComponent(order, 1, {}, 1e29f, {0, 0, 0, 0, 0, 20}, 0);
-    EXPECT_EQ(refusedFrames(huge, order, path), (std::vector<std::vector<uint32_t>>{{5}, {5}}));
-    const TrajectoryGroup infinite = oneComponent(order, 1, {}, 3e38f, {0, 20, 0, 0, 0, 0}, 0);
-    EXPECT_EQ(refusedFrames(infinite, order, path), (std::vector<std::vector<uint32_t>>{{1}, {1}}));
-    // At frame 3 the mean is 1.5e30 and every vertex's coefficient cancels it to 0: only the
-    // lane past the last vertex, which is no vertex, holds 1.5e30.
-    const TrajectoryGroup cancelled = oneComponent(order, 1e29f, {0, 0, 0, 15, 0, 0}, 1e29f, {0, 0, 0, -15, 0, 0}, 1);
-    EXPECT_EQ(refusedFrames(cancelled, order, path), (std::vector<std::vector<uint32_t>>{{}, {}}));
-    GroupFrames frames;
-    frames.reset(cancelled, order, path);
-    std::vector<float> xyz(3 * order.vertex.size(), 1.0f);
-    ASSERT_TRUE(frames.frame(3, xyz.data()));
-    EXPECT_EQ(xyz[0], 0.0f);
-    EXPECT_EQ(xyz[3 * 14], 0.0f);
+  for (int rows : {5, 7}) {
+    const Topology topology = testing_support::gridTopology(3, rows);
+    const CodingOrder order(topology);
+    for (SimdPath path : availableSimdPaths()) {
+      SCOPED_TRACE(testing::Message() << topology.vertex_count << " vertices, path " << int(path));
+      // The last vertex alone: 20 x 1e29 = 2e30 at frame 5; 2 x 3e38 = infinity at frame 1.
+      const TrajectoryGroup huge = oneComponent(order, 1, {}, 1e29f, {0, 0, 0, 0, 0, 20}, 0, 1);
+      EXPECT_EQ(refusedFrames(huge, order, path), (std::vector<std::vector<uint32_t>>{{5}, {5}}));
+      const TrajectoryGroup infinite = oneComponent(order, 1, {}, 1e37f, {0, 30, 0, 0, 0, 0}, 0, 2);
+      EXPECT_EQ(refusedFrames(infinite, order, path), (std::vector<std::vector<uint32_t>>{{1}, {1}}));
+      // At frame 3 the mean is 1.5e30 and every vertex's coefficient cancels it to 0: only the
+      // lanes past the last vertex, which are no vertex, hold 1.5e30.
+      const TrajectoryGroup cancelled =
+          oneComponent(order, 1e29f, {0, 0, 0, 15, 0, 0}, 1e29f, {0, 0, 0, -15, 0, 0}, 1, 1);
+      EXPECT_EQ(refusedFrames(cancelled, order, path), (std::vector<std::vector<uint32_t>>{{}, {}}));
+      GroupFrames frames;
+      frames.reset(cancelled, order, path);
+      std::vector<float> xyz(3 * order.vertex.size(), 1.0f);
+      ASSERT_TRUE(frames.frame(3, xyz.data()));
+      EXPECT_EQ(xyz[0], 0.0f);
+      EXPECT_EQ(xyz[xyz.size() - 3], 0.0f);
+    }
+  }
+}
+
+// A trajectory decoder keeps the group it decoded last while the same payload bytes come
+// back (a random access into it): a payload that differs in any byte must decode as a fresh
+// decoder decodes it, refused or not.
+TEST(TrajectoryFrames, TheGroupIsKeptOnlyForTheSameBytes) {
+  const MemorySequence seq = testing_support::gridSequence(9, 6, 8, 1.0, 0.5);
+  EncodeSettings settings;
+  settings.trajectory();
+  std::vector<float> all;
+  for (const auto& frame : seq.frames()) all.insert(all.end(), frame.begin(), frame.end());
+  std::vector<std::vector<uint8_t>> payloads;
+  settings.entry()
+      .makeGroupEncoder(settings.options, seq.topology(), bestSimdPath())
+      ->encodeGroup(all.data(), 8, payloads);
+  const std::vector<uint8_t>& group = payloads[0];
+  auto decoder = [&] {
+    return settings.entry().makeDecoder(settings.options, seq.topology(), {}, "grid", bestSimdPath()).value();
+  };
+  auto kept = decoder();
+  std::vector<float> xyz;
+  ASSERT_TRUE(kept->decodeFrame(ByteReader(group.data(), group.size()), xyz, nullptr).ok());
+  ASSERT_EQ(xyz.size(), seq.frames()[0].size());
+  for (size_t at = 1; at < group.size(); at += 3) {
+    std::vector<uint8_t> changed = group;
+    changed[at] ^= 0x55;
+    std::vector<float> kept_xyz, fresh_xyz;
+    const Status a = kept->decodeFrame(ByteReader(changed.data(), changed.size()), kept_xyz, nullptr);
+    const Status b = decoder()->decodeFrame(ByteReader(changed.data(), changed.size()), fresh_xyz, nullptr);
+    ASSERT_EQ(a.ok(), b.ok()) << "byte " << at;
+    EXPECT_EQ(a.message(), b.message()) << "byte " << at;
+    if (a.ok()) {
+      EXPECT_EQ(kept_xyz, fresh_xyz) << "byte " << at;
+    }
+    // Back to the group decoded at first: its frame 0 again.
+    ASSERT_TRUE(kept->decodeFrame(ByteReader(group.data(), group.size()), kept_xyz, nullptr).ok());
+    EXPECT_EQ(kept_xyz, xyz) << "byte " << at;
   }
 }
 

@@ -228,7 +228,8 @@ Status readTrajectoryGroup(ByteReader payload, const CodingOrder& order, uint64_
   return Status();
 }
 
-void dequantiseBasis(const TrajectoryGroup& g, GroupBasis& b) {
+GroupBasis dequantisedBasis(const TrajectoryGroup& g) {
+  GroupBasis b;
   b.frames = g.frames;
   b.components = g.components;
   const size_t row = size_t(3) * g.frames;
@@ -237,11 +238,12 @@ void dequantiseBasis(const TrajectoryGroup& g, GroupBasis& b) {
   b.basis.resize(g.components * row);
   for (uint32_t k = 0; k < g.components; ++k)
     for (size_t i = 0; i < row; ++i) b.basis[k * row + i] = float(g.basis[k * row + i]) * g.basis_step[k];
+  return b;
 }
 
 void GroupFrames::reset(const TrajectoryGroup& g, const CodingOrder& order, SimdPath path) {
   path_ = path;
-  dequantiseBasis(g, basis_);
+  basis_ = dequantisedBasis(g);
   vertices_ = uint32_t(order.vertex.size());
   const uint32_t components = g.components;
   // Panels: a kernel step reads one front to back instead of K rows far apart. Each vertex is

@@ -65,13 +65,7 @@ struct GroupBasis {
   UninitialisedVector<float> mean;   // 3G
   UninitialisedVector<float> basis;  // K rows of 3G
 };
-// Into `basis`, whose buffers are used again.
-void dequantiseBasis(const TrajectoryGroup& group, GroupBasis& basis);
-inline GroupBasis dequantisedBasis(const TrajectoryGroup& group) {
-  GroupBasis basis;
-  dequantiseBasis(group, basis);
-  return basis;
-}
+GroupBasis dequantisedBasis(const TrajectoryGroup& group);
 
 // The largest coordinate a decoder hands out, as for the other codecs.
 constexpr float kMaxDecodedValue = 1e30f;
@@ -82,8 +76,9 @@ inline float dequantisedCoefficient(int32_t value, float step) { return float(va
 // The frames of a group: every decoder and the encoder compute them with these float
 // operations in this order, so that they agree to the bit (docs/format.md 12.4). Frames are
 // computed kBatch at a time, so that the coefficients are read once for all of them, for
-// vertices kLanes at a time, from panels of their coefficients (K x kLanes floats, a
-// component's kLanes values together; lanes past the last vertex are zeros).
+// vertices kLanes at a time (two panels side by side, 2 x kLanes, on the AVX-512 path), from
+// panels of their coefficients (K x kLanes floats, a component's kLanes values together; lanes
+// past the last vertex are zeros).
 struct FrameKernel {
   static constexpr uint32_t kBatch = 4;
   static constexpr uint32_t kLanes = 8;
@@ -99,8 +94,7 @@ struct FrameKernel {
   // `vertices`, v_begin a multiple of kLanes, into out: 3 floats a vertex, `vertices` a frame.
   // Any split of the vertices computes each vertex alike, so threads may share them. Returns
   // the frames (bit f for frame first + f) where one of these vertices has a value that is
-  // not finite or above kMaxDecodedValue in size: found as the values are made, not by a pass
-  // over them afterwards.
+  // not finite or above kMaxDecodedValue in size, tracked as the values are written.
   static uint32_t run(SimdPath path, const GroupBasis& basis, const float* panels, uint32_t vertices, uint32_t v_begin,
                       uint32_t v_end, uint32_t first, float* out);
 };

@@ -1,6 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
 #include <algorithm>
-#include <cmath>
 #include <memory>
 
 #include "codecs/trajectory/group_coding.h"
@@ -62,7 +61,6 @@ class TrajectoryDecoder final : public FrameDecoder {
     return Status();
   }
 
- private:
   // Made with the first group: the decoder of an auto file holds one for each candidate, and
   // a large mesh's order takes a while to compute.
   const CodingOrder& order() {
