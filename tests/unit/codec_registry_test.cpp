@@ -3,7 +3,9 @@
 // options, and its parameters survive being written and read back.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
+#include <functional>
 #include <string>
 
 #include "api.h"
@@ -52,6 +54,38 @@ TEST(CodecRegistry, EveryEntryIsFoundAndRoundTripsItsParameters) {
 // Every codec, in a few settings, through every SimdPath this build and CPU run: the encoders
 // write the same payloads and the decoders give the same frames, so files are identical on
 // every CPU. (CI also builds without the AVX2 kernels and checks the golden files with it.)
+// What one setting writes and decodes on one kernel path.
+struct PathOutput {
+  std::vector<std::vector<uint8_t>> payloads;
+  std::vector<std::vector<float>> frames;
+};
+using CodeOnPath = std::function<void(const EncodeSettings&, SimdPath, PathOutput&)>;
+
+// Each setting coded by code() on every path this build and CPU run: every path must write and
+// decode what the portable one does.
+void expectEveryPathAlike(const std::vector<EncodeSettings>& settings, const CodeOnPath& code) {
+  const std::vector<SimdPath> paths = availableSimdPaths();
+  for (const EncodeSettings& s : settings) {
+    SCOPED_TRACE(describeSettings(s));
+    std::vector<PathOutput> out(paths.size());
+    for (size_t p = 0; p < paths.size(); ++p) {
+      code(s, paths[p], out[p]);
+      if (::testing::Test::HasFatalFailure()) return;
+    }
+    for (size_t p = 1; p < paths.size(); ++p) {
+      EXPECT_EQ(out[0].payloads, out[p].payloads) << "path " << int(paths[p]);
+      EXPECT_EQ(out[0].frames, out[p].frames) << "path " << int(paths[p]);
+    }
+  }
+}
+
+// Decodes payload with decoder into a new frame of out, after the payload itself.
+void decodeInto(FrameDecoder& decoder, const std::vector<uint8_t>& payload, PathOutput& out) {
+  out.payloads.push_back(payload);
+  out.frames.emplace_back();
+  ASSERT_TRUE(decoder.decodeFrame(ByteReader(payload.data(), payload.size()), out.frames.back(), nullptr).ok());
+}
+
 TEST(CodecRegistry, EverySimdPathWritesAndDecodesTheSameBytes) {
   if (availableSimdPaths().size() < 2) GTEST_SKIP() << "not run: this build or CPU has one kernel path only";
   std::vector<EncodeSettings> settings(5);
@@ -61,33 +95,17 @@ TEST(CodecRegistry, EverySimdPathWritesAndDecodesTheSameBytes) {
   settings[3].wavelet().progressive_p_frames = true;
   settings[4].wavelet().local_frames = true;
   const MemorySequence seq = testing_support::gridSequence(14, 11, 12, 1.0, 0.5);
-  const Topology& topology = seq.topology();
-  for (const EncodeSettings& s : settings) {
-    SCOPED_TRACE(describeSettings(s));
-    const std::vector<SimdPath> paths = availableSimdPaths();
-    std::vector<std::vector<std::vector<uint8_t>>> payloads(paths.size());
-    std::vector<std::vector<std::vector<float>>> frames(paths.size());
-    for (size_t p = 0; p < paths.size(); ++p) {
-      const SimdPath path = paths[p];
-      auto encoder = s.entry().makeEncoder(s.options, topology, path);
-      auto decoder = s.entry().makeDecoder(s.options, topology, {}, "grid", path);
-      ASSERT_TRUE(decoder.ok()) << decoder.status().message();
-      for (size_t f = 0; f < seq.frames().size(); ++f) {
-        FrameCodingStats stats;
-        payloads[p].emplace_back();
-        encoder->encodeFrame(seq.frames()[f].data(), f % 5 == 0, payloads[p].back(), stats);
-        frames[p].emplace_back();
-        ASSERT_TRUE(decoder.value()
-                        ->decodeFrame(ByteReader(payloads[p].back().data(), payloads[p].back().size()),
-                                      frames[p].back(), nullptr)
-                        .ok());
-      }
+  expectEveryPathAlike(settings, [&](const EncodeSettings& s, SimdPath path, PathOutput& out) {
+    auto encoder = s.entry().makeEncoder(s.options, seq.topology(), path);
+    auto decoder = s.entry().makeDecoder(s.options, seq.topology(), {}, "grid", path);
+    ASSERT_TRUE(decoder.ok()) << decoder.status().message();
+    for (size_t f = 0; f < seq.frames().size(); ++f) {
+      FrameCodingStats stats;
+      std::vector<uint8_t> payload;
+      encoder->encodeFrame(seq.frames()[f].data(), f % 5 == 0, payload, stats);
+      ASSERT_NO_FATAL_FAILURE(decodeInto(*decoder.value(), payload, out));
     }
-    for (size_t p = 1; p < paths.size(); ++p) {
-      EXPECT_EQ(payloads[0], payloads[p]) << "path " << int(paths[p]);
-      EXPECT_EQ(frames[0], frames[p]) << "path " << int(paths[p]);
-    }
-  }
+  });
 }
 
 // The same for the codecs that code whole groups, on a grid of 21 x 7 vertices (147: the
@@ -99,37 +117,21 @@ TEST(CodecRegistry, EverySimdPathWritesAndDecodesTheSameGroups) {
   settings[1].trajectory().rate_value = 0.05;  // a KG target of 0.05 %: more components
   settings[2].automatic();
   const MemorySequence seq = testing_support::gridSequence(21, 7, 20, 1.0, 0.5);
-  const Topology& topology = seq.topology();
   std::vector<float> all;
   for (const auto& frame : seq.frames()) all.insert(all.end(), frame.begin(), frame.end());
-  for (const EncodeSettings& s : settings) {
-    SCOPED_TRACE(describeSettings(s));
-    const std::vector<SimdPath> paths = availableSimdPaths();
-    std::vector<std::vector<std::vector<uint8_t>>> payloads(paths.size());
-    std::vector<std::vector<std::vector<float>>> frames(paths.size());
-    for (size_t p = 0; p < paths.size(); ++p) {
-      auto encoder = s.entry().makeGroupEncoder(s.options, topology, paths[p]);
-      auto decoder = s.entry().makeDecoder(s.options, topology, {}, "grid", paths[p]);
-      ASSERT_TRUE(decoder.ok()) << decoder.status().message();
-      const size_t size = 3 * size_t(topology.vertex_count);
-      for (uint32_t first = 0; first < seq.frames().size(); first += 8) {
-        const uint32_t count = std::min<uint32_t>(8, uint32_t(seq.frames().size()) - first);
-        std::vector<std::vector<uint8_t>> group;
-        encoder->encodeGroup(all.data() + first * size, count, group);
-        for (const auto& payload : group) {
-          payloads[p].push_back(payload);
-          frames[p].emplace_back();
-          ASSERT_TRUE(
-              decoder.value()->decodeFrame(ByteReader(payload.data(), payload.size()), frames[p].back(), nullptr).ok());
-        }
-      }
+  const uint32_t frame_count = uint32_t(seq.frames().size());
+  expectEveryPathAlike(settings, [&](const EncodeSettings& s, SimdPath path, PathOutput& out) {
+    auto encoder = s.entry().makeGroupEncoder(s.options, seq.topology(), path);
+    auto decoder = s.entry().makeDecoder(s.options, seq.topology(), {}, "grid", path);
+    ASSERT_TRUE(decoder.ok()) << decoder.status().message();
+    const size_t size = 3 * size_t(seq.topology().vertex_count);
+    for (uint32_t first = 0; first < frame_count; first += 8) {
+      std::vector<std::vector<uint8_t>> group;
+      encoder->encodeGroup(all.data() + first * size, std::min<uint32_t>(8, frame_count - first), group);
+      for (const auto& payload : group) ASSERT_NO_FATAL_FAILURE(decodeInto(*decoder.value(), payload, out));
     }
-    ASSERT_EQ(frames[0].size(), seq.frames().size());
-    for (size_t p = 1; p < paths.size(); ++p) {
-      EXPECT_EQ(payloads[0], payloads[p]) << "path " << int(paths[p]);
-      EXPECT_EQ(frames[0], frames[p]) << "path " << int(paths[p]);
-    }
-  }
+    ASSERT_EQ(out.frames.size(), frame_count);
+  });
 }
 
 // ctest runs this a second time with ANIMC_SIMD=portable (simd_portable_forced in
