@@ -16,7 +16,7 @@ constexpr uint32_t kVerticesPerTask = 16384;
 // vertices are cut into one range per thread, and each thread reads every triangle but
 // writes only the rows of its own range: no two threads write the same row, and each row
 // comes out the same however the vertices are cut.
-UninitialisedVector<uint32_t> listEdges(const Topology& topology, std::vector<uint32_t>& listed) {
+UninitialisedVector<uint32_t> listEdges(const Topology& topology, UninitialisedVector<uint32_t>& listed) {
   const uint32_t n = topology.vertex_count;
   const auto& triangles = topology.triangles;
   const size_t ranges = std::max<size_t>(1, std::min<size_t>(ThreadBudget::current(), n / kVerticesPerTask));
@@ -32,7 +32,7 @@ UninitialisedVector<uint32_t> listEdges(const Topology& topology, std::vector<ui
               [&](size_t range) { forOwnCorners(range, [&](const Triangle& t, int k) { listed[t[k] + 1] += 2; }); });
   for (uint32_t v = 0; v < n; ++v) listed[v + 1] += listed[v];
   UninitialisedVector<uint32_t> all(listed[n]);
-  std::vector<uint32_t> fill(listed.begin(), listed.end() - 1);
+  UninitialisedVector<uint32_t> fill(listed.begin(), listed.end() - 1);
   parallelFor(ranges, 2 * cost, [&](size_t range) {
     forOwnCorners(range, [&](const Triangle& t, int k) {
       all[fill[t[k]]++] = t[(k + 1) % 3];
@@ -46,7 +46,7 @@ UninitialisedVector<uint32_t> listEdges(const Topology& topology, std::vector<ui
 
 VertexAdjacency::VertexAdjacency(const Topology& topology, Neighbours kept) : first_(topology.vertex_count + 1, 0) {
   const uint32_t n = topology.vertex_count;
-  std::vector<uint32_t> listed(n + 1, 0);  // start of each vertex's listing
+  UninitialisedVector<uint32_t> listed(n + 1, 0);  // start of each vertex's listing
   UninitialisedVector<uint32_t> all = listEdges(topology, listed);
   // The rows are sorted and stripped of repeats on threads, each into its own rows, and
   // packed: the same rows on any thread count.

@@ -20,7 +20,7 @@ class VertexAdjacency {
   const uint32_t* end(uint32_t v) const { return &neighbours_[0] + first_[v + 1]; }
 
  private:
-  std::vector<uint32_t> first_;
+  UninitialisedVector<uint32_t> first_;
   UninitialisedVector<uint32_t> neighbours_;
 };
 

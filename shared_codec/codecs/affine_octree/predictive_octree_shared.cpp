@@ -3,6 +3,7 @@
 
 #include "codecs/affine_octree/cell_kernels.h"
 #include "codecs/affine_octree/predictive_octree.h"
+#include "core/large_memory.h"
 
 namespace animc {
 
@@ -16,9 +17,14 @@ CellPoints::CellPoints(CellPoints& whole, size_t first)
 void CellPoints::gather(const PFrameInput& in, const uint32_t* idx, size_t n) {
   if (!window_) {
     const size_t size = kPointStride * n;
-    if (own_reference_.size() < size) own_reference_.resize(size);
-    if (in.target && own_target_.size() < size) own_target_.resize(size);
-    if (!useAvx2(path) && own_scratch_.size() < size) own_scratch_.resize(size);
+    auto grow = [size](std::vector<double>& buffer) {
+      if (buffer.size() >= size) return;
+      reserveWithHugePages(buffer, size);
+      buffer.resize(size);
+    };
+    grow(own_reference_);
+    if (in.target) grow(own_target_);
+    if (!useAvx2(path)) grow(own_scratch_);
     reference_ = own_reference_.data();
     target_ = own_target_.data();
     scratch_ = own_scratch_.data();

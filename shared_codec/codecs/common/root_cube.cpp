@@ -9,8 +9,9 @@
 #include <string>
 
 #include "codecs/common/root_cube.h"
-#include "core/simd_math.h"
+#include "core/large_memory.h"
 #include "core/sequence.h"
+#include "core/simd_math.h"
 
 namespace animc {
 namespace {
@@ -196,6 +197,7 @@ Status decodedFrameToFloats([[maybe_unused]] SimdPath path, const std::vector<do
 
 RootCube denormalise([[maybe_unused]] SimdPath path, const RootCube& cube, const std::vector<double>& unit,
                      std::vector<double>& out) {
+  reserveWithHugePages(out, unit.size());
   out.resize(unit.size());
 #if ANIMC_AVX2_PATH
   if (useAvx2(path)) return denormaliseAvx2(cube, unit.data(), unit.size(), out.data());

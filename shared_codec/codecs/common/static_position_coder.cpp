@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/large_memory.h"
 #include "entropy/integer_coder.h"
 #include "io/byte_writer.h"
 
@@ -52,7 +53,9 @@ void StaticPositionCoder::encode(const std::vector<double>& xyz, double step, st
   header.f64(step);
   out.insert(out.end(), header.bytes().begin(), header.bytes().end());
 
-  std::vector<int64_t> q(xyz.size());
+  std::vector<int64_t> q;
+  reserveWithHugePages(q, xyz.size());
+  q.resize(xyz.size());
   for (size_t i = 0; i < xyz.size(); ++i)
     q[i] = int64_t(std::llround(std::min((xyz[i] - min[i % 3]) / step, kMaxGridIndex)));
   IFrameModel model;
@@ -69,6 +72,7 @@ void StaticPositionCoder::encode(const std::vector<double>& xyz, double step, st
     }
   }
   rc.finish();
+  reserveWithHugePages(recon, xyz.size());
   recon.resize(xyz.size());
   for (size_t i = 0; i < xyz.size(); ++i) recon[i] = min[i % 3] + double(q[i]) * step;
 }

@@ -97,7 +97,7 @@ constexpr uint32_t kVerticesPerTask = 4096;
 CodingOrder::CodingOrder(const Topology& topology) {
   const uint32_t n = topology.vertex_count;
   const VertexAdjacency adjacency(topology);
-  std::vector<uint32_t> position(n, UINT32_MAX);
+  UninitialisedVector<uint32_t> position(n, UINT32_MAX);
   vertex.reserve(n);
   // The vertices placed so far are the breadth-first queue: those from `next` on are waiting.
   auto place = [&](uint32_t v) {

@@ -19,8 +19,8 @@ namespace animc {
 // in it, the positions of the neighbours coded before it: they predict its coefficients.
 struct CodingOrder {
   explicit CodingOrder(const Topology& topology);
-  std::vector<uint32_t> vertex;   // vertex at each position
-  std::vector<uint32_t> first;    // earlier[first[p] .. first[p + 1]) for position p
+  UninitialisedVector<uint32_t> vertex;   // vertex at each position
+  UninitialisedVector<uint32_t> first;    // earlier[first[p] .. first[p + 1]) for position p
   UninitialisedVector<uint32_t> earlier;  // positions
 };
 

@@ -12,6 +12,7 @@
 #include "codecs/trajectory/group_coding.h"
 #include "codecs/trajectory/step_search.h"
 #include "codecs/trajectory/trajectory_codec.h"
+#include "core/large_memory.h"
 #include "core/parallel.h"
 
 namespace animc {
@@ -121,6 +122,7 @@ class TrajectoryEncoder final : public GroupEncoder {
   RowMatrixF trajectories() const {
     const uint32_t g = frame_count_;
     RowMatrixF x(vertices_, 3 * g);
+    adviseHugePages(x.data(), size_t(x.size()) * sizeof(float));  // the encoder's largest buffer
     forVertexBlocks(vertices_, 3.0 * g, [&](size_t, uint32_t begin, uint32_t end) {
       for (uint32_t p = begin; p < end; ++p)
         for (uint32_t t = 0; t < g; ++t)
