@@ -12,6 +12,7 @@
 #include "api.h"
 #include "codecs/codec_registry.h"
 #include "codecs/trajectory/group_coding.h"
+#include "codecs/trajectory/group_frames.h"
 #include "core/simd_math.h"
 #include "test_sequences.h"
 

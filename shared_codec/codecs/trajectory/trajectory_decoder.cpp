@@ -3,6 +3,7 @@
 #include <memory>
 
 #include "codecs/trajectory/group_coding.h"
+#include "codecs/trajectory/group_frames.h"
 #include "codecs/trajectory/trajectory_codec.h"
 
 namespace animc {

@@ -10,6 +10,7 @@
 
 #include "codecs/trajectory/components.h"
 #include "codecs/trajectory/group_coding.h"
+#include "codecs/trajectory/group_frames.h"
 #include "codecs/trajectory/step_search.h"
 #include "codecs/trajectory/trajectory_codec.h"
 #include "core/large_memory.h"
