@@ -11,8 +11,10 @@ docs/benchmarks.md; run alone, this script replaces that section in place.
 
 usage: bench/bench_threads.py [--animc PATH] [--data DIR] [--runs R] [--out FILE]"""
 import filecmp
+import json
 import os
 import statistics
+import subprocess
 import tempfile
 
 import numpy as np
@@ -104,6 +106,19 @@ def measure(animc, name, pc2_path, ply, extra, runs, work):
             mvps(dec_s[1]), mvps(dec_s[2]), num(dec) + '×'], enc, dec
 
 
+def machine_scaling(work):
+    """bench/memory_scaling.cpp's speed-ups of this machine on two threads, or None without g++."""
+    source = os.path.join(os.path.dirname(os.path.abspath(__file__)), 'memory_scaling.cpp')
+    probe = os.path.join(work, 'memory_scaling')
+    try:
+        subprocess.run(['g++', '-O2', '-std=c++17', '-pthread', source, '-o', probe], check=True,
+                       capture_output=True)
+    except (OSError, subprocess.CalledProcessError):
+        return None
+    log('two threads against one on plain work (bench/memory_scaling.cpp)')
+    return json.loads(subprocess.run([probe], check=True, capture_output=True, text=True).stdout)
+
+
 def amdahl(speedup, threads):
     """(parallel fraction p from a speedup on 2 threads, projected speedup on `threads`)."""
     p = min(1.0, max(0.0, 2 * (1 - 1 / speedup)))
@@ -116,6 +131,7 @@ def threads_section(animc, sequences, runs):
         cases = [(s['name'], s['pc2'], s['ply'], []) for s in sequences]
         cases += [(s['name'] + f', groups of {GROUP_FRAMES}', s['pc2'], s['ply'],
                    ['--iframe-interval', str(GROUP_FRAMES)]) for s in sequences]
+        machine = [machine_scaling(work)]
         large = None
         if sequences:
             log(f'making the large sequence from {sequences[0]["name"]}')
@@ -130,6 +146,7 @@ def threads_section(animc, sequences, runs):
                 continue
             rows.append(row[0])
             speedups.append((name, row[1], row[2]))
+        machine.append(machine_scaling(work))
         memory = []
         if large:
             for codec, threads in [(c, t) for c in MEMORY_CODECS for t in THREADS]:
@@ -180,6 +197,15 @@ def threads_section(animc, sequences, runs):
                   'serial and memory bandwidth keeps up; it is an estimate, not a measurement.', '']
         lines += table(['sequence', 'encode p', 'encode 4 cores', 'encode 8 cores', 'decode p', 'decode 4 cores',
                         'decode 8 cores'], projected) + ['']
+    if all(machine):
+        probe = lambda m: (f'arithmetic in registers {num(m["arithmetic"])}×, reads streaming through 256 MiB a '
+                           f'thread {num(m["streaming_reads"])}×, writes at random places in 32 MiB a thread '
+                           f'{num(m["random_writes"])}×')
+        lines += ['What two threads can give on this machine: the same work on two threads against one '
+                  '(`bench/memory_scaling.cpp`, compiled and run by this script, median of 5 rounds), before '
+                  f'the runs above: {probe(machine[0])}; after them: {probe(machine[1])}. On a shared virtual '
+                  'machine the second core\'s share of memory varies with the neighbours\' load, and work '
+                  'bound by memory (a large group\'s frames, adjacency and coefficients) gains what it gives.', '']
     return lines, failures
 
 
