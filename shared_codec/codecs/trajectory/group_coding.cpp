@@ -7,7 +7,6 @@
 
 #include "codecs/trajectory/options.h"
 #include "core/adjacency.h"
-#include "core/parallel.h"
 #include "entropy/classed_integer.h"
 #include "io/byte_writer.h"
 
@@ -95,7 +94,12 @@ CodingOrder::CodingOrder(const Topology& topology) {
   const VertexAdjacency adjacency(topology);
   UninitialisedVector<uint32_t> position(n, UINT32_MAX);
   vertex.reserve(n);
+  first.reserve(size_t(n) + 1);
+  first.push_back(0);
+  earlier.reserve(adjacency.entries() / 2);  // each edge once, from its later end
   // The vertices placed so far are the breadth-first queue: those from `next` on are waiting.
+  // When one leaves it, every vertex before it has its position, and those of its neighbours
+  // are its earlier ones: they are listed then, while its row of neighbours is at hand.
   auto place = [&](uint32_t v) {
     position[v] = uint32_t(vertex.size());
     vertex.push_back(v);
@@ -104,30 +108,14 @@ CodingOrder::CodingOrder(const Topology& topology) {
     if (position[root] != UINT32_MAX) continue;
     place(root);
     for (size_t next = vertex.size() - 1; next < vertex.size(); ++next) {
-      const uint32_t v = vertex[next];
-      for (const uint32_t* w = adjacency.begin(v); w != adjacency.end(v); ++w)
+      for (const uint32_t* w = adjacency.begin(vertex[next]); w != adjacency.end(vertex[next]); ++w) {
         if (position[*w] == UINT32_MAX) place(*w);
+        else if (position[*w] < next)
+          earlier.push_back(position[*w]);
+      }
+      first.push_back(uint32_t(earlier.size()));
     }
   }
-  // Only the walk above is serial. Each position's earlier neighbours are listed on threads:
-  // counted, summed into `first`, then written in place, the same lists on any thread count.
-  auto forEarlier = [&](uint32_t p, const auto& visit) {
-    const uint32_t v = vertex[p];
-    for (const uint32_t* w = adjacency.begin(v); w != adjacency.end(v); ++w)
-      if (position[*w] < p) visit(position[*w]);
-  };
-  first.assign(size_t(n) + 1, 0);
-  parallelForBlocks(n, kVerticesPerTask, 20, [&](size_t, size_t begin, size_t end) {
-    for (size_t p = begin; p < end; ++p) forEarlier(uint32_t(p), [&](uint32_t) { ++first[p + 1]; });
-  });
-  for (uint32_t p = 0; p < n; ++p) first[p + 1] += first[p];
-  earlier.resize(first[n]);
-  parallelForBlocks(n, kVerticesPerTask, 20, [&](size_t, size_t begin, size_t end) {
-    for (size_t p = begin; p < end; ++p) {
-      uint32_t* out = earlier.data() + first[p];
-      forEarlier(uint32_t(p), [&](uint32_t q) { *out++ = q; });
-    }
-  });
 }
 
 void writeTrajectoryGroup(const TrajectoryGroup& g, const CodingOrder& order, std::vector<uint8_t>& out) {
