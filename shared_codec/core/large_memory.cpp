@@ -49,6 +49,8 @@ void freeLarge(void* memory, size_t bytes) noexcept {
   if (memory != nullptr) munmap(memory, roundUp(bytes, kPageBytes));
 }
 
+bool largeMemoryIsMapped() noexcept { return true; }
+
 void adviseHugePages(void* memory, size_t bytes) noexcept {
   const uintptr_t begin = roundUp(reinterpret_cast<uintptr_t>(memory), kHugePageBytes);
   const uintptr_t end = (reinterpret_cast<uintptr_t>(memory) + bytes) / kHugePageBytes * kHugePageBytes;
@@ -57,6 +59,7 @@ void adviseHugePages(void* memory, size_t bytes) noexcept {
 #else
 void* allocateLarge(size_t bytes) { return ::operator new(bytes); }
 void freeLarge(void* memory, size_t) noexcept { ::operator delete(memory); }
+bool largeMemoryIsMapped() noexcept { return false; }
 void adviseHugePages(void*, size_t) noexcept {}
 #endif
 

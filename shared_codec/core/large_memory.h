@@ -22,6 +22,8 @@ constexpr size_t kLargeBytes = size_t(32) << 20;
 void* allocateLarge(size_t bytes);
 // Frees what allocateLarge(bytes) returned, with the same `bytes`.
 void freeLarge(void* memory, size_t bytes) noexcept;
+// Whether allocateLarge() maps the memory itself (else it is operator new).
+bool largeMemoryIsMapped() noexcept;
 
 // Marks the whole huge pages inside [memory, memory + bytes) for transparent huge pages, for a
 // buffer from elsewhere (a std::vector's reserve()) that is about to be written for the first time.

@@ -27,9 +27,11 @@ TEST(LargeMemory, HoldsEveryByteWritten) {
 }
 
 TEST(LargeMemory, ASizeNoSystemHasIsBadAlloc) {
+  EXPECT_THROW(DefaultInitAllocator<double>().allocate(SIZE_MAX / 4), std::bad_alloc);
+  if (!largeMemoryIsMapped())
+    GTEST_SKIP() << "large buffers come from operator new in this build (AddressSanitizer aborts on such sizes)";
   EXPECT_THROW(allocateLarge(SIZE_MAX - 100), std::bad_alloc);
   EXPECT_THROW(allocateLarge(size_t(1) << 62), std::bad_alloc);
-  EXPECT_THROW(DefaultInitAllocator<double>().allocate(SIZE_MAX / 4), std::bad_alloc);
 }
 
 TEST(LargeMemory, AVectorKeepsItsValuesAcrossTheThreshold) {
