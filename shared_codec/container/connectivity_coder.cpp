@@ -166,8 +166,7 @@ Status decodePieces(ByteReader in, uint32_t vertex_count, uint64_t triangle_coun
       ANIMC_RETURN_IF_ERROR(appendStream(p.stream, vertex_count, p.first, p.count, p.next_new, out));
     return Status();
   }
-  reserveWithHugePages(out, size_t(triangle_count));
-  out.resize(size_t(triangle_count));
+  resizeWithHugePages(out, size_t(triangle_count));
   std::vector<Status> status(pieces.size());
   const double piece_cost = pieces.empty() ? 0 : kTriangleCost * double(pieces[0].count);
   parallelFor(pieces.size(), piece_cost, [&](size_t k) {

@@ -29,13 +29,15 @@ bool largeMemoryIsMapped() noexcept;
 // buffer from elsewhere (a std::vector's reserve()) that is about to be written for the first time.
 void adviseHugePages(void* memory, size_t bytes) noexcept;
 
-// v.reserve(n), and huge pages for the memory when that allocates it: for a std::vector of a
-// large buffer before its first resize().
+// v.resize(n), with huge pages for the memory when that allocates it: for a std::vector of a
+// large buffer about to be written for the first time.
 template <class Vector>
-void reserveWithHugePages(Vector& v, size_t n) {
-  if (v.capacity() >= n) return;
-  v.reserve(n);
-  adviseHugePages(v.data(), v.capacity() * sizeof(*v.data()));
+void resizeWithHugePages(Vector& v, size_t n) {
+  if (v.capacity() < n) {
+    v.reserve(n);
+    adviseHugePages(v.data(), v.capacity() * sizeof(*v.data()));
+  }
+  v.resize(n);
 }
 
 }  // namespace animc

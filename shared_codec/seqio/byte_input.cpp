@@ -148,8 +148,7 @@ Result<std::vector<uint8_t>> readWholeFile(const std::string& path) {
   if (size < 0) return ioError(path + ": cannot determine the file size");
   std::vector<uint8_t> bytes;
   try {
-    reserveWithHugePages(bytes, static_cast<size_t>(size));
-    bytes.resize(static_cast<size_t>(size));
+    resizeWithHugePages(bytes, static_cast<size_t>(size));
   } catch (const std::bad_alloc&) {
     return limitExceeded(path + ": file too large to load (" + std::to_string(size) + " bytes)");
   }

@@ -47,16 +47,18 @@ TEST(LargeMemory, AVectorKeepsItsValuesAcrossTheThreshold) {
   EXPECT_EQ(values, copy);
 }
 
-TEST(LargeMemory, ReservingWithHugePagesKeepsTheValues) {
+TEST(LargeMemory, ResizingWithHugePagesKeepsTheValues) {
   std::vector<double> values(1000);
   for (size_t i = 0; i < values.size(); ++i) values[i] = double(i) / 3;
-  reserveWithHugePages(values, 2 * kLargeBytes / sizeof(double));
+  resizeWithHugePages(values, 2 * kLargeBytes / sizeof(double));
   ASSERT_GE(values.capacity(), 2 * kLargeBytes / sizeof(double));
-  ASSERT_EQ(values.size(), 1000u);
-  for (size_t i = 0; i < values.size(); ++i) ASSERT_EQ(values[i], double(i) / 3) << i;
+  ASSERT_EQ(values.size(), 2 * kLargeBytes / sizeof(double));
+  for (size_t i = 0; i < 1000; ++i) ASSERT_EQ(values[i], double(i) / 3) << i;
+  EXPECT_EQ(values[1000], 0.0);  // the new values are value-initialised, as resize() makes them
   const double* data = values.data();
-  reserveWithHugePages(values, 10);  // already large enough: nothing moves
+  resizeWithHugePages(values, 1000);  // already large enough: nothing moves
   EXPECT_EQ(values.data(), data);
+  EXPECT_EQ(values.size(), 1000u);
   values.resize(values.capacity(), 1.5);
   EXPECT_EQ(values.back(), 1.5);
 }

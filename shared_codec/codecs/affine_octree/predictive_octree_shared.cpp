@@ -18,9 +18,7 @@ void CellPoints::gather(const PFrameInput& in, const uint32_t* idx, size_t n) {
   if (!window_) {
     const size_t size = kPointStride * n;
     auto grow = [size](std::vector<double>& buffer) {
-      if (buffer.size() >= size) return;
-      reserveWithHugePages(buffer, size);
-      buffer.resize(size);
+      if (buffer.size() < size) resizeWithHugePages(buffer, size);
     };
     grow(own_reference_);
     if (in.target) grow(own_target_);

@@ -197,8 +197,7 @@ Status decodedFrameToFloats([[maybe_unused]] SimdPath path, const std::vector<do
 
 RootCube denormalise([[maybe_unused]] SimdPath path, const RootCube& cube, const std::vector<double>& unit,
                      std::vector<double>& out) {
-  reserveWithHugePages(out, unit.size());
-  out.resize(unit.size());
+  resizeWithHugePages(out, unit.size());
 #if ANIMC_AVX2_PATH
   if (useAvx2(path)) return denormaliseAvx2(cube, unit.data(), unit.size(), out.data());
 #endif

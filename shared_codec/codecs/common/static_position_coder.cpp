@@ -54,8 +54,7 @@ void StaticPositionCoder::encode(const std::vector<double>& xyz, double step, st
   out.insert(out.end(), header.bytes().begin(), header.bytes().end());
 
   std::vector<int64_t> q;
-  reserveWithHugePages(q, xyz.size());
-  q.resize(xyz.size());
+  resizeWithHugePages(q, xyz.size());
   for (size_t i = 0; i < xyz.size(); ++i)
     q[i] = int64_t(std::llround(std::min((xyz[i] - min[i % 3]) / step, kMaxGridIndex)));
   IFrameModel model;
@@ -72,8 +71,7 @@ void StaticPositionCoder::encode(const std::vector<double>& xyz, double step, st
     }
   }
   rc.finish();
-  reserveWithHugePages(recon, xyz.size());
-  recon.resize(xyz.size());
+  resizeWithHugePages(recon, xyz.size());
   for (size_t i = 0; i < xyz.size(); ++i) recon[i] = min[i % 3] + double(q[i]) * step;
 }
 

@@ -58,8 +58,4 @@ void writeTrajectoryGroup(const TrajectoryGroup& group, const CodingOrder& order
 Status readTrajectoryGroup(ByteReader payload, const CodingOrder& order, uint64_t max_multiply_adds,
                            TrajectoryGroup& group);
 
-// Vertices a thread takes at a time when the coding order is listed, the panels are filled or
-// a batch of frames is computed.
-constexpr uint32_t kVerticesPerTask = 4096;
-
 }  // namespace animc

@@ -8,6 +8,12 @@
 #include "core/parallel.h"
 
 namespace animc {
+namespace {
+
+// Vertices a thread takes at a time when the panels are filled or a batch is computed.
+constexpr uint32_t kVerticesPerTask = 4096;
+
+}  // namespace
 
 GroupBasis dequantisedBasis(const TrajectoryGroup& g) {
   GroupBasis b;
