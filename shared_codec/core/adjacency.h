@@ -18,6 +18,7 @@ class VertexAdjacency {
   explicit VertexAdjacency(const Topology& topology, Neighbours kept = Neighbours::kAll);
   const uint32_t* begin(uint32_t v) const { return &neighbours_[first_[v]]; }
   const uint32_t* end(uint32_t v) const { return &neighbours_[0] + first_[v + 1]; }
+  uint32_t vertices() const { return uint32_t(first_.size() - 1); }
   // All rows' neighbours together.
   size_t entries() const { return neighbours_.size() - 1; }
 

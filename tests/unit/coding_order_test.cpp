@@ -2,7 +2,8 @@
 // The trajectory codec's coding order is docs/format.md's breadth-first walk (12.3), and each
 // position's earlier neighbours are exactly its neighbours placed before it, in index order:
 // checked against a plain rendering of that definition on a mesh of several pieces, with
-// vertex labels shuffled so that the walk jumps around, and a vertex in no triangle.
+// vertex labels shuffled so that the walk jumps around, and a vertex in no triangle. A group
+// read while its order is walked beside it, on a second thread, is the group read after it.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -14,6 +15,7 @@
 #include <vector>
 
 #include "codecs/trajectory/group_coding.h"
+#include "core/parallel.h"
 #include "test_sequences.h"
 
 namespace animc {
@@ -74,6 +76,55 @@ TEST(CodingOrder, IsTheBreadthFirstWalkWithEachPositionsEarlierNeighbours) {
     const std::vector<uint32_t> listed(order.earlier.begin() + order.first[p],
                                        order.earlier.begin() + order.first[p + 1]);
     EXPECT_EQ(listed, expected) << "position " << p;
+  }
+}
+
+// A group of three components with values that vary from vertex to vertex, so that every
+// prediction context is met and a coefficient read too early would come out wrong.
+TrajectoryGroup variedGroup(uint32_t vertices) {
+  TrajectoryGroup g;
+  g.frames = 4;
+  g.components = 3;
+  g.coefficient_step = 0.5f;
+  g.mean_step = 0.25f;
+  g.mean.assign(3 * g.frames, 7);
+  g.basis_step.assign(g.components, 0.125f);
+  g.basis.assign(size_t(g.components) * 3 * g.frames, -3);
+  g.coefficients.resize(size_t(vertices) * g.components);
+  std::mt19937 random(5);
+  for (int32_t& c : g.coefficients) c = int32_t(random() % 9) - 4;
+  return g;
+}
+
+TEST(CodingOrder, AGroupReadBesideItsWalkIsTheGroupReadAfterIt) {
+  // Many steps of the walk's progress reports, so that the reading catches up with the walk.
+  const Topology topology = testing_support::gridTopology(150, 120);
+  const CodingOrder order(topology);
+  const TrajectoryGroup group = variedGroup(topology.vertex_count);
+  std::vector<uint8_t> payload;
+  writeTrajectoryGroup(group, order, payload);
+  const ByteReader coded(payload.data() + 1, payload.size() - 1);  // after the Frame_Type
+  for (unsigned threads : {1u, 2u}) {
+    SCOPED_TRACE(testing::Message() << threads << " thread(s)");
+    ThreadBudget budget(threads);
+    std::unique_ptr<const CodingOrder> walked;
+    TrajectoryGroup read;
+    ASSERT_TRUE(walkAndReadTrajectoryGroup(topology, coded, UINT64_MAX, walked, read).ok());
+    ASSERT_TRUE(walked);
+    EXPECT_TRUE(std::equal(walked->vertex.begin(), walked->vertex.end(), order.vertex.begin(), order.vertex.end()));
+    EXPECT_TRUE(std::equal(walked->first.begin(), walked->first.end(), order.first.begin(), order.first.end()));
+    EXPECT_TRUE(std::equal(walked->earlier.begin(), walked->earlier.end(), order.earlier.begin(), order.earlier.end()));
+    EXPECT_TRUE(std::equal(read.coefficients.begin(), read.coefficients.end(), group.coefficients.begin(),
+                           group.coefficients.end()));
+    EXPECT_EQ(read.mean, group.mean);
+    EXPECT_EQ(read.basis, group.basis);
+
+    // A damaged group is refused, and the order walked beside it is still whole.
+    const ByteReader cut(payload.data() + 1, payload.size() / 2);
+    walked.reset();
+    EXPECT_FALSE(walkAndReadTrajectoryGroup(topology, cut, UINT64_MAX, walked, read).ok());
+    ASSERT_TRUE(walked);
+    EXPECT_TRUE(std::equal(walked->first.begin(), walked->first.end(), order.first.begin(), order.first.end()));
   }
 }
 

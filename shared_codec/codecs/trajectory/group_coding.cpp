@@ -4,9 +4,11 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <thread>
 
 #include "codecs/trajectory/options.h"
 #include "core/adjacency.h"
+#include "core/parallel.h"
 #include "entropy/classed_integer.h"
 #include "io/byte_writer.h"
 
@@ -87,35 +89,59 @@ bool decodeRow(RangeDecoder& rc, RawBitReader& raw, ClassedIntegerModel& m, int3
 
 bool usableStep(float s) { return std::isfinite(s) && s > 0; }
 
+// Positions a walk does between two reports of its progress.
+constexpr uint32_t kPositionsPerStep = 1024;
+
+// Waits until a walk has done `wanted` positions; returns how many it has done.
+uint32_t awaitPositions(const std::atomic<uint32_t>& done, uint32_t wanted) {
+  uint32_t now;
+  while ((now = done.load(std::memory_order_acquire)) < wanted) std::this_thread::yield();
+  return now;
+}
+
 }  // namespace
 
 CodingOrder::CodingOrder(const Topology& topology) {
-  const uint32_t n = topology.vertex_count;
   const VertexAdjacency adjacency(topology);
-  UninitialisedVector<uint32_t> position(n, UINT32_MAX);
-  vertex.reserve(n);
-  first.reserve(size_t(n) + 1);
-  first.push_back(0);
-  earlier.reserve(adjacency.entries() / 2);  // each edge once, from its later end
+  *this = CodingOrder(adjacency);
+  walk(adjacency, nullptr);
+}
+
+// Each edge is listed once, from its later end: `earlier` is exactly half the adjacency's
+// entries, whose rows are symmetric and hold no vertex itself (core/adjacency.h).
+CodingOrder::CodingOrder(const VertexAdjacency& adjacency)
+    : vertex(adjacency.vertices()), first(size_t(adjacency.vertices()) + 1), earlier(adjacency.entries() / 2),
+      position_(adjacency.vertices(), UINT32_MAX) {}
+
+void CodingOrder::walk(const VertexAdjacency& adjacency, std::atomic<uint32_t>* done) {
+  const uint32_t n = adjacency.vertices();
+  uint32_t* const position = position_.data();
+  uint32_t placed = 0, listed = 0;
+  first[0] = 0;
   // The vertices placed so far are the breadth-first queue: those from `next` on are waiting.
   // When one leaves it, every vertex before it has its position, and those of its neighbours
   // are its earlier ones: they are listed then, while its row of neighbours is at hand.
   auto place = [&](uint32_t v) {
-    position[v] = uint32_t(vertex.size());
-    vertex.push_back(v);
+    position[v] = placed;
+    vertex[placed++] = v;
   };
   for (uint32_t root = 0; root < n; ++root) {
     if (position[root] != UINT32_MAX) continue;
     place(root);
-    for (size_t next = vertex.size() - 1; next < vertex.size(); ++next) {
+    for (uint32_t next = placed - 1; next < placed; ++next) {
       for (const uint32_t* w = adjacency.begin(vertex[next]); w != adjacency.end(vertex[next]); ++w) {
         if (position[*w] == UINT32_MAX) place(*w);
         else if (position[*w] < next)
-          earlier.push_back(position[*w]);
+          earlier[listed++] = position[*w];
       }
-      first.push_back(uint32_t(earlier.size()));
+      first[next + 1] = listed;
+      // A reader following the walk is told in steps: a store per position would cost more
+      // than the reader gains.
+      if (done && (next + 1) % kPositionsPerStep == 0) done->store(next + 1, std::memory_order_release);
     }
   }
+  position_ = {};
+  if (done) done->store(n, std::memory_order_release);
 }
 
 void writeTrajectoryGroup(const TrajectoryGroup& g, const CodingOrder& order, std::vector<uint8_t>& out) {
@@ -149,8 +175,8 @@ void writeTrajectoryGroup(const TrajectoryGroup& g, const CodingOrder& order, st
   raw.appendTo(out);
 }
 
-Status readTrajectoryGroup(ByteReader payload, const CodingOrder& order, uint64_t max_multiply_adds,
-                           TrajectoryGroup& g) {
+Status readTrajectoryGroup(ByteReader payload, const CodingOrder& order, uint64_t max_multiply_adds, TrajectoryGroup& g,
+                           const std::atomic<uint32_t>* done) {
   const uint64_t n = order.vertex.size();
   ANIMC_ASSIGN_OR_RETURN(uint16_t frames, payload.u16("Frame_Count"));
   ANIMC_ASSIGN_OR_RETURN(uint16_t components, payload.u16("Component_Count"));
@@ -196,7 +222,9 @@ Status readTrajectoryGroup(ByteReader payload, const CodingOrder& order, uint64_
   // Damaged data is found at the end: the loops are as long whatever the bytes, and a
   // decoder that reads past its input gets zeros.
   Predictions predictions(components);
+  uint32_t walked = done ? 0 : uint32_t(n);
   for (uint32_t p = 0; fits && p < n; ++p) {
+    if (p == walked) walked = awaitPositions(*done, p + 1);
     predictions.at(order, g.coefficients.data(), p);
     for (uint32_t k = 0; k < components; ++k) {
       const Prediction pred = predictions[k];
@@ -210,6 +238,18 @@ Status readTrajectoryGroup(ByteReader payload, const CodingOrder& order, uint64_
   if (!fits || rc.overran() || raw.overran() || coded_bytes + raw.bytesUsed() > payload.remaining() + kFinishReadAhead)
     return corrupt("trajectory group: coded data ends early or is damaged");
   return Status();
+}
+
+Status walkAndReadTrajectoryGroup(const Topology& topology, ByteReader payload, uint64_t max_multiply_adds,
+                                  std::unique_ptr<const CodingOrder>& order, TrajectoryGroup& g) {
+  const VertexAdjacency adjacency(topology);
+  auto walking = std::make_unique<CodingOrder>(adjacency);
+  std::atomic<uint32_t> done{0};
+  Status read;
+  runBeside([&] { walking->walk(adjacency, &done); },
+            [&] { read = readTrajectoryGroup(payload, *walking, max_multiply_adds, g, &done); });
+  order = std::move(walking);
+  return read;
 }
 
 }  // namespace animc

@@ -4,9 +4,12 @@
 // decoder makes of it are in group_frames.h.
 #pragma once
 #include <algorithm>
+#include <atomic>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
+#include "core/adjacency.h"
 #include "core/sequence.h"
 #include "core/status.h"
 #include "core/uninitialised_vector.h"
@@ -22,6 +25,17 @@ struct CodingOrder {
   UninitialisedVector<uint32_t> vertex;   // vertex at each position
   UninitialisedVector<uint32_t> first;    // earlier[first[p] .. first[p + 1]) for position p
   UninitialisedVector<uint32_t> earlier;  // positions
+
+  // The order in storage sized once for its adjacency, so that another thread may read the
+  // positions done while walk() writes the next ones.
+  explicit CodingOrder(const VertexAdjacency& adjacency);
+  // Walks the order, once; when `done` is not null, stores there (released) how many positions
+  // are done (their vertex and earlier positions written) as it goes. It allocates nothing, so
+  // a reader waiting for it cannot be left waiting by a failure.
+  void walk(const VertexAdjacency& adjacency, std::atomic<uint32_t>* done);
+
+ private:
+  UninitialisedVector<uint32_t> position_;  // of each vertex, until the walk ends
 };
 
 // The group as coded. Trajectory rows are 3G long: x over the G frames, then y, then z.
@@ -55,7 +69,14 @@ constexpr uint8_t kTrajectoryNextFrame = 1;   // the group's next frame: nothing
 void writeTrajectoryGroup(const TrajectoryGroup& group, const CodingOrder& order, std::vector<uint8_t>& out);
 // Reads a group payload after its Frame_Type byte; a group whose reconstruction would cost more
 // than max_multiply_adds (3 x components x vertices x frames) is refused before any decoding.
+// `done`, when not null, is a walk's count of the positions of `order` done so far: the reading
+// waits for each position to be done (CodingOrder::walk).
 Status readTrajectoryGroup(ByteReader payload, const CodingOrder& order, uint64_t max_multiply_adds,
-                           TrajectoryGroup& group);
+                           TrajectoryGroup& group, const std::atomic<uint32_t>* done = nullptr);
+// The coding order of `topology` into `order`, and the group of `payload` read with it: the
+// order is walked on a second thread when the budget allows, and the reading follows it
+// position by position. `order` is complete even when the group is not read.
+Status walkAndReadTrajectoryGroup(const Topology& topology, ByteReader payload, uint64_t max_multiply_adds,
+                                  std::unique_ptr<const CodingOrder>& order, TrajectoryGroup& group);
 
 }  // namespace animc

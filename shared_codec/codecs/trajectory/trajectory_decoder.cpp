@@ -56,17 +56,16 @@ class TrajectoryDecoder final : public FrameDecoder {
       return Status();
     frames_ = GroupFrames();  // a failed read leaves no group to continue
     group_payload_.clear();
-    ANIMC_RETURN_IF_ERROR(readTrajectoryGroup(payload, order(), max_multiply_adds_, group_));
-    frames_.reset(group_, order(), path_);
+    // The order is made with the first group: the decoder of an auto file holds one for each
+    // candidate, and a large mesh's order takes a while to compute.
+    if (order_) {
+      ANIMC_RETURN_IF_ERROR(readTrajectoryGroup(payload, *order_, max_multiply_adds_, group_));
+    } else {
+      ANIMC_RETURN_IF_ERROR(walkAndReadTrajectoryGroup(topology_, payload, max_multiply_adds_, order_, group_));
+    }
+    frames_.reset(group_, *order_, path_);
     group_payload_.assign(bytes, bytes + size);
     return Status();
-  }
-
-  // Made with the first group: the decoder of an auto file holds one for each candidate, and
-  // a large mesh's order takes a while to compute.
-  const CodingOrder& order() {
-    if (!order_) order_ = std::make_unique<const CodingOrder>(topology_);
-    return *order_;
   }
 
   const Topology& topology_;
