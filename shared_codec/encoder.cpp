@@ -209,24 +209,19 @@ Result<Encoder> EncoderAccess::create(const EncodeSettings& settings, Topology t
   // the same either way).
   const uint64_t group_bytes = uint64_t(settings.iframe_interval) * 12 * impl->topology.vertex_count;
   const bool batch_frames = impl->threads > 1 && settings.iframe_interval > 0 && group_bytes <= kMaxGatheredGroupBytes;
-  // The connectivity is coded beside the coders' construction (their mesh tables, on the
-  // encoder's threads), into a buffer reserved here: memory the coding thread allocated would
-  // stay with that thread's heap once freed, where the caller's heap takes it back. A mesh in
-  // a poor triangle order codes to about 5 bytes a triangle; beyond that the buffer grows.
+  // The coders are made (their mesh tables), then the connectivity is coded, each on the
+  // encoder's threads: a format-2 connectivity in pieces at once, into a buffer reserved here.
   std::vector<uint8_t> connectivity;
   connectivity.reserve(6 * impl->topology.triangles.size());
   {
     ThreadBudget budget(impl->threads);
-    runBeside(
-        [&] { encodeConnectivity(impl->topology, settings.connectivity_piece, connectivity); },
-        [&] {
-          if (codec.makeGroupEncoder || batch_frames) {
-            impl->group_coders.push_back(makeAnyGroupEncoder(codec, settings.options, impl->topology, bestSimdPath()));
-            impl->max_group_frames = impl->group_coders[0]->maxGroupFrames();
-          } else {
-            impl->codec = codec.makeEncoder(settings.options, impl->topology, bestSimdPath());
-          }
-        });
+    if (codec.makeGroupEncoder || batch_frames) {
+      impl->group_coders.push_back(makeAnyGroupEncoder(codec, settings.options, impl->topology, bestSimdPath()));
+      impl->max_group_frames = impl->group_coders[0]->maxGroupFrames();
+    } else {
+      impl->codec = codec.makeEncoder(settings.options, impl->topology, bestSimdPath());
+    }
+    encodeConnectivity(impl->topology, settings.connectivity_piece, connectivity);
   }
   ANIMC_RETURN_IF_ERROR(impl->writer.addConnectivity(connectivity));
   // A group codec's first frame record carries the whole group: not static.

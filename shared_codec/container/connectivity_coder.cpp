@@ -22,7 +22,7 @@ struct ConnectivityModels {
 
 // A format-2 piece's entry in CONN's table: its stream's length and the Next_New it starts from.
 constexpr uint64_t kPieceEntryBytes = 8 + 4;
-// Range decoding costs about this many operations a triangle (parallelFor's unit).
+// Range coding costs about this many operations a triangle (parallelFor's unit).
 constexpr double kTriangleCost = 100;
 
 uint32_t chooseFor(uint32_t index, const Triangle& previous, uint32_t next_new) {
@@ -101,28 +101,45 @@ struct Piece {
   ByteReader stream;
 };
 
-// Room for the table, then each piece's stream straight after it in `out`, one piece after
-// the other, and the table written over its room: the encoder codes the connectivity beside its
-// other setup, so threads would gain nothing, and streams of their own would hold the
-// connectivity twice.
+// Bytes a piece's stream is given before it is coded: a mesh in a poor triangle order codes
+// to about 5 bytes a triangle; beyond that the stream grows.
+constexpr size_t kReservedBytesPerTriangle = 6;
+
+// A piece's stream while it is coded, on a cache line of its own: the coder moves the end of
+// its vector at every byte, which threads coding neighbouring pieces would otherwise share.
+struct alignas(64) PieceStream {
+  std::vector<uint8_t> bytes;
+};
+
+// The table, then each piece's stream. The pieces are coded at once on the calling thread's
+// budget, each into a buffer of its own reserved here on the calling thread: one a helper
+// thread allocated would stay with that thread's heap once freed.
 void encodePieces(const Topology& topology, uint32_t piece_triangles, std::vector<uint8_t>& out) {
   const std::vector<Triangle>& triangles = topology.triangles;
   const size_t pieces = (triangles.size() - 1) / piece_triangles + 1;
-  const size_t table_at = out.size();
-  out.resize(table_at + 4 + pieces * kPieceEntryBytes);
+  auto beginOf = [&](size_t k) { return std::min(triangles.size(), k * size_t(piece_triangles)); };
+  std::vector<uint32_t> next_new(pieces + 1, 0);  // one more than the largest index before each piece
+  std::vector<PieceStream> streams(pieces);
+  for (size_t k = 0; k < pieces; ++k) {
+    streams[k].bytes.reserve(kReservedBytesPerTriangle * (beginOf(k + 1) - beginOf(k)));
+    for (size_t i = beginOf(k); i < beginOf(k + 1); ++i)
+      for (uint32_t v : triangles[i]) next_new[k + 1] = std::max(next_new[k + 1], v + 1);
+    next_new[k + 1] = std::max(next_new[k + 1], next_new[k]);
+  }
+  parallelFor(pieces, kTriangleCost * piece_triangles, [&](size_t k) {
+    encodeStream(triangles.data() + beginOf(k), triangles.data() + beginOf(k + 1), next_new[k], streams[k].bytes);
+  });
   ByteWriter table;
   table.u32(piece_triangles);
-  uint32_t next_new = 0;  // one more than the largest index before the piece
   for (size_t k = 0; k < pieces; ++k) {
-    const size_t begin = k * size_t(piece_triangles), end = std::min(triangles.size(), begin + piece_triangles);
-    const size_t stream_at = out.size();
-    encodeStream(triangles.data() + begin, triangles.data() + end, next_new, out);
-    table.u64(out.size() - stream_at);
-    table.u32(next_new);
-    for (size_t i = begin; i < end; ++i)
-      for (uint32_t v : triangles[i]) next_new = std::max(next_new, v + 1);
+    table.u64(streams[k].bytes.size());
+    table.u32(next_new[k]);
   }
-  std::copy(table.bytes().begin(), table.bytes().end(), out.begin() + ptrdiff_t(table_at));
+  out.insert(out.end(), table.bytes().begin(), table.bytes().end());
+  for (PieceStream& stream : streams) {
+    out.insert(out.end(), stream.bytes.begin(), stream.bytes.end());
+    stream.bytes = std::vector<uint8_t>();  // the connectivity is held about once, not twice
+  }
 }
 
 // Format 2's table, checked: the pieces' streams must fill the rest of the payload exactly.

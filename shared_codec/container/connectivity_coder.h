@@ -20,7 +20,8 @@ namespace animc {
 // one piece of piece_triangles (0: never cut), else 1.
 uint16_t formatVersionFor(uint64_t triangle_count, uint32_t piece_triangles);
 
-// Appends CONN's payload for formatVersionFor(topology's triangles, piece_triangles).
+// Appends CONN's payload for formatVersionFor(topology's triangles, piece_triangles). The
+// pieces of a format-2 payload are coded on the calling thread's budget (ThreadBudget).
 void encodeConnectivity(const Topology& topology, uint32_t piece_triangles, std::vector<uint8_t>& out);
 // vertex_count and triangle_count come from HEAD (already checked against the limits). The
 // pieces of a format-2 payload decode on the calling thread's budget (ThreadBudget).

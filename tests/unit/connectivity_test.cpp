@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 // The CONN section's two layouts (docs/format.md, section 6.2): one stream (format 1) and
 // pieces of a fixed number of triangles (format 2). Both must give back the triangle list
-// exactly; the pieces must decode the same on any number of threads; a damaged piece table
-// is refused with a Status before anything is allocated for it.
+// exactly; the pieces must code and decode the same on any number of threads; a damaged piece
+// table is refused with a Status before anything is allocated for it.
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -70,6 +70,22 @@ TEST(Connectivity, PiecesDecodeTheSameOnAnyNumberOfThreads) {
     ASSERT_TRUE(out.ok()) << out.status().message();
     EXPECT_EQ(out.value().triangles, mesh.triangles) << threads << " threads";
   }
+}
+
+TEST(Connectivity, PiecesCodeTheSameOnAnyNumberOfThreads) {
+  const Topology mesh = testing_support::gridTopology(120, 100);
+  Bytes one;
+  {
+    ThreadBudget budget(1);
+    one = coded(mesh, 1000);
+  }
+  for (unsigned threads : {2u, 3u, 0u}) {
+    ThreadBudget budget(resolveThreads(threads));
+    EXPECT_EQ(coded(mesh, 1000), one) << threads << " threads";
+  }
+  auto out = decoded(one, 2, mesh);
+  ASSERT_TRUE(out.ok()) << out.status().message();
+  EXPECT_EQ(out.value().triangles, mesh.triangles);
 }
 
 // A list that codes to almost nothing (one triangle over and over) claims more triangles than
