@@ -336,19 +336,22 @@ class TrajectoryEncoder final : public GroupEncoder {
   // pc.coefficients, on any thread), the blocks' sums added in order.
   std::vector<ColumnStats> columnStats(const Components& pc, double q, Eigen::Index first) const {
     const Eigen::Index count = pc.coefficients.cols() - first;
-    std::vector<std::vector<ColumnStats>> partial(vertexBlocks(vertices_), std::vector<ColumnStats>(size_t(count)));
+    std::vector<std::vector<ColumnStats>> partial(vertexBlocks(vertices_));
     forVertexBlocks(vertices_, 20.0 * double(count), [&](size_t b, uint32_t begin, uint32_t end) {
+      // Summed in a block's own vector, stored once: the blocks' vectors may share cache lines.
+      std::vector<ColumnStats> block(static_cast<size_t>(count));
       for (uint32_t p = begin; p < end; ++p)
         for (Eigen::Index k = 0; k < count; ++k) {
           const double c = pc.coefficients(p, first + k);
           const int32_t value = quantiseCoefficient(c, q);
           const double chat = value * q;
-          ColumnStats& s = partial[b][size_t(k)];
+          ColumnStats& s = block[size_t(k)];
           s.error += (c - chat) * (c - chat);
           s.energy += chat * chat;
           s.bits += estimatedBits(value);
           s.any |= value != 0;
         }
+      partial[b] = std::move(block);
     });
     std::vector<ColumnStats> total(static_cast<size_t>(count));
     for (const auto& block : partial)
@@ -484,9 +487,13 @@ class TrajectoryEncoder final : public GroupEncoder {
     const double q = header.coefficient_step;
     const size_t blocks = vertexBlocks(vertices_);
     std::vector<double> squared(blocks, 0);
-    std::vector<std::vector<double>> worst(blocks, std::vector<double>(frame_count_, 0));
+    std::vector<std::vector<double>> worst(blocks);
     forVertexBlocks(vertices_, 3.0 * (used + 4) * frame_count_, [&](size_t b, uint32_t v0, uint32_t end) {
       const uint32_t count = end - v0;
+      // Summed in the block's own variables, stored once: neighbouring blocks' slots share
+      // cache lines, and threads writing them at every vertex would pass those lines back and forth.
+      double block_squared = 0;
+      std::vector<double> block_worst(frame_count_, 0);
       std::vector<float> panels(FrameKernel::panelFloats(count, used), 0.0f);
       for (uint32_t i = 0; i < count && used > 0; ++i) {
         float* panel = panels.data() + FrameKernel::panelOffset(i, used);
@@ -505,11 +512,13 @@ class TrajectoryEncoder final : public GroupEncoder {
             double sq = 0;
             for (int c = 0; c < 3; ++c)
               sq += (double(decoded[v + c]) - original[v + c]) * (double(decoded[v + c]) - original[v + c]);
-            squared[b] += sq;
-            worst[b][t] = std::max(worst[b][t], sq);
+            block_squared += sq;
+            block_worst[t] = std::max(block_worst[t], sq);
           }
         }
       }
+      squared[b] = block_squared;
+      worst[b] = std::move(block_worst);
     });
     GroupError e;
     for (size_t b = 0; b < blocks; ++b) e.squared += squared[b];
