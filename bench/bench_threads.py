@@ -170,11 +170,12 @@ def threads_section(animc, sequences, runs):
              '(× frames) per second; both thread counts wrote identical bytes (checked). Without an I-frame '
              'interval each of these sequences is one group: its work is split inside the group (the '
              'trajectory Gram matrix and products; the rate search in blocks of 2048 vertices; decoding\'s frame reconstruction over ranges of 4096 '
-             'vertices, so not below that), the eigensolver stays on one thread. With '
+             'vertices, so not below that; the coding order\'s walk beside the reading of the group), the '
+             'eigensolver stays on one thread. With '
              f'`--iframe-interval {GROUP_FRAMES}` the groups are coded and decoded one a thread. The large '
              'sequence is one group of as many frames as the trajectory codec puts in one '
              '(2^25 / (3 × vertices)); with more than 65 536 triangles it is written as .ams format 2, whose '
-             'connectivity decodes in pieces on every thread (docs/format.md, section 6.2.2).', '']
+             'connectivity is coded and decoded in pieces on every thread (docs/format.md, section 6.2.2).', '']
     lines += table(['sequence', 'vertices', 'frames', 'bpvf', 'encode 1 thread', 'encode 2 threads', 'speed-up',
                     'decode 1 thread', 'decode 2 threads', 'speed-up'], rows) + ['']
     if memory:
