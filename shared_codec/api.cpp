@@ -4,6 +4,7 @@
 #include <algorithm>
 
 #include "core/atomic_file.h"
+#include "core/large_memory.h"
 #include "encoder_access.h"
 
 namespace animc {
@@ -39,7 +40,13 @@ Result<EncodeSummary> encodeSequence(FrameSource& source, const EncodeSettings& 
 Result<EncodeSummary> encodeSequence(FrameSource& source, const EncodeSettings& settings,
                                      std::unique_ptr<ByteSink> sink, const ProgressFn& progress,
                                      const FrameObserver& observer) {
-  auto created = createEncoder(settings, source.topology(), source.frameRate(), std::move(sink));
+  // The encoder's own copy of the mesh, in huge pages: a large mesh's triangles are tens of
+  // megabytes written here for the first time.
+  Topology topology;
+  topology.vertex_count = source.topology().vertex_count;
+  resizeWithHugePages(topology.triangles, source.topology().triangles.size());
+  std::copy(source.topology().triangles.begin(), source.topology().triangles.end(), topology.triangles.begin());
+  auto created = createEncoder(settings, std::move(topology), source.frameRate(), std::move(sink));
   if (!created.ok()) return created.status().withContext(source.where());
   Encoder& encoder = created.value();
   const int64_t total = source.frameCount();

@@ -210,9 +210,8 @@ Result<Encoder> EncoderAccess::create(const EncodeSettings& settings, Topology t
   const uint64_t group_bytes = uint64_t(settings.iframe_interval) * 12 * impl->topology.vertex_count;
   const bool batch_frames = impl->threads > 1 && settings.iframe_interval > 0 && group_bytes <= kMaxGatheredGroupBytes;
   // The coders are made (their mesh tables), then the connectivity is coded, each on the
-  // encoder's threads: a format-2 connectivity in pieces at once, into a buffer reserved here.
+  // encoder's threads: a format-2 connectivity in pieces at once.
   std::vector<uint8_t> connectivity;
-  connectivity.reserve(6 * impl->topology.triangles.size());
   {
     ThreadBudget budget(impl->threads);
     if (codec.makeGroupEncoder || batch_frames) {

@@ -135,6 +135,10 @@ void encodePieces(const Topology& topology, uint32_t piece_triangles, std::vecto
     table.u64(streams[k].bytes.size());
     table.u32(next_new[k]);
   }
+  size_t bytes = table.size();
+  for (const PieceStream& stream : streams) bytes += stream.bytes.size();
+  out.reserve(out.size() + bytes);
+  adviseHugePages(out.data(), out.capacity());
   out.insert(out.end(), table.bytes().begin(), table.bytes().end());
   for (PieceStream& stream : streams) {
     out.insert(out.end(), stream.bytes.begin(), stream.bytes.end());

@@ -12,13 +12,16 @@ Status ContainerWriter::put(const void* data, size_t size, bool in_crc) {
   return sink_->write(data, size);
 }
 
+// The payload goes to the sink as it is, between its tag and length and its CRC: a large one
+// (a mesh's connectivity) is not copied into a fresh buffer first.
 Status ContainerWriter::writeSection(const char* tag, const std::vector<uint8_t>& payload) {
-  ByteWriter w;
-  w.append(reinterpret_cast<const uint8_t*>(tag), 4);
-  w.u64(payload.size());
-  w.append(payload);
-  w.u32(crc32Update(0, payload.data(), payload.size()));
-  return sink_->write(w.bytes().data(), w.size());
+  ByteWriter head, tail;
+  head.append(reinterpret_cast<const uint8_t*>(tag), 4);
+  head.u64(payload.size());
+  tail.u32(crc32Update(0, payload.data(), payload.size()));
+  ANIMC_RETURN_IF_ERROR(sink_->write(head.bytes().data(), head.size()));
+  ANIMC_RETURN_IF_ERROR(sink_->write(payload.data(), payload.size()));
+  return sink_->write(tail.bytes().data(), tail.size());
 }
 
 Status ContainerWriter::open(std::unique_ptr<ByteSink> sink, const ContainerHeader& header) {

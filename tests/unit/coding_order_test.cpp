@@ -124,7 +124,9 @@ TEST(CodingOrder, AGroupReadBesideItsWalkIsTheGroupReadAfterIt) {
     walked.reset();
     EXPECT_FALSE(walkAndReadTrajectoryGroup(topology, cut, UINT64_MAX, walked, read).ok());
     ASSERT_TRUE(walked);
+    EXPECT_TRUE(std::equal(walked->vertex.begin(), walked->vertex.end(), order.vertex.begin(), order.vertex.end()));
     EXPECT_TRUE(std::equal(walked->first.begin(), walked->first.end(), order.first.begin(), order.first.end()));
+    EXPECT_TRUE(std::equal(walked->earlier.begin(), walked->earlier.end(), order.earlier.begin(), order.earlier.end()));
   }
 }
 

@@ -5,7 +5,10 @@
 // table is refused with a Status before anything is allocated for it.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdint>
+#include <numeric>
+#include <random>
 #include <vector>
 
 #include "container/connectivity_coder.h"
@@ -72,8 +75,20 @@ TEST(Connectivity, PiecesDecodeTheSameOnAnyNumberOfThreads) {
   }
 }
 
+// The grid with its vertex labels shuffled: a piece's largest index is then often below an
+// earlier piece's.
+Topology shuffledGrid() {
+  Topology mesh = testing_support::gridTopology(120, 100);
+  std::vector<uint32_t> label(mesh.vertex_count);
+  std::iota(label.begin(), label.end(), 0u);
+  std::shuffle(label.begin(), label.end(), std::mt19937(3));
+  for (Triangle& t : mesh.triangles)
+    for (uint32_t& v : t) v = label[v];
+  return mesh;
+}
+
 TEST(Connectivity, PiecesCodeTheSameOnAnyNumberOfThreads) {
-  const Topology mesh = testing_support::gridTopology(120, 100);
+  const Topology mesh = shuffledGrid();
   Bytes one;
   {
     ThreadBudget budget(1);
@@ -86,6 +101,20 @@ TEST(Connectivity, PiecesCodeTheSameOnAnyNumberOfThreads) {
   auto out = decoded(one, 2, mesh);
   ASSERT_TRUE(out.ok()) << out.status().message();
   EXPECT_EQ(out.value().triangles, mesh.triangles);
+  // The table (docs/format.md 6.2.2): each piece starts one past the largest index of the
+  // triangles before it, and the streams fill the rest of the payload.
+  ByteReader table(one.data(), one.size());
+  ASSERT_EQ(table.u32("Piece_Triangles").value(), 1000u);
+  const size_t pieces = (mesh.triangles.size() + 999) / 1000;
+  uint32_t start = 0;
+  uint64_t stream_bytes = 0;
+  for (size_t k = 0; k < pieces; ++k) {
+    stream_bytes += table.u64("Piece_Length").value();
+    EXPECT_EQ(table.u32("Piece_Start").value(), start) << "piece " << k;
+    for (size_t i = k * 1000; i < std::min(mesh.triangles.size(), (k + 1) * 1000); ++i)
+      for (uint32_t v : mesh.triangles[i]) start = std::max(start, v + 1);
+  }
+  EXPECT_EQ(table.remaining(), stream_bytes);
 }
 
 // A list that codes to almost nothing (one triangle over and over) claims more triangles than

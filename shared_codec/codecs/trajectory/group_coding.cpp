@@ -140,7 +140,7 @@ void CodingOrder::walk(const VertexAdjacency& adjacency, std::atomic<uint32_t>* 
       if (done && (next + 1) % kPositionsPerStep == 0) done->store(next + 1, std::memory_order_release);
     }
   }
-  position_ = {};
+  UninitialisedVector<uint32_t>().swap(position_);  // freed: assigning {} would keep the memory
   if (done) done->store(n, std::memory_order_release);
 }
 
