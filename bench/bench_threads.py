@@ -31,7 +31,7 @@ MEMORY_CODECS = ('auto', 'trajectory')
 LARGE_VERTICES = 500_000
 GROUP_VALUES = 2**25  # a trajectory group holds at most this many trajectory values (3 x frames x vertices)
 LARGE_RUNS = 5  # encoding the large sequence takes seconds: one run a round
-ROUNDS = 5  # the thread counts take turns this many times (measure())
+ROUNDS = 7  # the thread counts take turns this many times (measure())
 
 
 def subdivide(frames, faces):
@@ -70,7 +70,9 @@ def measure(animc, name, pc2_path, ply, extra, runs, work):
     """(a table row of both thread counts, encode speed-up, decode speed-up), or None when a
     run failed or the bytes differ. The thread counts take turns, ROUNDS rounds of runs / ROUNDS
     runs each (one for the large sequence), so that a slow spell of this shared machine falls on
-    both; each figure is the median over the rounds of a round's median."""
+    both; each speed figure is the median over the rounds of a round's median, and each speed-up
+    the median over the rounds of the round's own ratio (its two thread counts ran one after
+    the other, under the same load)."""
     rounds = ROUNDS
     per_round = max(1, round(runs / ROUNDS))
     encode_s = {t: [] for t in THREADS}
@@ -99,7 +101,8 @@ def measure(animc, name, pc2_path, ply, extra, runs, work):
     vertex_frames = first['vertices'] * first['frames']
     enc_s = {t: statistics.median(encode_s[t]) for t in THREADS}
     dec_s = {t: statistics.median(decode_s[t]) for t in THREADS}
-    enc, dec = enc_s[1] / enc_s[2], dec_s[1] / dec_s[2]
+    enc = statistics.median(one / two for one, two in zip(encode_s[1], encode_s[2]))
+    dec = statistics.median(one / two for one, two in zip(decode_s[1], decode_s[2]))
     mvps = lambda seconds: num(vertex_frames / seconds / 1e6)
     return [name, first['vertices'], first['frames'], num(first['bpvf'], 3),
             mvps(enc_s[1]), mvps(enc_s[2]), num(enc) + '×',
@@ -167,7 +170,9 @@ def threads_section(animc, sequences, runs):
              'decodes in the runs of groups a reader takes (`decodeChunkEnd`). The two thread counts take turns, '
              f'{ROUNDS} rounds each, so that a slow spell of the machine falls on both; each figure is the median of '
              'the rounds\' medians, in million vertices '
-             '(× frames) per second; both thread counts wrote identical bytes (checked). Without an I-frame '
+             '(× frames) per second, and each speed-up the median of the rounds\' own ratios (a round\'s two '
+             'thread counts ran one after the other, under the same load of the machine); both thread counts '
+             'wrote identical bytes (checked). Without an I-frame '
              'interval each of these sequences is one group: its work is split inside the group (the '
              'trajectory Gram matrix and products; the rate search in blocks of 2048 vertices; decoding\'s frame reconstruction over ranges of 4096 '
              'vertices, so not below that; the coding order\'s walk beside the reading of the group), the '
