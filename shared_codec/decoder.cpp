@@ -4,6 +4,7 @@
 #include "api.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cstdint>
 #include <cstring>
 
@@ -11,6 +12,12 @@
 
 namespace animc {
 namespace {
+
+// Groups a thread has in one batch of decodeGroups(), and in a reader's run of frames
+// (decodeChunkEnd()): the threads take the batch's groups one at a time, so that a slow group
+// (of another codec, or with more components) holds up the others less than in a batch of one
+// group a thread, each batch waiting for its slowest.
+constexpr size_t kGroupsPerThread = 4;
 
 // The settings a stream was written with, from its HEAD section.
 Result<EncodeSettings> readSettings(const ContainerHeader& h) {
@@ -158,24 +165,31 @@ Status Decoder::Impl::readPayloads(size_t g, int64_t last, std::vector<std::vect
 Status Decoder::Impl::decodeGroups(int64_t first, int64_t last, float* xyz, const ProgressFn& progress) {
   const size_t g_first = reader->groupOf(uint64_t(first)), g_last = reader->groupOf(uint64_t(last - 1));
   positioned = false;  // the cursor is left anywhere
-  for (size_t g0 = g_first; g0 <= g_last; g0 += threads) {
-    const size_t count = std::min<size_t>(threads, g_last + 1 - g0);
+  const size_t batch = kGroupsPerThread * threads;
+  for (size_t g0 = g_first; g0 <= g_last; g0 += batch) {
+    const size_t count = std::min<size_t>(batch, g_last + 1 - g0);
     // A group that cannot be read ends the batch there; the groups before it are decoded
     // first, so that the error reported is the first in frame order, as one thread finds it.
     std::vector<std::vector<std::vector<uint8_t>>> payloads(count);
     Status read_failure;
     size_t readable = 0;
     while (readable < count && (read_failure = readPayloads(g0 + readable, last, payloads[readable])).ok()) ++readable;
-    while (group_codecs.size() < readable) {
+    // One decoder a thread, which takes the next group when done with one: every group starts
+    // afresh from its intra frame, so any decoder gives it the same frames.
+    const size_t workers = std::min<size_t>(threads, readable);
+    while (group_codecs.size() < workers) {
       ANIMC_ASSIGN_OR_RETURN(auto codec, settings.entry().makeDecoder(settings.options, reader->topology(), decoding,
                                                                       name, bestSimdPath()));
       group_codecs.push_back(std::move(codec));
     }
     std::vector<Status> status(readable);
-    parallelFor(readable, [&](size_t i) {
-      const int64_t start = int64_t(reader->groupFirstFrame(g0 + i));
-      float* out = xyz ? xyz + size_t(std::max<int64_t>(0, start - first)) * 3 * info.vertices : nullptr;
-      status[i] = decodeGroupPart(*group_codecs[i], g0 + i, payloads[i], std::max(first, start), out);
+    std::atomic<size_t> next{0};
+    parallelFor(workers, [&](size_t worker) {
+      for (size_t i; (i = next.fetch_add(1)) < readable;) {
+        const int64_t start = int64_t(reader->groupFirstFrame(g0 + i));
+        float* out = xyz ? xyz + size_t(std::max<int64_t>(0, start - first)) * 3 * info.vertices : nullptr;
+        status[i] = decodeGroupPart(*group_codecs[worker], g0 + i, payloads[i], std::max(first, start), out);
+      }
     });
     for (const Status& s : status) ANIMC_RETURN_IF_ERROR(s);
     ANIMC_RETURN_IF_ERROR(read_failure);
@@ -346,10 +360,10 @@ int64_t decodeChunkEnd(const Decoder& decoder, int64_t first) {
   const int64_t most =
       int64_t(std::max<uint64_t>(1, std::min(kChunkBytes, d.decoding.limits.max_output_bytes) / frame_bytes));
   const int64_t cap = std::min(d.info.frames, first + most);
-  // The end of the group `threads` groups on, or failing that the last group boundary below
-  // the cap; inside one group, the cap (the next chunk goes on from there).
+  // The end of the group kGroupsPerThread x `threads` groups on, or failing that the last group
+  // boundary below the cap; inside one group, the cap (the next chunk goes on from there).
   const size_t g = d.reader->groupOf(uint64_t(first));
-  int64_t end = d.groupEnd(std::min(g + d.threads, d.reader->groupCount()) - 1);
+  int64_t end = d.groupEnd(std::min(g + kGroupsPerThread * d.threads, d.reader->groupCount()) - 1);
   while (end > cap) end = int64_t(d.reader->groupFirstFrame(d.reader->groupOf(uint64_t(end - 1))));
   if (end <= first) end = cap;
   // Frames of one group come one at a time from the cursor anyway (its reconstruction is split

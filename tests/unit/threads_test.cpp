@@ -151,6 +151,8 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(Mode{"octree_predictive", "affine-octree", {{"max-error", "0.004"}}, 8},
                       Mode{"octree_paper", "affine-octree", {{"profile", "paper"}}, 7},
                       Mode{"octree_one_group", "affine-octree", {}, 0},
+                      // 20 groups: decoding batches of several groups a thread, one after the other
+                      Mode{"octree_small_groups", "affine-octree", {}, 2},
                       Mode{"wavelet", "wavelet", {{"step", "0.001"}}, 9},
                       Mode{"wavelet_target_kg", "wavelet", {{"target-kg", "0.5"}}, 10},
                       Mode{"wavelet_progressive", "wavelet", {{"step", "0.001"}, {"progressive-p-frames", "1"}}, 12},
@@ -189,7 +191,7 @@ TEST(DecoderThreads, FramesRefusesARangeOutsideTheStreamOrAboveTheLimits) {
 }
 
 TEST(DecoderThreads, ReadersTakeSeveralGroupsAtOnceButOneGroupAFrameAtATime) {
-  const MemorySequence seq = gridSequence(12, 10, 20, 1.0, 1.0);
+  const MemorySequence seq = gridSequence(12, 10, 40, 1.0, 1.0);
   Mode groups{"groups", "affine-octree", {}, 4};
   Mode one_group{"one group", "trajectory", {{"target-kg", "0.3"}}, 0};
   const Coded grouped = encodeCollecting(seq, optionsOf(groups, 1));
@@ -199,12 +201,14 @@ TEST(DecoderThreads, ReadersTakeSeveralGroupsAtOnceButOneGroupAFrameAtATime) {
   auto by_groups = Decoder::openMemory(grouped.bytes.data(), grouped.bytes.size(), options);
   auto single = Decoder::openMemory(whole.bytes.data(), whole.bytes.size(), options);
   ASSERT_TRUE(by_groups.ok() && single.ok());
-  // Two groups of 4 frames a run (one a thread), from a group's start or from inside one.
-  EXPECT_EQ(decodeChunkEnd(by_groups.value(), 0), 8);
-  EXPECT_EQ(decodeChunkEnd(by_groups.value(), 5), 12);
+  // Eight groups of 4 frames a run (four a thread), from a group's start or from inside one;
+  // the run ends at the last group.
+  EXPECT_EQ(decodeChunkEnd(by_groups.value(), 0), 32);
+  EXPECT_EQ(decodeChunkEnd(by_groups.value(), 5), 36);
+  EXPECT_EQ(decodeChunkEnd(by_groups.value(), 30), 40);
   // Within one group (the last one here) the frames come from the cursor one by one: a run
   // would only hold memory.
-  EXPECT_EQ(decodeChunkEnd(by_groups.value(), 17), 18);
+  EXPECT_EQ(decodeChunkEnd(by_groups.value(), 37), 38);
   EXPECT_EQ(decodeChunkEnd(single.value(), 0), 1);
   EXPECT_EQ(decodeChunkEnd(single.value(), 13), 14);
 }
