@@ -137,11 +137,11 @@ void encodePieces(const Topology& topology, uint32_t piece_triangles, std::vecto
   }
   size_t bytes = table.size();
   for (const PieceStream& stream : streams) bytes += stream.bytes.size();
-  out.reserve(out.size() + bytes);
-  adviseHugePages(out.data(), out.capacity());
-  out.insert(out.end(), table.bytes().begin(), table.bytes().end());
+  const size_t at = out.size();
+  resizeWithHugePages(out, at + bytes);
+  auto to = std::copy(table.bytes().begin(), table.bytes().end(), out.begin() + ptrdiff_t(at));
   for (PieceStream& stream : streams) {
-    out.insert(out.end(), stream.bytes.begin(), stream.bytes.end());
+    to = std::copy(stream.bytes.begin(), stream.bytes.end(), to);
     stream.bytes = std::vector<uint8_t>();  // the connectivity is held about once, not twice
   }
 }
