@@ -258,20 +258,26 @@ def code(groups, kind, predictor, order, q):
     return bits, sq
 
 
-def at_target(frames, groups, kind, predictor, order, target):
+def search_step(frames, cost, target):
+    """(bits, KG %) at the coarsest step q (bisected on log2 q) whose cost(q) = (bits, squared
+    error) meets the KG target on the frames."""
     denominator = float(((frames - frames.mean(axis=1, keepdims=True)) ** 2).sum())
     scale = math.log2(float(np.ptp(frames, axis=(0, 1)).max()))
     lo, hi = scale - 24, scale  # log2 of q
     best = None
     for _ in range(20):
         mid = (lo + hi) / 2
-        bits, sq = code(groups, kind, predictor, order, 2 ** mid)
+        bits, sq = cost(2 ** mid)
         kg = 100 * math.sqrt(sq / denominator)
         if kg <= target:
             best, lo = (bits, kg), mid
         else:
             hi = mid
     return best
+
+
+def at_target(frames, groups, kind, predictor, order, target):
+    return search_step(frames, lambda q: code(groups, kind, predictor, order, q), target)
 
 
 def our_codecs(animc, pc2_path, ply_path, targets):
