@@ -16,7 +16,6 @@ trajectories are mostly connected parts, so most labels repeat that one).
   usage: bench/experiments/trajectory_clusters.py ANIMC DATA_DIR [--kg 0.1,0.3,0.45,1]
          [--clusters 2,4,8]
 """
-import argparse
 import os
 import sys
 
@@ -25,10 +24,8 @@ import numpy as np
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.dirname(HERE))
 sys.path.insert(0, HERE)
-import pc2  # noqa: E402
-import ply  # noqa: E402
 import trajectory_coding as model  # noqa: E402
-from bench_common import find_sequences, table  # noqa: E402
+from bench_common import table  # noqa: E402
 
 
 def label_bits(labels, faces):
@@ -78,20 +75,13 @@ def at_target(frames, clusters, target, label_bits):
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument('animc')
-    parser.add_argument('data_dir')
-    parser.add_argument('--kg', default='0.1,0.3,0.45,1')
+    parser = model.experiment_parser(__doc__)
     parser.add_argument('--clusters', default='2,4,8')
     args = parser.parse_args()
     counts = [1] + [int(c) for c in args.clusters.split(',')]
     rows = []
-    for name, pc2_path, ply_path in find_sequences(args.data_dir):
-        frames, _ = pc2.read_pc2(pc2_path)
-        frames = frames.astype(np.float64)
-        faces = ply.read_ply_faces(ply_path)
+    for name, pc2_path, ply_path, frames, faces, static in model.load_sequences(args.animc, args.data_dir):
         f, v, _ = frames.shape
-        static = model.our_static_bytes(args.animc, pc2_path, ply_path)
         prepared = {c: cluster_groups(frames, faces, c) for c in counts}
         print(name, 'label bits a vertex', [f'{prepared[c][0] / v:.2f}' for c in counts], file=sys.stderr)
         for target in map(float, args.kg.split(',')):

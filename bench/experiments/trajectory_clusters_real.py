@@ -18,7 +18,6 @@ bits (as trajectory_clusters.py prices them). C = 1 is `animc encode --target-kg
   usage: bench/experiments/trajectory_clusters_real.py ANIMC DATA_DIR [--kg 0.1,0.3,0.45,1]
          [--clusters 2,3,4,6]
 """
-import argparse
 import json
 import os
 import subprocess
@@ -34,7 +33,7 @@ import pc2  # noqa: E402
 import ply  # noqa: E402
 import trajectory_clusters  # noqa: E402
 import trajectory_coding as model  # noqa: E402
-from bench_common import find_sequences, table  # noqa: E402
+from bench_common import table  # noqa: E402
 
 
 def write_pc2(path, frames):
@@ -104,20 +103,13 @@ def clustered_bits(animc, frames, clusters, label_bits, static_bytes, target):
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument('animc')
-    parser.add_argument('data_dir')
-    parser.add_argument('--kg', default='0.1,0.3,0.45,1')
+    parser = model.experiment_parser(__doc__)
     parser.add_argument('--clusters', default='2,3,4,6')
     args = parser.parse_args()
     counts = [int(c) for c in args.clusters.split(',')]
     rows = []
-    for name, pc2_path, ply_path in find_sequences(args.data_dir):
-        frames, _ = pc2.read_pc2(pc2_path)
-        frames = frames.astype(np.float64)
-        faces = ply.read_ply_faces(ply_path)
+    for name, pc2_path, ply_path, frames, faces, static in model.load_sequences(args.animc, args.data_dir):
         f, v, _ = frames.shape
-        static = model.our_static_bytes(args.animc, pc2_path, ply_path)
         with tempfile.TemporaryDirectory() as work:
             split = {}
             for count in counts:

@@ -308,6 +308,24 @@ def our_static_bytes(animc, pc2_path, ply_path):
     return r['static_bytes']
 
 
+def experiment_parser(doc):
+    """The arguments every design measurement takes: ANIMC, DATA_DIR and --kg targets."""
+    parser = argparse.ArgumentParser(description=doc.splitlines()[0])
+    parser.add_argument('animc')
+    parser.add_argument('data_dir')
+    parser.add_argument('--kg', default='0.1,0.3,0.45,1')
+    return parser
+
+
+def load_sequences(animc, data_dir):
+    """(name, pc2 path, ply path, frames in double, faces, the static bytes an .ams of it has) of
+    each sequence in data_dir."""
+    for name, pc2_path, ply_path in find_sequences(data_dir):
+        frames, _ = pc2.read_pc2(pc2_path)
+        yield (name, pc2_path, ply_path, frames.astype(np.float64), ply.read_ply_faces(ply_path),
+               our_static_bytes(animc, pc2_path, ply_path))
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument('animc')

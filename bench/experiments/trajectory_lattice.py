@@ -18,7 +18,6 @@ snap only where it pays, so the last column is the smaller of the two.
 
   usage: bench/experiments/trajectory_lattice.py ANIMC DATA_DIR [--kg 0.1,0.3,0.45,1]
 """
-import argparse
 import math
 import os
 import sys
@@ -28,10 +27,8 @@ import numpy as np
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.dirname(HERE))
 sys.path.insert(0, HERE)
-import pc2  # noqa: E402
-import ply  # noqa: E402
 import trajectory_coding as model  # noqa: E402
-from bench_common import find_sequences, table  # noqa: E402
+from bench_common import table  # noqa: E402
 
 
 def lattice(values):
@@ -101,18 +98,11 @@ def lattice_noise_kg(frames, steps):
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument('animc')
-    parser.add_argument('data_dir')
-    parser.add_argument('--kg', default='0.1,0.3,0.45,1')
+    parser = model.experiment_parser(__doc__)
     args = parser.parse_args()
     rows = []
-    for name, pc2_path, ply_path in find_sequences(args.data_dir):
-        frames, _ = pc2.read_pc2(pc2_path)
-        frames = frames.astype(np.float64)
-        faces = ply.read_ply_faces(ply_path)
+    for name, pc2_path, ply_path, frames, faces, static in model.load_sequences(args.animc, args.data_dir):
         f, v, _ = frames.shape
-        static = model.our_static_bytes(args.animc, pc2_path, ply_path)
         order, predictor = model.coded_order_predictor(v, faces)
         offsets, steps = lattices(frames)
         share = float((steps > 0).mean())

@@ -34,7 +34,6 @@ transform can give, the lifting variants what a decoder can run.
   usage: bench/experiments/trajectory_spectral.py ANIMC DATA_DIR [--kg 0.1,0.3,0.45,1]
          [--variants dpcm,graph,cotangent,patches-256]
 """
-import argparse
 import math
 import os
 import sys
@@ -45,10 +44,8 @@ import numpy as np
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.dirname(HERE))
 sys.path.insert(0, HERE)
-import pc2  # noqa: E402
-import ply  # noqa: E402
 import trajectory_coding as model  # noqa: E402
-from bench_common import find_sequences, table  # noqa: E402
+from bench_common import table  # noqa: E402
 
 
 def adjacency(vertex_count, faces):
@@ -288,20 +285,13 @@ def measure(frames, faces, variant, target):
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument('animc')
-    parser.add_argument('data_dir')
-    parser.add_argument('--kg', default='0.1,0.3,0.45,1')
+    parser = model.experiment_parser(__doc__)
     parser.add_argument('--variants', default='dpcm,graph,cotangent,patches-256')
     args = parser.parse_args()
     variants = args.variants.split(',')
     rows = []
-    for name, pc2_path, ply_path in find_sequences(args.data_dir):
-        frames, _ = pc2.read_pc2(pc2_path)
-        frames = frames.astype(np.float64)
-        faces = ply.read_ply_faces(ply_path)
+    for name, pc2_path, ply_path, frames, faces, static in model.load_sequences(args.animc, args.data_dir):
         f, v, _ = frames.shape
-        static = model.our_static_bytes(args.animc, pc2_path, ply_path)
         for target in map(float, args.kg.split(',')):
             cells = []
             for variant in variants:
