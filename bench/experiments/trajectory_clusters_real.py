@@ -14,9 +14,12 @@ group bytes once each, but one connectivity, one header and one record a frame: 
 the sum of the clusters' group bytes, less the (F - 1) two-byte frame records and 32 section
 bytes of every cluster after the first, plus the whole mesh's static bytes and the labels'
 bits (as trajectory_clusters.py prices them). C = 1 is `animc encode --target-kg` itself.
+With --bench, the decoding time of the clusters' files (each at the step found, one thread,
+`animc bench --runs 9`, medians summed) is printed beside that of the one file, as a second
+table: a vertex of a cluster is rebuilt from its cluster's components only.
 
   usage: bench/experiments/trajectory_clusters_real.py ANIMC DATA_DIR [--kg 0.1,0.3,0.45,1]
-         [--clusters 2,3,4,6]
+         [--clusters 2,3,4,6] [--bench]
 """
 import json
 import os
@@ -74,6 +77,11 @@ class Cluster:
         return r['file_bytes'] - r['static_bytes'], decoded
 
 
+def decode_seconds(animc, path):
+    """Median decoding time of an .ams on one thread."""
+    return run_json([animc, 'bench', path, '--runs', '9', '--threads', '1', '--json'])['decode_seconds_median']
+
+
 def merge_bare_clusters(labels, faces):
     """Labels with every cluster that holds no whole triangle (the encoder needs one) given to
     the cluster most of its vertices' neighbours are in."""
@@ -105,9 +113,10 @@ def clustered_bits(animc, frames, clusters, label_bits, static_bytes, target):
 def main():
     parser = model.experiment_parser(__doc__)
     parser.add_argument('--clusters', default='2,3,4,6')
+    parser.add_argument('--bench', action='store_true', help='also time the decoding (one thread)')
     args = parser.parse_args()
     counts = [int(c) for c in args.clusters.split(',')]
-    rows = []
+    rows, speed_rows = [], []
     for name, pc2_path, ply_path, frames, faces, static in model.load_sequences(args.animc, args.data_dir):
         f, v, _ = frames.shape
         with tempfile.TemporaryDirectory() as work:
@@ -120,17 +129,29 @@ def main():
                             for c in range(count) if (labels == c).any()]
                 split[count] = (clusters, trajectory_clusters.label_bits(labels, faces))
             for target in map(float, args.kg.split(',')):
-                one = run_json([args.animc, 'encode', pc2_path, '--mesh', ply_path, '-o', os.path.join(work, 'one.ams'),
+                one_path = os.path.join(work, 'one.ams')
+                one = run_json([args.animc, 'encode', pc2_path, '--mesh', ply_path, '-o', one_path,
                                 '--codec', 'trajectory', '--target-kg', str(target), '--json'])['bpvf']
                 cells = [one]
+                speeds = [v * f / decode_seconds(args.animc, one_path) / 1e6] if args.bench else []
                 for count in counts:
                     bits, _ = clustered_bits(args.animc, frames, *split[count], static, target)
                     cells.append(bits / (v * f))
+                    if args.bench:  # the files of the last step tried, within 2^-20 of the one found
+                        seconds = sum(decode_seconds(args.animc, c.ams) for c in split[count][0])
+                        speeds.append(v * f / seconds / 1e6)
+                if speeds:
+                    speed_rows.append([name, f'{target:g}'] + [f'{x:.0f}' for x in speeds] +
+                                      [f'{x / speeds[0]:.2f}' for x in speeds[1:]])
                 rows.append([name, f'{target:g}'] + [f'{c:.3f}' for c in cells] +
                             [f'{c / cells[0]:.3f}' for c in cells[1:]])
                 print(rows[-1], file=sys.stderr, flush=True)
     print('\n'.join(table(['sequence', 'KG %', 'codec 3 bpvf'] + [f'C={c} bpvf' for c in counts] +
                           [f'C={c} / codec 3' for c in counts], rows)))
+    if speed_rows:
+        print()
+        print('\n'.join(table(['sequence', 'KG %', 'codec 3 M v/s'] + [f'C={c} M v/s' for c in counts] +
+                              [f'C={c} / codec 3' for c in counts], speed_rows)))
 
 
 if __name__ == '__main__':
