@@ -54,10 +54,7 @@ def cluster_groups(frames, faces, count):
         index = np.flatnonzero(labels == c)
         if len(index) == 0:
             continue
-        local = -np.ones(frames.shape[1], dtype=int)
-        local[index] = np.arange(len(index))
-        sub = [tuple(local[list(f)]) for f in faces if (local[list(f)] >= 0).all()]
-        order, predictor = model.coded_order_predictor(len(index), sub)
+        order, predictor = model.coded_order_predictor(len(index), model.induced_faces(faces, index, len(labels)))
         group = frames[:, index]
         out.append((group, model.transform(group, 'pca'), predictor, order))
     return (label_bits(labels, faces) if count > 1 else 0.0), out

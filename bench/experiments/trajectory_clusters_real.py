@@ -21,7 +21,6 @@ table: a vertex of a cluster is rebuilt from its cluster's components only.
   usage: bench/experiments/trajectory_clusters_real.py ANIMC DATA_DIR [--kg 0.1,0.3,0.45,1]
          [--clusters 2,3,4,6] [--bench]
 """
-import json
 import os
 import subprocess
 import sys
@@ -36,18 +35,14 @@ import pc2  # noqa: E402
 import ply  # noqa: E402
 import trajectory_clusters  # noqa: E402
 import trajectory_coding as model  # noqa: E402
+from trajectory_bits import run_json  # noqa: E402
 from bench_common import table  # noqa: E402
 
 
 def write_pc2(path, frames):
-    f, v, _ = frames.shape
     with open(path, 'wb') as out:
-        out.write(pc2.HEADER.pack(pc2.MAGIC, 1, v, 0.0, 1.0, f))
-        out.write(frames.astype('<f4').tobytes())
-
-
-def run_json(command):
-    return json.loads(subprocess.run(command, check=True, capture_output=True, text=True).stdout)
+        out.write(pc2.pack_header(pc2.Header(frames.shape[1], 0.0, 1.0, frames.shape[0])))
+        out.write(np.ascontiguousarray(frames, dtype='<f4').tobytes())
 
 
 class Cluster:
@@ -55,15 +50,12 @@ class Cluster:
 
     def __init__(self, work, index, frames, faces, members):
         self.members = members
-        local = -np.ones(frames.shape[1], dtype=int)
-        local[members] = np.arange(len(members))
-        sub = np.array([local[list(t)] for t in faces if (local[list(t)] >= 0).all()], dtype=int).reshape(-1, 3)
         self.pc2 = os.path.join(work, f'c{index}.pc2')
         self.ply = os.path.join(work, f'c{index}.ply')
         self.ams = os.path.join(work, f'c{index}.ams')
         self.out = os.path.join(work, f'c{index}.out.pc2')
         write_pc2(self.pc2, frames[:, members])
-        ply.write_ply(self.ply, frames[0, members], sub)
+        ply.write_ply(self.ply, frames[0, members], model.induced_faces(faces, members, frames.shape[1]))
         corner = frames[0, members]
         self.diagonal = float(np.linalg.norm(corner.max(axis=0) - corner.min(axis=0))) or 1.0
 
@@ -137,7 +129,7 @@ def main():
                 for count in counts:
                     bits, _ = clustered_bits(args.animc, frames, *split[count], static, target)
                     cells.append(bits / (v * f))
-                    if args.bench:  # the files of the last step tried, within 2^-20 of the one found
+                    if args.bench:  # the files of the last step tried, within 24 / 2^20 of the one found in log2 q
                         seconds = sum(decode_seconds(args.animc, c.ams) for c in split[count][0])
                         speeds.append(v * f / seconds / 1e6)
                 if speeds:

@@ -75,14 +75,28 @@ def cotangent_weights(positions, faces):
     return {e: max(x, floor) for e, x in weights.items()}
 
 
-def coded_order_predictor(vertex_count, faces, edge_weights=None):
-    """The breadth-first coding order and, per vertex, its neighbours coded before it, weighted
-    equally, or by edge_weights (normalised over those neighbours) when given."""
+def adjacency(vertex_count, faces):
+    """The set of each vertex's neighbours on the mesh."""
     neighbours = [set() for _ in range(vertex_count)]
     for a, b, c in faces:
         neighbours[a] |= {b, c}
         neighbours[b] |= {a, c}
         neighbours[c] |= {a, b}
+    return neighbours
+
+
+def induced_faces(faces, members, vertex_count):
+    """The triangles whose corners all lie in `members`, in indices into members."""
+    local = np.full(vertex_count, -1)
+    local[members] = np.arange(len(members))
+    sub = np.array([local[list(t)] for t in faces], dtype=int).reshape(-1, 3)
+    return sub[(sub >= 0).all(axis=1)]
+
+
+def coded_order_predictor(vertex_count, faces, edge_weights=None):
+    """The breadth-first coding order and, per vertex, its neighbours coded before it, weighted
+    equally, or by edge_weights (normalised over those neighbours) when given."""
+    neighbours = adjacency(vertex_count, faces)
     position = np.full(vertex_count, -1)
     order = []
     for root in range(vertex_count):
@@ -129,17 +143,18 @@ def adaptive_bits(symbols, alphabet):
     return nats / math.log(2)
 
 
-def residual_bits(residuals):
-    """residuals: (vertices in coding order, components). One context per component band."""
+def residual_bits(residuals, row_band=None):
+    """residuals: (vertices in coding order, components). One context per component band, and
+    per band of rows when row_band (one per row) is given."""
     bits = 0.0
     magnitude = np.abs(residuals)
     bucket = np.where(magnitude > 0, np.floor(np.log2(np.maximum(magnitude, 1))).astype(int) + 1, 0)
     bits += float((np.maximum(bucket - 1, 0)).sum() + (magnitude > 0).sum())  # mantissa + sign
-    components = residuals.shape[1]
-    band = lambda k: min(int(math.log2(k + 1)), 7)  # noqa: E731
-    for b in sorted({band(k) for k in range(components)}):
-        columns = [k for k in range(components) if band(k) == b]
-        bits += adaptive_bits(bucket[:, columns].T.reshape(-1), 48)
+    column_band = np.array([min(int(math.log2(k + 1)), 7) for k in range(residuals.shape[1])])
+    row_band = np.zeros(len(residuals), dtype=int) if row_band is None else row_band
+    for r in np.unique(row_band):
+        for c in np.unique(column_band):
+            bits += adaptive_bits(bucket[np.ix_(row_band == r, column_band == c)].reshape(-1), 48)
     return bits
 
 
@@ -232,8 +247,9 @@ def basis_cost(basis, singular, q, used, segments):
     return bits, quantised
 
 
-def code(groups, kind, predictor, order, q):
-    """(bits, squared error) of the whole sequence at step q."""
+def code(groups, kind, predictor, order, q, output=None):
+    """(bits, squared error) of the whole sequence at step q; output, when given, is what a
+    decoder does to its rows (vertices, one trajectory each) before they are compared."""
     bits, sq = 0.0, 0.0
     for group, (mean, basis, coefficients, fixed), params in groups:
         g, v, _ = group.shape
@@ -248,6 +264,7 @@ def code(groups, kind, predictor, order, q):
                                       1 if kind == 'pca-xyz' else 3)
             bits += b + 32 * mean.size
         rows = mean + (cq * q) @ quantised
+        rows = output(rows) if output else rows
         original = group.transpose(1, 2, 0).reshape(rows.shape)
         sq += float(((rows - original) ** 2).sum())
         # A vertex's coefficients side by side, component by component (x y z of each for the

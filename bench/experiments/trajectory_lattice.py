@@ -69,21 +69,11 @@ def snapped(rows, offsets, steps):
 
 def cost(group, transformed, predictor, order, q, snap):
     """(bits, squared error) of the group at step q, as trajectory_coding.code prices it, the
-    decoded rows snapped to the lattices when snap = (offsets, steps)."""
-    g, v, _ = group.shape
-    mean, basis, coefficients, _ = transformed
-    cq = np.rint(coefficients / q).astype(np.int64)
-    used = np.flatnonzero(np.abs(cq).sum(axis=0) > 0)
-    bits, quantised = model.basis_cost(basis, np.linalg.norm(coefficients, axis=0), q, used, 3)
-    bits += 32 * mean.size
-    rows = mean + (cq * q) @ quantised
-    if snap:
-        rows = snapped(rows, *snap)
-        bits += 64 * int((snap[1] > 0).sum())
-    original = group.transpose(1, 2, 0).reshape(rows.shape)
-    residual = cq - model.predict(predictor, cq)
-    bits += model.residual_bits(residual[order])
-    return bits, float(((rows - original) ** 2).sum())
+    decoded rows snapped to the lattices, which cost 64 bits each, when snap = (offsets, steps)."""
+    if not snap:
+        return model.code([(group, transformed, None)], 'pca', predictor, order, q)
+    bits, sq = model.code([(group, transformed, None)], 'pca', predictor, order, q, lambda rows: snapped(rows, *snap))
+    return bits + 64 * int((snap[1] > 0).sum()), sq
 
 
 def at_target(frames, predictor, order, target, snap):

@@ -48,19 +48,10 @@ import trajectory_coding as model  # noqa: E402
 from bench_common import table  # noqa: E402
 
 
-def adjacency(vertex_count, faces):
-    neighbours = [set() for _ in range(vertex_count)]
-    for a, b, c in faces:
-        neighbours[a] |= {b, c}
-        neighbours[b] |= {a, c}
-        neighbours[c] |= {a, b}
-    return neighbours
-
-
 def laplacian(vertex_count, faces, weights=None):
     """Dense symmetric Laplacian: uniform edge weights, or {(v, w): weight}."""
     lap = np.zeros((vertex_count, vertex_count))
-    for v, around in enumerate(adjacency(vertex_count, faces)):
+    for v, around in enumerate(model.adjacency(vertex_count, faces)):
         for w in around:
             x = weights[(v, w)] if weights else 1.0
             x = (x + weights[(w, v)]) / 2 if weights else x
@@ -77,7 +68,7 @@ def eigenbasis(lap):
 
 def patches(vertex_count, faces, size):
     """Vertex sets of about `size` vertices, grown breadth-first from unvisited seeds."""
-    neighbours = adjacency(vertex_count, faces)
+    neighbours = model.adjacency(vertex_count, faces)
     label = np.full(vertex_count, -1)
     out = []
     for seed in range(vertex_count):
@@ -103,8 +94,7 @@ def patch_bases(vertex_count, faces, size):
     bases = []
     for members in patches(vertex_count, faces, size):
         local = {v: i for i, v in enumerate(members)}
-        sub = [(local[a], local[b], local[c]) for a, b, c in faces if a in local and b in local and c in local]
-        lap = laplacian(len(members), sub)
+        lap = laplacian(len(members), model.induced_faces(faces, members, vertex_count))
         # Vertices of the patch joined only through edges (no whole triangle): keep the graph
         # connected by the patch's edges too.
         for a, b, c in faces:
@@ -117,24 +107,11 @@ def patch_bases(vertex_count, faces, size):
     return bases
 
 
-def band_bits(ints, component_band, frequency_band):
-    """Bits of the integers (rows: frequency, columns: component) with one adaptive bucket
-    model per (component band, frequency band), raw mantissa bits and a sign bit."""
-    magnitude = np.abs(ints)
-    bucket = np.where(magnitude > 0, np.floor(np.log2(np.maximum(magnitude, 1))).astype(int) + 1, 0)
-    bits = float(np.maximum(bucket - 1, 0).sum() + (magnitude > 0).sum())
-    for cb in np.unique(component_band):
-        for fb in np.unique(frequency_band):
-            block = bucket[np.ix_(frequency_band == fb, component_band == cb)]
-            bits += model.adaptive_bits(block.reshape(-1), 48)
-    return bits
-
-
 def independent_levels(vertex_count, faces, levels):
     """[(odd vertices, {odd: its even neighbours}, {even: its odd neighbours})] from fine to
     coarse: each level's odd set is a maximal independent set (greedy, lowest degree first) of
     the graph that remains, whose next graph joins vertices with a common odd neighbour."""
-    graph = {v: set(w) for v, w in enumerate(adjacency(vertex_count, faces))}
+    graph = {v: set(w) for v, w in enumerate(model.adjacency(vertex_count, faces))}
     out = []
     for _ in range(levels):
         if len(graph) < 2:
@@ -186,7 +163,7 @@ def haar_matrix(vertex_count, faces, mean_positions):
     sums of the last nodes in band 0)."""
     rows = np.eye(vertex_count)  # each node's current (sum) row of the analysis
     weight = np.ones(vertex_count)
-    graph = {v: set(w) for v, w in enumerate(adjacency(vertex_count, faces))}
+    graph = {v: set(w) for v, w in enumerate(model.adjacency(vertex_count, faces))}
     where = {v: mean_positions[v] for v in graph}
     out, bands, level = [], [], 0
     while True:
@@ -257,7 +234,7 @@ def spatial_parts(variant, frames, faces):
 
 def measure(frames, faces, variant, target):
     """(bits, KG %) of the sequence as one group at the coarsest step that meets the target."""
-    f, v, _ = frames.shape
+    v = frames.shape[1]
     mean, basis, coefficients, fixed = model.transform(frames, 'pca')
     if variant == 'dpcm':
         order, predictor = model.coded_order_predictor(v, faces)
@@ -267,13 +244,12 @@ def measure(frames, faces, variant, target):
     original = frames.transpose(1, 2, 0).reshape(v, -1)
     parts = spatial_parts(variant, frames, faces)
     projections = [analysis @ coefficients[members] for members, analysis, _, _ in parts]
-    component_band = np.array([min(int(math.log2(k + 1)), 7) for k in range(coefficients.shape[1])])
 
     def cost(q):
         bits, decoded = 0.0, np.zeros_like(coefficients)
         for (members, _, synthesis, band), values in zip(parts, projections):
             ints = np.rint(values / q).astype(np.int64)
-            bits += band_bits(ints, component_band, band)
+            bits += model.residual_bits(ints, band)
             decoded[members] = synthesis @ (ints * q)
         used = np.flatnonzero(np.abs(decoded).sum(axis=0) > 0)
         b, quantised = model.basis_cost(basis, sigma, q, used, 3)
