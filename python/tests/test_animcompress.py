@@ -68,7 +68,7 @@ def cli_flags(codec, options):
 
 def test_version_and_codecs():
     assert animcompress.__version__.count('.') == 2
-    assert {'affine-octree', 'wavelet', 'trajectory', 'auto'} <= set(animcompress.codecs())
+    assert {'affine-octree', 'wavelet', 'trajectory', 'auto', 'trajectory2'} <= set(animcompress.codecs())
 
 
 def test_affine_octree_round_trip_stays_within_the_bound(sequence):
@@ -126,6 +126,7 @@ def test_trajectory_target_kg_bounds_the_sequence_error(sequence):
     ('trajectory', {'target_kg': 0.5}),
     ('trajectory', {'step': 0.001, 'group_frames': 30, 'iframe_interval': 50}),
     ('trajectory', {'max_error': 0.01}),
+    ('trajectory2', {'target_kg': 0.3, 'parts': 4}),
     ('auto', {'max_error': 0.01, 'iframe_interval': 2}),
     ('auto', {'target_kg': 0.5}),
 ])
@@ -144,6 +145,7 @@ def test_bytes_and_frames_equal_the_command_line(sequence, cli, tmp_path, codec,
 @pytest.mark.parametrize('codec, options', [
     ('affine-octree', {'max_error': 0.01, 'iframe_interval': 40}),
     ('trajectory', {'target_kg': 0.3, 'iframe_interval': 50}),
+    ('trajectory2', {'target_kg': 0.3, 'iframe_interval': 50}),
     ('auto', {'max_error': 0.01}),
 ])
 def test_threads_change_neither_bytes_nor_frames(sequence, codec, options):

@@ -11,6 +11,7 @@ enum class CodecId : uint8_t {
   kWavelet = 2,       // Guskov & Khodakovsky 2004 (docs/wavelet.md)
   kTrajectory = 3,    // trajectory PCA over frame groups (docs/trajectory.md)
   kAuto = 4,          // per group, the smallest of the others (docs/auto.md)
+  kTrajectory2 = 5,   // trajectory PCA per part of the mesh (docs/trajectory.md, "Parts")
 };
 
 // Profiles of the Affine-Octree codec (its Profile parameter).

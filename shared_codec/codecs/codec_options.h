@@ -12,6 +12,7 @@
 namespace animc {
 
 // One alternative per codec, in Codec_Id order (a new codec appends its options type).
-using CodecOptions = std::variant<AffineOctreeOptions, WaveletOptions, TrajectoryOptions, AutoOptions>;
+using CodecOptions =
+    std::variant<AffineOctreeOptions, WaveletOptions, TrajectoryOptions, AutoOptions, Trajectory2Options>;
 
 }  // namespace animc

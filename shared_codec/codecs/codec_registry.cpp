@@ -5,8 +5,8 @@ namespace animc {
 
 const std::vector<const CodecEntry*>& allCodecs() {
   // A new codec: one line here, in Codec_Id order, and its options in codec_options.h.
-  static const std::vector<const CodecEntry*> codecs = {&kAffineOctreeEntry, &kWaveletEntry,
-                                                              &kTrajectoryEntry, &kAutoEntry};
+  static const std::vector<const CodecEntry*> codecs = {&kAffineOctreeEntry, &kWaveletEntry, &kTrajectoryEntry,
+                                                        &kAutoEntry, &kTrajectory2Entry};
   return codecs;
 }
 

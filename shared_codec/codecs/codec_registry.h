@@ -100,5 +100,6 @@ extern const CodecEntry kAffineOctreeEntry;
 extern const CodecEntry kWaveletEntry;
 extern const CodecEntry kTrajectoryEntry;
 extern const CodecEntry kAutoEntry;
+extern const CodecEntry kTrajectory2Entry;
 
 }  // namespace animc

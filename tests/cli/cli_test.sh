@@ -274,6 +274,15 @@ expect_error multiply_add_limit "$ERRDIR/x.pc2" "$ANIMC" decode "$TMP/traj.ams" 
 grep -q "multiply-adds, above the limit of 1000.*--max-multiply-adds" "$TMP/multiply_add_limit.err" ||
   check_failed "multiply_add_limit: $(cat "$TMP/multiply_add_limit.err")"
 expect_error test_multiply_add_limit "" "$ANIMC" test "$TMP/traj.ams" --max-multiply-adds 1000
+# Codec 5, trajectory2: its parts option, in the JSON settings and in info; another codec's
+# flag and a bad count refused; its groups bounded by the same limit.
+run traj2_encode "$ANIMC" encode "$PC2" --mesh "$MESH" -o "$TMP/traj2.ams" --codec trajectory2 --parts 4 --target-kg 0.5 --json
+json_check 'd["codec"] == "trajectory2" and d["parts"] == 4 and d["kg_error"] <= 0.5' "$TMP/traj2_encode.out"
+"$ANIMC" info "$TMP/traj2.ams" | grep -q "codec: trajectory2, target KG 0.5 %, groups of up to 512 frames in up to 4 parts" ||
+  check_failed "animc info does not describe the trajectory2 file: $("$ANIMC" info "$TMP/traj2.ams")"
+expect_error traj2_foreign_flag "$ERRDIR/x.ams" "$ANIMC" encode "$PC2" --mesh "$MESH" -o "$ERRDIR/x.ams" --codec trajectory --parts 4
+expect_error traj2_bad_parts "$ERRDIR/x.ams" "$ANIMC" encode "$PC2" --mesh "$MESH" -o "$ERRDIR/x.ams" --codec trajectory2 --parts 65
+expect_error traj2_multiply_add_limit "$ERRDIR/x.pc2" "$ANIMC" decode "$TMP/traj2.ams" -o "$ERRDIR/x.pc2" --max-multiply-adds 1000
 
 # --- --threads: the same bytes and frames for any number; a bad number is refused -----------
 for threads in 1 3; do

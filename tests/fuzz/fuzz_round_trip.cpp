@@ -8,16 +8,16 @@
 // is a bug, reported by abort().
 //
 // Input = 4 control bytes, then coordinates:
-//   [0] bit 0: codec (0: affine-octree, or with bit 2 set trajectory (bit 1 clear) or auto
-//       (bit 1 set); 1: wavelet); bits 1-2: profile or detail-frame kind (wavelet: 0 P-frames
-//       at a step, or at a KG target when [3] is odd; 1 progressive P-frames; 2 I-frames only;
-//       3 a fixed rate); bits 3-7: I-frame interval
+//   [0] bit 0: codec (0: affine-octree, or with bit 2 set trajectory (bit 1 clear; codec 5,
+//       trajectory2, when bit 1 of [3] is set) or auto (bit 1 set); 1: wavelet); bits 1-2: profile or detail-frame kind
+//       (wavelet: 0 P-frames at a step, or at a KG target when [3] is odd; 1 progressive P-frames; 2 I-frames only; 3 a
+//       fixed rate); bits 3-7: I-frame interval
 //   [1] bits 0-6: grid width - 2 (mod 7); bit 7: random triangles over the grid's vertices
 //       (as many as the grid has) instead of the grid's
 //   [2] bits 0-4: grid height - 2 (mod 7); bits 5-7: the decoded frames are written as
 //       3 OBJ frames, 4 PLY frames, 5 OFF frames, 6 PC2, 7 MDD (0-2: not written)
 //   [3] quality (max error, step, KG target); trajectory and auto: bit 0 set, a max error, else
-//       a KG target
+//       a KG target; trajectory2: 2 + (bits 2-7 mod 7) parts at most
 //   the four bytes XORed, mod 64: below 48, 1 + that many triangles per connectivity piece
 //       (.ams format 2 when there is more than one piece), else one piece (format 1)
 //   then int16 coordinates (scaled by 1/256), x y z per vertex per frame, until they run out
@@ -77,7 +77,8 @@ animc::EncoderOptions options(const uint8_t* control) {
   const unsigned mix = (control[0] ^ control[1] ^ control[2] ^ control[3]) % 64;
   o.connectivity_piece = mix < 48 ? 1 + mix : 0;
   if ((control[0] & 1) == 0 && kind == 2) {
-    o.codec = "trajectory";
+    o.codec = control[3] & 2 ? "trajectory2" : "trajectory";
+    if (control[3] & 2) o.set("parts", double(2 + (control[3] >> 2) % 7));
     if (control[3] & 1) o.set("max-error", 0.0005 + 0.2 * control[3] / 255.0);
     else o.set("target-kg", 0.05 + 5.0 * control[3] / 255.0);
   } else if ((control[0] & 1) == 0 && kind == 3) {

@@ -111,6 +111,12 @@ encode sydney_wavelet_pp 1 "${S[@]}" --codec wavelet --step 1e-2 --progressive-p
 encode grid_trajectory 0 "${G[@]}" --codec trajectory --target-kg 1
 encode grid_trajectory_i3 0 "${G[@]}" --codec trajectory --max-error 0.02 --iframe-interval 3
 encode grid_auto_i2 0 "${G[@]}" --codec auto --max-error 0.02 --iframe-interval 2
+encode grid_trajectory2 0 "${G[@]}" --codec trajectory2 --target-kg 1 --parts 3
+encode sydney_trajectory2 0 "${S[@]}" --codec trajectory2 --bpvf 4
+# Groups of several parts (labels and part tables), within the harness's max_len.
+T=("$ROOT/tests/golden/input/two_motions.pc2.xz" "$ROOT/tests/golden/input/two_motions.ply")
+encode two_motions_trajectory2 0 "${T[@]}" --codec trajectory2 --target-kg 1
+encode two_motions_trajectory2_i16 0 "${T[@]}" --codec trajectory2 --target-kg 2 --parts 4 --iframe-interval 16
 encode sydney_trajectory 0 "${S[@]}" --codec trajectory --bpvf 4
 encode sydney_auto 0 "${S[@]}" --codec auto --target-kg 0.5
 encode grid_octree_format2 0 "${G[@]}" --codec affine-octree --max-error 0.02 --connectivity-piece 5
@@ -120,6 +126,7 @@ for size in 60 90; do
   encode "patch${size}_wavelet_pp" 1 "${P[@]}" --codec wavelet --step 1e-2 --progressive-p-frames
   encode "patch${size}_wavelet_ionly" 1 "${P[@]}" --codec wavelet --step 1e-2 --i-frames-only
   encode "patch${size}_trajectory" 0 "${P[@]}" --codec trajectory --bpvf 4
+  encode "patch${size}_trajectory2" 0 "${P[@]}" --codec trajectory2 --target-kg 0.3 --parts 4
   encode "patch${size}_auto" 0 "${P[@]}" --codec auto --target-kg 0.5
 done
 encode patch90_trajectory_format2 0 "$WORK/patch90.pc2" "$WORK/patch90.ply" --codec trajectory --bpvf 4 \

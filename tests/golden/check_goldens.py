@@ -6,10 +6,12 @@ usage: check_goldens.py ANIMC            check every line of manifest.txt
        check_goldens.py ANIMC --self-test also show that a changed expectation fails
        check_goldens.py ANIMC --add      make the files and CRCs the manifest lacks
 
-manifest.txt has two kinds of lines:
-  encode FILE ARGS...       FILE was written by `animc encode input/sydney_30.pc2.xz --mesh
-                            input/sydney_md2.ply -o FILE ARGS...`; the check encodes again and
-                            compares the bytes exactly (the encoder golden)
+manifest.txt has three kinds of lines:
+  encode FILE ARGS...       FILE was written by `animc encode INPUT --mesh MESH -o FILE
+                            ARGS...`; the check encodes again and compares the bytes exactly
+                            (the encoder golden)
+  input INPUT MESH          the INPUT and MESH of the encode lines after it (before the first
+                            such line: input/sydney_30.pc2.xz and input/sydney_md2.ply)
   decode FILE CRC [ARGS...] `animc decode FILE -o OUT.pc2 ARGS...` gives frames whose f32 values,
                             in order, have this CRC-32 (the decoder golden)
 An `encode` line marked `encode-frozen` is a file of an earlier codec version that today's
@@ -30,15 +32,19 @@ PC2_HEADER_BYTES = 32
 
 
 def read_manifest(path):
-    lines = []
+    """(line number, words, input of an encode line) of every encode and decode line."""
+    lines, source = [], INPUT
     with open(path) as f:
         for number, text in enumerate(f, 1):
             words = shlex.split(text, comments=True)
             if not words:
                 continue
-            if words[0] not in ("encode", "encode-frozen", "decode") or len(words) < 3:
+            if words[0] not in ("encode", "encode-frozen", "decode", "input") or len(words) < 3:
                 sys.exit(f"{path}:{number}: cannot read: {text.strip()}")
-            lines.append((number, words))
+            if words[0] == "input":
+                source = [words[1], "--mesh", words[2]]
+                continue
+            lines.append((number, words, source))
     return lines
 
 
@@ -48,8 +54,8 @@ def run(animc, args, cwd):
         raise RuntimeError(f"animc {' '.join(args)}: exit {done.returncode}: {done.stderr.strip()}")
 
 
-def encode(animc, golden_dir, args, out):
-    run(animc, ["encode"] + INPUT + ["-o", out] + args, golden_dir)
+def encode(animc, golden_dir, source, args, out):
+    run(animc, ["encode"] + source + ["-o", out] + args, golden_dir)
     with open(out, "rb") as f:
         return f.read()
 
@@ -69,14 +75,14 @@ def check(animc, golden_dir, manifest):
     """Returns (passed, failures), failures being one line each."""
     passed, failures = 0, []
     with tempfile.TemporaryDirectory() as scratch:
-        for number, words in read_manifest(manifest):
+        for number, words, source in read_manifest(manifest):
             kind, name = words[0], words[1]
             where = f"{os.path.basename(manifest)}:{number} {kind} {name}"
             try:
                 if kind == "encode":
                     with open(os.path.join(golden_dir, name), "rb") as f:
                         expected = f.read()
-                    got = encode(animc, golden_dir, words[2:], os.path.join(scratch, "encoded.ams"))
+                    got = encode(animc, golden_dir, source, words[2:], os.path.join(scratch, "encoded.ams"))
                     ok = got == expected
                     detail = f"the encoder's {len(got)} bytes differ from the golden's {len(expected)} " \
                              f"from byte {first_difference(got, expected)} on"
@@ -100,10 +106,10 @@ def add_missing(animc, golden_dir, manifest):
     with open(manifest) as f:
         text = f.read().splitlines(keepends=True)
     with tempfile.TemporaryDirectory() as scratch:
-        for number, words in read_manifest(manifest):
+        for number, words, source in read_manifest(manifest):
             path = os.path.join(golden_dir, words[1])
             if words[0] == "encode" and not os.path.exists(path):
-                encode(animc, golden_dir, words[2:], path)
+                encode(animc, golden_dir, source, words[2:], path)
                 print(f"added {words[1]}")
             if words[0] == "decode" and words[2] == "-":
                 crc = decoded_crc(animc, golden_dir, words[1], words[3:], scratch)
@@ -125,8 +131,8 @@ def self_test(animc, golden_dir, manifest):
     """A copy of the goldens with one bit flipped in an encoder golden and one in a CRC: the
     check must report exactly those two lines."""
     lines = read_manifest(manifest)
-    encode_name = next(words[1] for _, words in lines if words[0] == "encode")
-    decode_number, decode_words = next((n, w) for n, w in lines if w[0] == "decode" and w[1] != encode_name)
+    encode_name = next(words[1] for _, words, _ in lines if words[0] == "encode")
+    decode_number, decode_words = next((n, w) for n, w, _ in lines if w[0] == "decode" and w[1] != encode_name)
     with tempfile.TemporaryDirectory() as copy:
         shutil.copytree(golden_dir, copy, dirs_exist_ok=True)
         flip_bit(os.path.join(copy, encode_name), os.path.getsize(os.path.join(copy, encode_name)) // 2)

@@ -149,7 +149,7 @@ TEST_F(PublicApi, OptionsAreCheckedByName) {
   wavelet.codec = "wavelet";
   wavelet.set("step", 0.001).set("i-frames-only", "1");
   EXPECT_TRUE(wavelet.validate().ok()) << wavelet.validate().message();
-  EXPECT_EQ(codecNames(), (std::vector<std::string>{"affine-octree", "wavelet", "trajectory", "auto"}));
+  EXPECT_EQ(codecNames(), (std::vector<std::string>{"affine-octree", "wavelet", "trajectory", "auto", "trajectory2"}));
 }
 
 TEST_F(PublicApi, BadFramesAndMeshesAreRefused) {

@@ -159,6 +159,8 @@ INSTANTIATE_TEST_SUITE_P(
                       Mode{"trajectory_kg", "trajectory", {{"target-kg", "0.3"}}, 6},
                       Mode{"trajectory_max_error", "trajectory", {{"max-error", "0.01"}, {"group-frames", "11"}}, 0},
                       Mode{"trajectory_one_group", "trajectory", {{"target-kg", "0.3"}}, 0},
+                      Mode{"trajectory2_kg", "trajectory2", {{"target-kg", "0.3"}}, 6},
+                      Mode{"trajectory2_max_error", "trajectory2", {{"max-error", "0.01"}, {"parts", "3"}}, 0},
                       Mode{"auto_max_error", "auto", {{"max-error", "0.01"}}, 5},
                       Mode{"auto_target_kg", "auto", {{"target-kg", "0.3"}}, 13}),
     [](const ::testing::TestParamInfo<Mode>& info) { return info.param.name; });

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
-// The trajectory codec (codec 3) through the public API: decoders give the encoder's
-// reconstructions bit for bit, in order and at random; groups follow the I-frame interval
-// and the group cap; the target error holds; damaged groups are refused.
+// The trajectory codecs (codec 3, and codec 5 which cuts each group into parts) through the
+// public API: decoders give the encoder's reconstructions bit for bit, in order and at
+// random; groups follow the I-frame interval and the group cap; every rate mode holds;
+// damaged groups are refused.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -22,14 +23,18 @@ using testing_support::kgError;
 using testing_support::largestVertexError;
 const auto encode = testing_support::encodeCollecting;
 
-EncoderOptions trajectory(double target_kg) {
-  EncoderOptions o;
-  o.codec = "trajectory";
-  o.set("target-kg", target_kg);
-  return o;
-}
+class Trajectory : public testing::TestWithParam<const char*> {
+ protected:
+  const char* codec() const { return GetParam(); }
+  EncoderOptions trajectory(double target_kg) const {
+    EncoderOptions o;
+    o.codec = codec();
+    o.set("target-kg", target_kg);
+    return o;
+  }
+};
 
-TEST(Trajectory, DecodesToTheEncodersReconstructionWithinTheTarget) {
+TEST_P(Trajectory, DecodesToTheEncodersReconstructionWithinTheTarget) {
   const MemorySequence seq = gridSequence(12, 10, 40, 1.0, 1.0);
   for (double target : {0.1, 1.0, 5.0}) {
     const Coded coded = encode(seq, trajectory(target));
@@ -42,12 +47,12 @@ TEST(Trajectory, DecodesToTheEncodersReconstructionWithinTheTarget) {
   }
 }
 
-TEST(Trajectory, AFinerTargetCostsMoreBytes) {
+TEST_P(Trajectory, AFinerTargetCostsMoreBytes) {
   const MemorySequence seq = gridSequence(12, 10, 40, 1.0, 1.0);
   EXPECT_GT(encode(seq, trajectory(0.1)).bytes.size(), encode(seq, trajectory(1.0)).bytes.size());
 }
 
-TEST(Trajectory, ReconstructionsComeWhenTheirGroupCloses) {
+TEST_P(Trajectory, ReconstructionsComeWhenTheirGroupCloses) {
   const MemorySequence seq = gridSequence(12, 10, 20, 1.0, 1.0);
   EncoderOptions options = trajectory(0.5);
   options.iframe_interval = 8;
@@ -59,7 +64,7 @@ TEST(Trajectory, ReconstructionsComeWhenTheirGroupCloses) {
 
   auto decoder = Decoder::openMemory(coded.bytes.data(), coded.bytes.size());
   ASSERT_TRUE(decoder.ok());
-  EXPECT_EQ(decoder.value().info().codec, "trajectory");
+  EXPECT_EQ(decoder.value().info().codec, codec());
   EXPECT_EQ(decoder.value().info().groups, 3u);
   std::vector<float> xyz(3 * size_t(seq.topology().vertex_count));
   for (int64_t k : {17, 3, 19, 0, 9, 8, 15, 16}) {
@@ -71,7 +76,7 @@ TEST(Trajectory, ReconstructionsComeWhenTheirGroupCloses) {
 // A random access keeps the group it goes back into (the same payload bytes) and computes only
 // the frame it hands out. Groups 0 and 2 hold the same frames, so their payloads are the same
 // bytes too; any order of access must give the encoder's frames.
-TEST(Trajectory, RandomAccessInAnyOrderGivesTheEncodersFrames) {
+TEST_P(Trajectory, RandomAccessInAnyOrderGivesTheEncodersFrames) {
   std::vector<std::vector<float>> frames;
   for (int f = 0; f < 24; ++f) frames.push_back(testing_support::gridFrame(12, 10, f % 16, 1.0, 1.0));
   const MemorySequence seq(testing_support::gridTopology(12, 10), frames, 25.0, "repeated grid");
@@ -103,7 +108,7 @@ TEST(Trajectory, RandomAccessInAnyOrderGivesTheEncodersFrames) {
   }
 }
 
-TEST(Trajectory, StaticBytesLeaveTheGroupToMotion) {
+TEST_P(Trajectory, StaticBytesLeaveTheGroupToMotion) {
   // The first frame record carries the whole group: counting it as static would report almost
   // no motion (animc's "motion only" figure).
   const MemorySequence seq = gridSequence(12, 10, 20, 1.0, 1.0);
@@ -124,7 +129,7 @@ TEST(Trajectory, StaticBytesLeaveTheGroupToMotion) {
   EXPECT_EQ(summary.value().static_bytes, info.static_bytes);
 }
 
-TEST(Trajectory, GroupFramesCapsTheGroupWithoutAnInterval) {
+TEST_P(Trajectory, GroupFramesCapsTheGroupWithoutAnInterval) {
   const MemorySequence seq = gridSequence(12, 10, 20, 1.0, 1.0);
   EncoderOptions options = trajectory(0.5);
   options.set("group-frames", 6.0);
@@ -135,10 +140,10 @@ TEST(Trajectory, GroupFramesCapsTheGroupWithoutAnInterval) {
   EXPECT_EQ(decodeAll(coded.bytes), coded.reconstructions);
 }
 
-TEST(Trajectory, AFixedStepBoundsTheErrorBySize) {
+TEST_P(Trajectory, AFixedStepBoundsTheErrorBySize) {
   const MemorySequence seq = gridSequence(12, 10, 30, 1.0, 1.0);
   EncoderOptions fine, coarse;
-  fine.codec = coarse.codec = "trajectory";
+  fine.codec = coarse.codec = codec();
   fine.set("step", 1e-4);
   coarse.set("step", 1e-2);
   const Coded a = encode(seq, fine), b = encode(seq, coarse);
@@ -146,11 +151,11 @@ TEST(Trajectory, AFixedStepBoundsTheErrorBySize) {
   EXPECT_GT(a.bytes.size(), b.bytes.size());
 }
 
-TEST(Trajectory, MaxErrorBoundsEveryVertexOfEveryFrame) {
+TEST_P(Trajectory, MaxErrorBoundsEveryVertexOfEveryFrame) {
   const MemorySequence seq = gridSequence(12, 10, 30, 1.0, 1.0);
   for (double bound : {0.002, 0.02}) {
     EncoderOptions options;
-    options.codec = "trajectory";
+    options.codec = codec();
     options.set("max-error", bound);
     options.iframe_interval = 16;
     const Coded coded = encode(seq, options);
@@ -166,17 +171,17 @@ TEST(Trajectory, MaxErrorBoundsEveryVertexOfEveryFrame) {
   }
 }
 
-TEST(Trajectory, BpvfFillsItsBudget) {
+TEST_P(Trajectory, BpvfFillsItsBudget) {
   const MemorySequence seq = gridSequence(12, 10, 40, 1.0, 1.0);
   const double vertex_frames = 40.0 * seq.topology().vertex_count;
   EncoderOptions coarsest;
-  coarsest.codec = "trajectory";
+  coarsest.codec = codec();
   coarsest.set("step", 1.0);  // next to nothing but the container and the mean
   const double overhead = double(encode(seq, coarsest).bytes.size());
   double previous = 0;
   for (double budget : {0.5, 2.0, 8.0}) {
     EncoderOptions options;
-    options.codec = "trajectory";
+    options.codec = codec();
     options.set("bpvf", budget);
     const Coded coded = encode(seq, options);
     EXPECT_EQ(decodeAll(coded.bytes), coded.reconstructions);
@@ -188,7 +193,7 @@ TEST(Trajectory, BpvfFillsItsBudget) {
   }
 }
 
-TEST(Trajectory, OneFrameAndStillSequences) {
+TEST_P(Trajectory, OneFrameAndStillSequences) {
   const MemorySequence one = gridSequence(5, 4, 1, 1.0, 1.0);
   const Coded coded = encode(one, trajectory(0.3));
   EXPECT_EQ(decodeAll(coded.bytes), coded.reconstructions);
@@ -201,12 +206,12 @@ TEST(Trajectory, OneFrameAndStillSequences) {
   EXPECT_LE(kgError(still, still_coded.reconstructions), 0.3);
 }
 
-TEST(Trajectory, OptionsAreChecked) {
+TEST_P(Trajectory, OptionsAreChecked) {
   EncoderOptions both = trajectory(0.3);
   both.set("step", 1e-3);
   EXPECT_FALSE(both.validate().ok());
   EncoderOptions bound;
-  bound.codec = "trajectory";
+  bound.codec = codec();
   EXPECT_TRUE(bound.set("max-error", 0.01).validate().ok());
   EXPECT_FALSE(bound.set("bpvf", 2.0).validate().ok());
   EXPECT_FALSE(trajectory(0).validate().ok());
@@ -218,7 +223,7 @@ TEST(Trajectory, OptionsAreChecked) {
 
 // Every cut and every single-byte change of a small stream is refused with an error or
 // decodes to some frames: never a crash (the fuzzers go further).
-TEST(Trajectory, DamagedStreamsAreRefusedOrDecodedSafely) {
+TEST_P(Trajectory, DamagedStreamsAreRefusedOrDecodedSafely) {
   const MemorySequence seq = gridSequence(6, 5, 8, 1.0, 1.0);
   const Coded coded = encode(seq, trajectory(0.5));
   int refused = 0;
@@ -234,6 +239,8 @@ TEST(Trajectory, DamagedStreamsAreRefusedOrDecodedSafely) {
     if (decoder.ok()) (void)decoder.value().verify();
   }
 }
+
+INSTANTIATE_TEST_SUITE_P(Codecs, Trajectory, testing::Values("trajectory", "trajectory2"));
 
 }  // namespace
 }  // namespace animc

@@ -49,7 +49,7 @@ test('every golden file decodes to the native frames, bit for bit', { skip: !ani
     assert.equal(sha256(await allFrames(stream)), sha256(nativeFrames(join(goldenDir, name))), name);
     stream.close();
   }
-  assert.deepEqual([...codecs].sort(), ['affine-octree', 'auto', 'trajectory', 'wavelet']);
+  assert.deepEqual([...codecs].sort(), ['affine-octree', 'auto', 'trajectory', 'trajectory2', 'wavelet']);
 });
 
 test('random access gives the frames of sequential decoding', async () => {

@@ -145,8 +145,12 @@ void CodingOrder::walk(const VertexAdjacency& adjacency, std::atomic<uint32_t>* 
 }
 
 void writeTrajectoryGroup(const TrajectoryGroup& g, const CodingOrder& order, std::vector<uint8_t>& out) {
+  out.push_back(kTrajectoryGroupFrame);
+  writeTrajectoryGroupFields(g, order, out);
+}
+
+void writeTrajectoryGroupFields(const TrajectoryGroup& g, const CodingOrder& order, std::vector<uint8_t>& out) {
   ByteWriter head;
-  head.u8(kTrajectoryGroupFrame);
   head.u16(uint16_t(g.frames));
   head.u16(uint16_t(g.components));
   head.f32(g.coefficient_step);

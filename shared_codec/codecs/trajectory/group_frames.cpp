@@ -210,14 +210,24 @@ void GroupFrames::computeBatch(uint32_t first) const {
   batch_first_ = first;
 }
 
-bool GroupFrames::frame(uint32_t t, float* xyz) const {
+const float* GroupFrames::batchFrame(uint32_t t) const {
   if (batch_first_ == UINT32_MAX || t >= batch_first_ + kBatch) {
     computeBatch(t);
   } else if (t < batch_first_) {  // going backwards: the batch ends at t, for the frames before it
     computeBatch(t >= kBatch - 1 ? t - (kBatch - 1) : 0);
   }
-  const size_t size = size_t(3) * vertices_;
-  copyOnThreads(&batch_[(t - batch_first_) * size], size, xyz);
+  return &batch_[(t - batch_first_) * size_t(3) * vertices_];
+}
+
+bool GroupFrames::frame(uint32_t t, float* xyz) const {
+  copyOnThreads(batchFrame(t), size_t(3) * vertices_, xyz);
+  return ((batch_damaged_ >> (t - batch_first_)) & 1) == 0;
+}
+
+bool GroupFrames::frameInto(uint32_t t, const uint32_t* members, float* xyz) const {
+  const float* values = batchFrame(t);
+  for (uint32_t i = 0; i < vertices_; ++i)
+    for (int d = 0; d < 3; ++d) xyz[size_t(members[i]) * 3 + d] = values[size_t(i) * 3 + d];
   return ((batch_damaged_ >> (t - batch_first_)) & 1) == 0;
 }
 

@@ -63,9 +63,13 @@ class GroupFrames {
   // Frame t of the group (t < frames()) into xyz (3 floats a vertex, vertex order); false if
   // a value is not finite or above kMaxDecodedValue in size (a damaged group).
   bool frame(uint32_t t, float* xyz) const;
+  // The same for a part of a mesh: the group's vertex i into vertex members[i] of xyz.
+  bool frameInto(uint32_t t, const uint32_t* members, float* xyz) const;
 
  private:
   void computeBatch(uint32_t first) const;
+  // Frame t's batch computed; where frame t is in it.
+  const float* batchFrame(uint32_t t) const;
 
   SimdPath path_ = SimdPath::kPortable;
   uint32_t vertices_ = 0;

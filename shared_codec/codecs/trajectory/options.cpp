@@ -56,16 +56,52 @@ void TrajectoryOptions::write(ByteWriter& w) const {
   w.u32(group_frames);
 }
 
-Result<TrajectoryOptions> TrajectoryOptions::read(ByteReader& r) {
-  TrajectoryOptions o;
+namespace {
+
+Status readFields(ByteReader& r, TrajectoryOptions& o) {
   ANIMC_ASSIGN_OR_RETURN(uint8_t rate, r.u8("Rate_Mode"));
   o.rate = TrajectoryRate(rate);
   ANIMC_ASSIGN_OR_RETURN(o.rate_value, r.f64("Rate_Value"));
   ANIMC_ASSIGN_OR_RETURN(o.group_frames, r.u32("Group_Frames"));
+  return Status();
+}
+
+// The block read whole and valid, or the reason it is not.
+template <class Options>
+Result<Options> checked(const ByteReader& r, const Options& o) {
   if (r.remaining() != 0) return corrupt("codec parameters: " + std::to_string(r.remaining()) + " unread bytes");
   Status s = o.validate();
   if (!s.ok()) return corrupt("codec parameters: " + s.message());
   return o;
+}
+
+}  // namespace
+
+Result<TrajectoryOptions> TrajectoryOptions::read(ByteReader& r) {
+  TrajectoryOptions o;
+  ANIMC_RETURN_IF_ERROR(readFields(r, o));
+  return checked(r, o);
+}
+
+Status Trajectory2Options::validate() const {
+  ANIMC_RETURN_IF_ERROR(trajectory.validate());
+  if (parts < 1 || parts > kMaxTrajectoryParts)
+    return invalidArgument("parts " + std::to_string(parts) + " outside [1, " + std::to_string(kMaxTrajectoryParts) +
+                           "]");
+  return Status();
+}
+
+void Trajectory2Options::write(ByteWriter& w) const {
+  trajectory.write(w);
+  w.u8(uint8_t(parts));
+}
+
+Result<Trajectory2Options> Trajectory2Options::read(ByteReader& r) {
+  Trajectory2Options o;
+  ANIMC_RETURN_IF_ERROR(readFields(r, o.trajectory));
+  ANIMC_ASSIGN_OR_RETURN(uint8_t parts, r.u8("Max_Parts"));
+  o.parts = parts;
+  return checked(r, o);
 }
 
 Result<uint32_t> groupFramesFlag(const OptionValues& values, uint32_t fallback) {

@@ -38,6 +38,16 @@ struct TrajectoryOptions {
   static Result<TrajectoryOptions> read(ByteReader& r);
 };
 
+// Codec 5 (trajectory, version 2): the same settings, and the most parts a group is cut into.
+struct Trajectory2Options {
+  TrajectoryOptions trajectory;
+  uint32_t parts = 8;
+
+  Status validate() const;
+  void write(ByteWriter& w) const;
+  static Result<Trajectory2Options> read(ByteReader& r);
+};
+
 // "target KG", "step", "max error", "bpvf".
 const char* rateName(TrajectoryRate rate);
 
@@ -55,5 +65,6 @@ constexpr double kMaxTrajectoryMaxError = 0.5;
 constexpr double kMaxTrajectoryBpvf = 1024;
 constexpr uint32_t kMaxTrajectoryGroupFrames = 1024;
 constexpr uint64_t kMaxTrajectoryCoefficients = uint64_t(1) << 25;
+constexpr uint32_t kMaxTrajectoryParts = 64;
 
 }  // namespace animc

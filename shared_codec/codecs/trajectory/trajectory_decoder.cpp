@@ -4,15 +4,19 @@
 
 #include "codecs/trajectory/group_coding.h"
 #include "codecs/trajectory/group_frames.h"
+#include "codecs/trajectory/parted_group.h"
 #include "codecs/trajectory/trajectory_codec.h"
+#include "core/parallel.h"
 
 namespace animc {
 namespace {
 
+// The decoder of codecs 3 and 5: a group is one part holding every vertex (codec 3) or
+// parts labelled along the mesh, each a codec-3 group of its sub-mesh (codec 5).
 class TrajectoryDecoder final : public FrameDecoder {
  public:
-  TrajectoryDecoder(const Topology& topology, uint64_t max_multiply_adds, SimdPath path)
-      : topology_(topology), max_multiply_adds_(max_multiply_adds), path_(path) {}
+  TrajectoryDecoder(const Topology& topology, uint64_t max_multiply_adds, SimdPath path, bool parted)
+      : topology_(topology), max_multiply_adds_(max_multiply_adds), path_(path), parted_(parted) {}
 
   Status decodeFrame(ByteReader payload, std::vector<float>& xyz, bool* intra) override {
     return read(payload, &xyz, intra);
@@ -23,6 +27,8 @@ class TrajectoryDecoder final : public FrameDecoder {
   }
 
  private:
+  uint32_t groupFrames() const { return frames_.empty() ? 0 : frames_[0].frames(); }
+
   // Reads one frame record, and computes the frame into *xyz when xyz is not null.
   Status read(ByteReader payload, std::vector<float>* xyz, bool* intra) {
     ANIMC_ASSIGN_OR_RETURN(uint8_t type, payload.u8("Frame_Type"));
@@ -31,9 +37,9 @@ class TrajectoryDecoder final : public FrameDecoder {
       ANIMC_RETURN_IF_ERROR(enterGroup(payload));
     } else if (type == kTrajectoryNextFrame) {
       if (payload.remaining() != 0) return corrupt("trajectory frame: bytes after the frame type");
-      if (next_ >= frames_.frames())
-        return corrupt(frames_.frames() == 0 ? "trajectory frame: no group before it"
-                                             : "trajectory frame: more frames than its group holds");
+      if (next_ >= groupFrames())
+        return corrupt(groupFrames() == 0 ? "trajectory frame: no group before it"
+                                          : "trajectory frame: more frames than its group holds");
     } else {
       return corrupt("trajectory frame: unknown frame type " + std::to_string(type));
     }
@@ -42,7 +48,14 @@ class TrajectoryDecoder final : public FrameDecoder {
     if (xyz == nullptr) return Status();
     xyz->resize(size_t(topology_.vertex_count) * 3);
     // As for the other codecs: a damaged group may not hand out infinities or huge values.
-    if (!frames_.frame(t, xyz->data())) return corrupt("trajectory frame: a decoded value is not finite or above 1e30");
+    bool finite = true;
+    if (!parted_) {
+      finite = frames_[0].frame(t, xyz->data());
+    } else {
+      for (size_t c = 0; c < frames_.size(); ++c)
+        finite &= frames_[c].frameInto(t, parts_->members[c].data(), xyz->data());
+    }
+    if (!finite) return corrupt("trajectory frame: a decoded value is not finite or above 1e30");
     return Status();
   }
 
@@ -51,29 +64,61 @@ class TrajectoryDecoder final : public FrameDecoder {
   Status enterGroup(ByteReader payload) {
     const uint8_t* bytes = payload.cursor();
     const size_t size = payload.remaining();
-    if (frames_.frames() > 0 && size == group_payload_.size() &&
-        std::equal(bytes, bytes + size, group_payload_.begin()))
+    if (groupFrames() > 0 && size == group_payload_.size() && std::equal(bytes, bytes + size, group_payload_.begin()))
       return Status();
-    frames_ = GroupFrames();  // a failed read leaves no group to continue
+    frames_.clear();  // a failed read leaves no group to continue
     group_payload_.clear();
-    // The order is made with the first group: the decoder of an auto file holds one for each
-    // candidate, and a large mesh's order takes a while to compute.
-    if (order_) {
-      ANIMC_RETURN_IF_ERROR(readTrajectoryGroup(payload, *order_, max_multiply_adds_, group_));
-    } else {
-      ANIMC_RETURN_IF_ERROR(walkAndReadTrajectoryGroup(topology_, payload, max_multiply_adds_, order_, group_));
-    }
-    frames_.reset(group_, *order_, path_);
+    ANIMC_RETURN_IF_ERROR(parted_ ? readParts(payload) : readWhole(payload));
     group_payload_.assign(bytes, bytes + size);
     return Status();
   }
 
+  Status readWhole(ByteReader payload) {
+    TrajectoryGroup group;
+    // The order is made with the first group: the decoder of an auto file holds one for each
+    // candidate, and a large mesh's order takes a while to compute.
+    if (order_) {
+      ANIMC_RETURN_IF_ERROR(readTrajectoryGroup(payload, *order_, max_multiply_adds_, group));
+    } else {
+      ANIMC_RETURN_IF_ERROR(walkAndReadTrajectoryGroup(topology_, payload, max_multiply_adds_, order_, group));
+    }
+    frames_.resize(1);
+    frames_[0].reset(group, *order_, path_);
+    return Status();
+  }
+
+  // The labels, then the parts on any thread (each its own coded data); the first failing
+  // part's error, in part order, whatever the thread count.
+  Status readParts(ByteReader payload) {
+    if (!order_) order_ = std::make_unique<const CodingOrder>(topology_);
+    PartedGroupHead head;
+    ANIMC_RETURN_IF_ERROR(readPartedGroupHead(payload, *order_, head));
+    if (head.multiply_adds > max_multiply_adds_)
+      return limitExceeded("trajectory group of " + std::to_string(head.part_count) + " parts costs " +
+                           std::to_string(head.multiply_adds) + " multiply-adds, above the limit of " +
+                           std::to_string(max_multiply_adds_) +
+                           "; raise it for a trusted file (DecoderLimits::max_multiply_adds, animc "
+                           "--max-multiply-adds)");
+    parts_ = std::make_unique<MeshParts>(topology_, head.labels, head.part_count);
+    std::vector<TrajectoryGroup> groups(head.part_count);
+    std::vector<Status> read(head.part_count);
+    parallelFor(head.part_count, [&](size_t c) {
+      read[c] = readTrajectoryGroup(head.parts[c], *parts_->orders[c], max_multiply_adds_, groups[c]);
+    });
+    for (const Status& s : read) ANIMC_RETURN_IF_ERROR(s);
+    std::vector<GroupFrames> frames(head.part_count);
+    for (uint32_t c = 0; c < head.part_count; ++c) frames[c].reset(groups[c], *parts_->orders[c], path_);
+    frames_ = std::move(frames);
+    return Status();
+  }
+
   const Topology& topology_;
-  std::unique_ptr<const CodingOrder> order_;
+  std::unique_ptr<const CodingOrder> order_;  // of the whole mesh
   uint64_t max_multiply_adds_;
   SimdPath path_;
-  TrajectoryGroup group_;
-  GroupFrames frames_;
+  bool parted_;
+  std::unique_ptr<MeshParts> parts_;    // of the group decoded last (codec 5)
+  std::vector<GroupFrames> frames_;     // of each part, of the group decoded last
   std::vector<uint8_t> group_payload_;  // of frames_, after its Frame_Type
   uint32_t next_ = 0;
 };
@@ -82,7 +127,12 @@ class TrajectoryDecoder final : public FrameDecoder {
 
 std::unique_ptr<FrameDecoder> makeTrajectoryDecoder(const Topology& topology, const DecoderLimits& limits,
                                                     SimdPath path) {
-  return std::make_unique<TrajectoryDecoder>(topology, limits.max_multiply_adds, path);
+  return std::make_unique<TrajectoryDecoder>(topology, limits.max_multiply_adds, path, false);
+}
+
+std::unique_ptr<FrameDecoder> makeTrajectory2Decoder(const Topology& topology, const DecoderLimits& limits,
+                                                     SimdPath path) {
+  return std::make_unique<TrajectoryDecoder>(topology, limits.max_multiply_adds, path, true);
 }
 
 }  // namespace animc

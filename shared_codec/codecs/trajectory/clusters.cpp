@@ -1,0 +1,113 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "codecs/trajectory/clusters.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/parallel.h"
+
+namespace animc {
+namespace {
+
+// Frames the distances are measured on: at most this many, evenly spaced. Parts differ in
+// their slow motion, which a subsample keeps, and the cost stays O(vertices x parts).
+constexpr uint32_t kMaxClusterFrames = 64;
+// Rounds of k-means: labels hardly change after a dozen.
+constexpr int kIterations = 12;
+constexpr uint32_t kVerticesPerTask = 1024;
+
+struct Features {
+  uint32_t dims = 0;
+  std::vector<float> values;  // vertices x dims
+  const float* row(uint32_t v) const { return values.data() + size_t(v) * dims; }
+};
+
+Features sampled(const float* frames, uint32_t vertices, uint32_t frame_count) {
+  const uint32_t stride = (frame_count + kMaxClusterFrames - 1) / kMaxClusterFrames;
+  const uint32_t used = (frame_count + stride - 1) / stride;
+  Features f;
+  f.dims = 3 * used;
+  f.values.resize(size_t(vertices) * f.dims);
+  for (uint32_t v = 0; v < vertices; ++v)
+    for (uint32_t i = 0; i < used; ++i)
+      for (uint32_t c = 0; c < 3; ++c)
+        f.values[size_t(v) * f.dims + 3 * i + c] = frames[(size_t(i) * stride * vertices + v) * 3 + c];
+  return f;
+}
+
+double squaredDistance(const float* a, const double* b, uint32_t dims) {
+  double sum = 0;
+  for (uint32_t d = 0; d < dims; ++d) sum += (a[d] - b[d]) * (a[d] - b[d]);
+  return sum;
+}
+
+// Farthest-point seeds from vertex 0: spread over the motions, and deterministic.
+std::vector<double> seeds(const Features& f, uint32_t vertices, uint32_t parts) {
+  std::vector<double> centres(size_t(parts) * f.dims);
+  std::vector<double> nearest(vertices, HUGE_VAL);
+  uint32_t next = 0;
+  for (uint32_t c = 0; c < parts; ++c) {
+    std::copy(f.row(next), f.row(next) + f.dims, centres.begin() + size_t(c) * f.dims);
+    uint32_t farthest = 0;
+    for (uint32_t v = 0; v < vertices; ++v) {
+      nearest[v] = std::min(nearest[v], squaredDistance(f.row(v), &centres[size_t(c) * f.dims], f.dims));
+      if (nearest[v] > nearest[farthest]) farthest = v;
+    }
+    next = farthest;
+  }
+  return centres;
+}
+
+void assign(const Features& f, const std::vector<double>& centres, uint32_t parts, std::vector<uint8_t>& labels) {
+  parallelForBlocks(labels.size(), kVerticesPerTask, double(parts) * f.dims, [&](size_t, size_t begin, size_t end) {
+    for (size_t v = begin; v < end; ++v) {
+      double best = HUGE_VAL;
+      for (uint32_t c = 0; c < parts; ++c) {
+        const double d = squaredDistance(f.row(uint32_t(v)), &centres[size_t(c) * f.dims], f.dims);
+        if (d < best) {
+          best = d;
+          labels[v] = uint8_t(c);
+        }
+      }
+    }
+  });
+}
+
+// Each centre the mean of its vertices (one left alone when it has none).
+void update(const Features& f, const std::vector<uint8_t>& labels, uint32_t parts, std::vector<double>& centres) {
+  std::vector<double> sums(centres.size(), 0);
+  std::vector<uint32_t> counts(parts, 0);
+  for (uint32_t v = 0; v < labels.size(); ++v) {
+    ++counts[labels[v]];
+    for (uint32_t d = 0; d < f.dims; ++d) sums[size_t(labels[v]) * f.dims + d] += f.row(v)[d];
+  }
+  for (uint32_t c = 0; c < parts; ++c)
+    for (uint32_t d = 0; counts[c] > 0 && d < f.dims; ++d)
+      centres[size_t(c) * f.dims + d] = sums[size_t(c) * f.dims + d] / counts[c];
+}
+
+}  // namespace
+
+std::vector<uint8_t> clusterTrajectories(const float* frames, uint32_t vertices, uint32_t frame_count, uint32_t parts,
+                                         uint32_t& count) {
+  parts = std::max(1u, std::min({parts, vertices, 256u}));
+  std::vector<uint8_t> labels(vertices, 0);
+  if (parts > 1) {
+    const Features f = sampled(frames, vertices, frame_count);
+    std::vector<double> centres = seeds(f, vertices, parts);
+    for (int i = 0; i < kIterations; ++i) {
+      assign(f, centres, parts, labels);
+      update(f, labels, parts, centres);
+    }
+  }
+  // Numbered by lowest vertex, empty parts dropped.
+  std::vector<int> number(parts, -1);
+  count = 0;
+  for (uint8_t& label : labels) {
+    if (number[label] < 0) number[label] = int(count++);
+    label = uint8_t(number[label]);
+  }
+  return labels;
+}
+
+}  // namespace animc

@@ -1,0 +1,344 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "codecs/trajectory/part_encoder.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <functional>
+
+#include "codecs/trajectory/group_frames.h"
+#include "core/large_memory.h"
+#include "core/parallel.h"
+
+namespace animc {
+namespace {
+
+// Integers of the payload stay below 2^30 in magnitude (their differences below 2^31).
+constexpr double kMaxQuantised = double(1 << 29);
+// The fewest components computed more at a time.
+constexpr Eigen::Index kMinMoreComponents = 16;
+// Vertices the rate search quantises and measures at a time, on one thread: a block's
+// coefficients and frames stay in cache.
+constexpr uint32_t kVertexBlock = 2048;
+
+size_t vertexBlocks(uint32_t vertices) { return (vertices + kVertexBlock - 1) / kVertexBlock; }
+
+// block(b, begin, end) for the vertex blocks of `vertices`, on any thread. The blocks are
+// fixed, so what each one sums never depends on the thread count; vertex_cost is parallelFor's
+// cost of one vertex.
+void forVertexBlocks(uint32_t vertices, double vertex_cost,
+                     const std::function<void(size_t b, uint32_t begin, uint32_t end)>& block) {
+  parallelForBlocks(vertices, kVertexBlock, vertex_cost,
+                    [&](size_t b, size_t begin, size_t end) { block(b, uint32_t(begin), uint32_t(end)); });
+}
+
+int32_t quantiseValue(double value, double step) {
+  return int32_t(std::clamp(std::nearbyint(value / step), -kMaxQuantised, kMaxQuantised));
+}
+
+// Coefficients are rounded towards zero a little (a value within 0.6 of a step of zero
+// becomes 0, and so on): a zero costs far fewer bits than a 1, and the step the target then
+// needs is only a little finer. 0.6 beat 0.5 and 0.7 on the shared sequences (trajectory.md).
+constexpr double kRoundingThreshold = 0.6;
+int32_t quantiseCoefficient(double value, double step) {
+  const double magnitude = std::min(std::floor(std::fabs(value) / step + 1 - kRoundingThreshold), kMaxQuantised);
+  return int32_t(std::copysign(magnitude, value));
+}
+
+// Bits of a value through an adaptive classed model, roughly: zeros are the common case.
+double estimatedBits(int64_t v) {
+  static const std::array<double, 1024> small = [] {
+    std::array<double, 1024> bits{};
+    for (size_t i = 1; i < bits.size(); ++i) bits[i] = 2 + 2 * std::log2(double(i));
+    bits[0] = 0.3;
+    return bits;
+  }();
+  const uint64_t magnitude = uint64_t(v < 0 ? -v : v);
+  return magnitude < small.size() ? small[magnitude] : 2 + 2 * std::log2(double(magnitude));
+}
+
+}  // namespace
+
+double GroupContext::allowance(double share) const {
+  const double value = options.rate_value;
+  if (options.rate == TrajectoryRate::kTargetKg) return (value / 100) * (value / 100) * spread;
+  double allowed = 0;
+  for (double side : cube_sides) allowed += mesh_vertices * (share * value * side) * (share * value * side);
+  return allowed;
+}
+
+// What quantising the coefficients of component k at step q does to them, summed over
+// the part's vertices.
+struct PartEncoder::ColumnStats {
+  double error = 0;   // squared, of the quantised coefficients
+  double energy = 0;  // squared, of the quantised coefficients
+  double bits = 0;    // estimated
+  bool any = false;   // a coefficient is not zero
+};
+
+// The components of [first, K) worth sending at coefficient step q, with their basis
+// vectors quantised.
+struct PartEncoder::Selection {
+  std::vector<Eigen::Index> sent;
+  std::vector<std::vector<int32_t>> basis;  // of each sent
+  std::vector<float> basis_step;
+};
+
+PartEncoder::PartEncoder(const GroupContext& group, const CodingOrder& order, const std::vector<uint32_t>& members)
+    : group_(group), order_(order), members_(members), vertices_(uint32_t(order.vertex.size())), position_(vertices_) {
+  for (uint32_t p = 0; p < vertices_; ++p) position_[order_.vertex[p]] = p;
+  decomposition_ = std::make_unique<TrajectoryDecomposition>(trajectories());
+  pc_ = decomposition_->none();
+}
+
+// A row a vertex, in coding order (so are the coefficients then), of 3G values: x over the
+// frames, then y, then z.
+RowMatrixF PartEncoder::trajectories() const {
+  const uint32_t g = group_.frames;
+  RowMatrixF x(vertices_, 3 * g);
+  adviseHugePages(x.data(), size_t(x.size()) * sizeof(float));  // the encoder's largest buffer
+  forVertexBlocks(vertices_, 3.0 * g, [&](size_t, uint32_t begin, uint32_t end) {
+    for (uint32_t p = begin; p < end; ++p)
+      for (uint32_t t = 0; t < g; ++t)
+        for (uint32_t c = 0; c < 3; ++c) x(p, c * g + t) = vertexOf(t, order_.vertex[p])[c];
+  });
+  return x;
+}
+
+void PartEncoder::extend(Eigen::Index count) { decomposition_->extend(pc_, count, negligibleEnergy()); }
+
+void PartEncoder::release() {
+  decomposition_.reset();
+  pc_ = Components();
+}
+
+bool PartEncoder::carriesEnough(double q) const {
+  if (pc_.sigma.size() == 0) return pc_.complete;
+  const double weakest = pc_.sigma[pc_.sigma.size() - 1];
+  return weakest * weakest <= leastWorthSending(q);
+}
+
+// Too few when the energy left out is more than the part's share of the error allowed, or
+// step q would send the weakest of the components.
+bool PartEncoder::clearlyTooFew(double q) const {
+  const double left_out = pc_.energy - pc_.sigma.squaredNorm();
+  const TrajectoryRate rate = group_.options.rate;
+  if (rate == TrajectoryRate::kTargetKg || rate == TrajectoryRate::kMaxError) {
+    if (left_out > group_.allowedAtMost() * share()) return true;
+    if (left_out >= group_.modelledAllowance() * share()) return false;  // the model cannot tell
+  }
+  return !carriesEnough(q) && !sendsNoneOfTheWeakest(float(q));
+}
+
+// The components after the weakest eighth, weaker still, would not be sent either. (The
+// bound of carriesEnough() is safe but can ask for many more components that are not sent in
+// the end.)
+bool PartEncoder::sendsNoneOfTheWeakest(float q) const {
+  const Eigen::Index k = pc_.sigma.size(), tail = std::max<Eigen::Index>(kMinMoreComponents / 2, k / 8);
+  return selection(q, std::max<Eigen::Index>(0, k - tail)).sent.empty();
+}
+
+// A component would remove at most its energy, and cost at least the bits of a zero for each
+// of its coefficients and basis values.
+double PartEncoder::leastWorthSending(double q) const {
+  return kBitSlope * q * q * estimatedBits(0) * (vertices_ + 3.0 * group_.frames);
+}
+
+// From the decay of the last half of the singular values: a quarter more than where they
+// fall below what is worth sending.
+Eigen::Index PartEncoder::moreComponents(double q) const {
+  const Eigen::Index k = pc_.sigma.size();
+  const double weakest = pc_.sigma[k - 1], middle = pc_.sigma[k / 2];
+  const double decay = std::log(weakest / middle) / double(k - 1 - k / 2);  // per component
+  const double needed = std::log(std::sqrt(leastWorthSending(q)) / weakest) / decay;
+  if (!(decay < 0) || !(needed < double(k))) return k;
+  return std::max<Eigen::Index>(std::max(kMinMoreComponents, k / 2), Eigen::Index(1.25 * needed) + 1);
+}
+
+double PartEncoder::largestCoefficient() const {
+  return pc_.coefficients.size() ? double(pc_.coefficients.cwiseAbs().maxCoeff()) : 0.0;
+}
+
+// Energy whose loss hardly changes the step chosen: a hundredth of the part's share of the
+// error allowed.
+double PartEncoder::negligibleEnergy() const {
+  switch (group_.options.rate) {
+    case TrajectoryRate::kTargetKg:
+    case TrajectoryRate::kMaxError: return group_.modelledAllowance() * share() / 100;
+    case TrajectoryRate::kStep: {
+      const double q = group_.options.rate_value * group_.diagonal;
+      return 3.0 * vertices_ * group_.frames * q * q / 12 / 100;
+    }
+    case TrajectoryRate::kBitsPerVertexFrame: return 0;
+  }
+  return 0;
+}
+
+// A vertex block at a time (rows of the coefficients, on any thread), the blocks' sums added
+// in order.
+std::vector<PartEncoder::ColumnStats> PartEncoder::columnStats(double q, Eigen::Index first) const {
+  const Eigen::Index count = pc_.coefficients.cols() - first;
+  std::vector<std::vector<ColumnStats>> partial(vertexBlocks(vertices_));
+  forVertexBlocks(vertices_, 20.0 * double(count), [&](size_t b, uint32_t begin, uint32_t end) {
+    // Summed in a block's own vector, stored once: the blocks' vectors may share cache lines.
+    std::vector<ColumnStats> block(static_cast<size_t>(count));
+    for (uint32_t p = begin; p < end; ++p)
+      for (Eigen::Index k = 0; k < count; ++k) {
+        const double c = pc_.coefficients(p, first + k);
+        const int32_t value = quantiseCoefficient(c, q);
+        const double chat = value * q;
+        ColumnStats& s = block[size_t(k)];
+        s.error += (c - chat) * (c - chat);
+        s.energy += chat * chat;
+        s.bits += estimatedBits(value);
+        s.any |= value != 0;
+      }
+    partial[b] = std::move(block);
+  });
+  std::vector<ColumnStats> total(static_cast<size_t>(count));
+  for (const auto& block : partial)
+    for (size_t k = 0; k < total.size(); ++k) {
+      total[k].error += block[k].error;
+      total[k].energy += block[k].energy;
+      total[k].bits += block[k].bits;
+      total[k].any |= block[k].any;
+    }
+  return total;
+}
+
+PartEncoder::Selection PartEncoder::selection(double q, Eigen::Index first) const {
+  const std::vector<ColumnStats> stats = columnStats(q, first);
+  std::vector<std::vector<int32_t>> basis(stats.size());
+  std::vector<float> steps(stats.size());
+  std::vector<char> sent(stats.size(), 0);
+  parallelFor(stats.size(), 20.0 * group_.frames, [&](size_t i) {
+    if (!stats[i].any) return;
+    const Eigen::Index k = first + Eigen::Index(i);
+    // An error d in basis vector k moves the vertices by their coefficients times d, sigma_k
+    // in total, and one in the mean moves all the part's vertices by d: these steps make each
+    // cost the squared error of one coefficient's step.
+    steps[i] = float(std::clamp(q / pc_.sigma[k], 1.0 / kMaxQuantised, 2.0));
+    basis[i].resize(size_t(3) * group_.frames);
+    for (size_t j = 0; j < basis[i].size(); ++j) basis[i][j] = quantiseValue(pc_.basis(Eigen::Index(j), k), steps[i]);
+    sent[i] = worthSending(k, q, stats[i], basis[i], steps[i]);
+  });
+  Selection out;
+  for (size_t i = 0; i < stats.size(); ++i) {
+    if (!sent[i]) continue;
+    out.sent.push_back(first + Eigen::Index(i));
+    out.basis.push_back(std::move(basis[i]));
+    out.basis_step.push_back(steps[i]);
+  }
+  return out;
+}
+
+// The part as quantised at step, all but its coefficients; and the components sent, whose
+// coefficients are quantised at g.coefficient_step.
+PartEncoder::Selection PartEncoder::quantiseHeader(double step, TrajectoryGroup& g) const {
+  g.frames = group_.frames;
+  g.coefficient_step = float(step);
+  const double q = g.coefficient_step;
+  Selection chosen = selection(q);
+  const size_t row = size_t(3) * group_.frames;
+  const uint32_t used = uint32_t(chosen.sent.size());
+  g.components = used;
+  g.basis_step = chosen.basis_step;
+  g.basis.resize(used * row);
+  for (uint32_t k = 0; k < used; ++k)
+    std::copy(chosen.basis[k].begin(), chosen.basis[k].end(), g.basis.begin() + k * row);
+  const double mean_reach = pc_.mean.cwiseAbs().maxCoeff();
+  g.mean_step = float(std::max(q / std::sqrt(double(vertices_)), mean_reach / kMaxQuantised + 1e-30));
+  g.mean.resize(row);
+  for (size_t i = 0; i < row; ++i) g.mean[i] = quantiseValue(pc_.mean[Eigen::Index(i)], g.mean_step);
+  return chosen;
+}
+
+// Into g, whose buffers the search's trials reuse (a large group's would otherwise be new
+// pages at every trial).
+void PartEncoder::quantise(double step, TrajectoryGroup& g) const {
+  const Selection chosen = quantiseHeader(step, g);
+  const double q = g.coefficient_step;
+  const size_t used = chosen.sent.size();
+  g.coefficients.resize(size_t(vertices_) * used);
+  forVertexBlocks(vertices_, 10.0 * double(used), [&](size_t, uint32_t begin, uint32_t end) {
+    for (uint32_t p = begin; p < end; ++p)
+      for (size_t k = 0; k < used; ++k)
+        g.coefficients[p * used + k] = quantiseCoefficient(pc_.coefficients(p, chosen.sent[k]), q);
+  });
+}
+
+// Rate-distortion choice of a component: sent when the squared error it removes (its
+// energy, less the error of its quantised coefficients and basis vector) is worth its
+// estimated bits at the slope of a uniform quantiser, 2 ln 2 q^2 / 12 per bit. Weak
+// components otherwise cost a whole basis vector for a few coefficients.
+bool PartEncoder::worthSending(Eigen::Index k, double q, const ColumnStats& column, const std::vector<int32_t>& basis,
+                               float basis_step) const {
+  double bits = column.bits, basis_error = 0;
+  int64_t previous = 0;
+  for (size_t i = 0; i < basis.size(); ++i) {
+    const double b = pc_.basis(Eigen::Index(i), k), bhat = basis[i] * double(basis_step);
+    basis_error += (b - bhat) * (b - bhat);
+    if (i % group_.frames == 0) previous = 0;
+    bits += estimatedBits(basis[i] - previous);
+    previous = basis[i];
+  }
+  const double coded_error = column.error + column.energy * basis_error;
+  const double removed = pc_.sigma[k] * pc_.sigma[k] - coded_error;
+  return removed > kBitSlope * q * q * bits;
+}
+
+// A block of vertices at a time (on any thread; the blocks' sums added in order): their
+// coefficients quantised into panels, and their frames computed as the decoders do, without
+// the whole part's coefficients ever quantised at once.
+PartError PartEncoder::measure(double step, bool frame_worst) const {
+  TrajectoryGroup header;
+  const Selection chosen = quantiseHeader(step, header);
+  const GroupBasis basis = dequantisedBasis(header);
+  const uint32_t used = header.components, frames = group_.frames;
+  const double q = header.coefficient_step;
+  const size_t blocks = vertexBlocks(vertices_);
+  std::vector<double> squared(blocks, 0);
+  std::vector<std::vector<double>> worst(blocks);
+  forVertexBlocks(vertices_, 3.0 * (used + 4) * frames, [&](size_t b, uint32_t v0, uint32_t end) {
+    const uint32_t count = end - v0;
+    // Summed in the block's own variables, stored once: neighbouring blocks' slots share
+    // cache lines, and threads writing them at every vertex would pass those lines back and forth.
+    double block_squared = 0;
+    std::vector<double> block_worst(frames, 0);
+    std::vector<float> panels(FrameKernel::panelFloats(count, used), 0.0f);
+    for (uint32_t i = 0; i < count && used > 0; ++i) {
+      float* panel = panels.data() + FrameKernel::panelOffset(i, used);
+      const Eigen::Index p = position_[v0 + i];
+      for (uint32_t k = 0; k < used; ++k)
+        panel[size_t(k) * FrameKernel::kLanes] = dequantisedCoefficient(
+            quantiseCoefficient(pc_.coefficients(p, chosen.sent[k]), q), header.coefficient_step);
+    }
+    std::vector<float> xyz(size_t(FrameKernel::kBatch) * 3 * count);
+    for (uint32_t first = 0; first < frames; first += FrameKernel::kBatch) {
+      FrameKernel::run(group_.path, basis, panels.data(), count, 0, count, first, xyz.data());
+      for (uint32_t t = first; t < std::min(frames, first + FrameKernel::kBatch); ++t) {
+        const float* decoded = xyz.data() + size_t(t - first) * 3 * count;
+        for (uint32_t i = 0; i < count; ++i) {
+          const float* original = vertexOf(t, v0 + i);
+          double sq = 0;
+          for (int c = 0; c < 3; ++c)
+            sq += (double(decoded[3 * i + c]) - original[c]) * (double(decoded[3 * i + c]) - original[c]);
+          block_squared += sq;
+          block_worst[t] = std::max(block_worst[t], sq);
+        }
+      }
+    }
+    squared[b] = block_squared;
+    worst[b] = std::move(block_worst);
+  });
+  PartError e;
+  for (size_t b = 0; b < blocks; ++b) e.squared += squared[b];
+  if (frame_worst) {
+    e.frame_worst.assign(frames, 0);
+    for (uint32_t t = 0; t < frames; ++t)
+      for (size_t b = 0; b < blocks; ++b) e.frame_worst[t] = std::max(e.frame_worst[t], worst[b][t]);
+  }
+  return e;
+}
+
+}  // namespace animc
