@@ -27,7 +27,8 @@ void addEncodeParameters(RichParameterList& par) {
                "error set by the step or the bits per vertex (docs/wavelet.md). Trajectory: each group of frames "
                "as principal trajectories, the smallest files at a KG error; its groups are the I-frame "
                "interval, or up to 512 frames (docs/trajectory.md). Auto (the default): per group, the smaller "
-               "of Trajectory and Affine-Octree within the max error, or of Trajectory and Wavelet at the "
+               "of Trajectory version 2 (parts of the mesh with a basis each) and Affine-Octree within the "
+               "max error, or of Trajectory version 2 and Wavelet at the "
                "target KG error when it is set (docs/auto.md)."));
   par.addParam(RichEnum(
       "Profile", 0, kProfiles, "Profile (Affine-Octree)",

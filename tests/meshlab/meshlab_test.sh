@@ -220,9 +220,9 @@ case_trajectory() {
   filter_matches_animc trajectory "codec: trajectory, target KG 0.5 %, groups of up to 512 frames" \
     Codec=2 WaveletTargetKG=0.5 IFrameInterval=10 -- --codec trajectory --target-kg 0.5 --iframe-interval 10
   # Auto, the default codec: the max error, or the target KG when it is set.
-  filter_matches_animc auto "codec: auto, max error 0.02 of the cube's side, per group trajectory or affine-octree" \
+  filter_matches_animc auto "codec: auto, max error 0.02 of the cube's side, per group trajectory2 or affine-octree" \
     Codec=3 MaxErrorPercent=2 IFrameInterval=2 -- --max-error 0.02 --iframe-interval 2
-  filter_matches_animc auto_kg "codec: auto, target KG 0.4 %, per group trajectory or wavelet" \
+  filter_matches_animc auto_kg "codec: auto, target KG 0.4 %, per group trajectory2 or wavelet" \
     Codec=3 WaveletTargetKG=0.4 -- --target-kg 0.4
 }
 

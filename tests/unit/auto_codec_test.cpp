@@ -63,7 +63,7 @@ TEST(AutoCodec, MixedGroupsDecodeToTheReconstructionsAndTakeTheSmallest) {
     EXPECT_EQ(decodeAll(coded.bytes), coded.reconstructions) << "interval " << interval;
     // Never more than the smaller candidate alone, plus the candidate byte of each frame and
     // the candidates' parameters in the header.
-    const size_t trajectory = encode(seq, options("trajectory", "max-error", 0.01, interval)).bytes.size();
+    const size_t trajectory = encode(seq, options("trajectory2", "max-error", 0.01, interval)).bytes.size();
     const size_t octree = encode(seq, options("affine-octree", "max-error", 0.01, interval)).bytes.size();
     EXPECT_LE(coded.bytes.size(), std::min(trajectory, octree) + seq.frames().size() + 64) << "interval " << interval;
     // Every vertex within each frame's bound: the affine-octree codec's cube is the previous
@@ -91,7 +91,7 @@ TEST(AutoCodec, TargetKgHoldsAndTheFileNamesItsCandidates) {
   auto decoder = Decoder::openMemory(coded.bytes.data(), coded.bytes.size());
   ASSERT_TRUE(decoder.ok());
   EXPECT_EQ(decoder.value().info().codec, "auto");
-  EXPECT_NE(decoder.value().info().settings_text.find("trajectory or wavelet"), std::string::npos)
+  EXPECT_NE(decoder.value().info().settings_text.find("trajectory2 or wavelet"), std::string::npos)
       << decoder.value().info().settings_text;
 }
 

@@ -70,8 +70,8 @@ const CodecEntry kAutoEntry = {
     {"target-kg", "max-error", "group-frames"},
     {},
     "[--max-error E | --target-kg X] [--group-frames G]\n"
-    "           per group, the smallest of trajectory and affine-octree within the max error E\n"
-    "           (default 0.01), or of trajectory and wavelet at the KG error X (%)",
+    "           per group, the smallest of trajectory2 and affine-octree within the max error E\n"
+    "           (default 0.01), or of trajectory2 and wavelet at the KG error X (%)",
     fromFlags,
     validateOptions<AutoOptions>,
     writeOptions<AutoOptions>,

@@ -62,13 +62,13 @@ Result<AutoOptions> AutoOptions::read(ByteReader& r) {
 
 AutoOptions withCandidates(AutoOptions o) {
   o.candidates.clear();
-  TrajectoryOptions trajectory;
-  trajectory.rate = o.rate;
-  trajectory.rate_value = o.rate_value;
-  trajectory.group_frames = o.group_frames;
+  Trajectory2Options trajectory;
+  trajectory.trajectory.rate = o.rate;
+  trajectory.trajectory.rate_value = o.rate_value;
+  trajectory.trajectory.group_frames = o.group_frames;
   ByteWriter w;
   trajectory.write(w);
-  o.candidates.push_back({CodecId::kTrajectory, w.bytes()});
+  o.candidates.push_back({CodecId::kTrajectory2, w.bytes()});
   ByteWriter other;
   if (o.rate == TrajectoryRate::kTargetKg) {
     WaveletOptions wavelet;

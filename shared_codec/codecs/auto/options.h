@@ -34,7 +34,8 @@ struct AutoOptions {
   static Result<AutoOptions> read(ByteReader& r);
 };
 
-// The options with the candidates for their rate: the trajectory codec and, for a KG target,
+// The options with the candidates for their rate: the trajectory codec's version 2 (codec 5,
+// its default parts) and, for a KG target,
 // the wavelet codec with the same target, or, for a max error, the affine-octree codec
 // (default profile) with the same bound.
 AutoOptions withCandidates(AutoOptions options);
