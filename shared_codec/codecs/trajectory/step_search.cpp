@@ -16,6 +16,9 @@ constexpr int kMaxTrials = 64;
 // end a search that has found no acceptable step.
 constexpr double kFlatFraction = 0.125;
 constexpr int kFlatTrials = 2;
+// ... and only trials this much finer than the last failure count (a step 16 % finer): closer
+// ones see the noise of a largest error, which does not fall smoothly with the step.
+constexpr double kFlatSpan = 0.25;
 
 }  // namespace
 
@@ -35,7 +38,7 @@ double searchStep(const StepSearch& s, const std::function<double(double u)>& ex
     } else {
       // Finer steps that do not lower the error: what is left is not quantisation error (the
       // components computed do not carry enough), and no step will be acceptable.
-      const bool flat = !std::isnan(f_fail) && std::isnan(f_pass) && fail - u >= tol &&
+      const bool flat = !std::isnan(f_fail) && std::isnan(f_pass) && fail - u >= kFlatSpan &&
                         f_fail - f < kFlatFraction * s.slope * (fail - u);
       flat_steps = flat ? flat_steps + 1 : 0;
       if (flat_steps == kFlatTrials) return s.lowest;
