@@ -54,6 +54,7 @@ from bench_random_access import random_access_section  # noqa: E402
 from bench_readers import readers_section  # noqa: E402
 from bench_gltf import gltf_section  # noqa: E402
 from bench_trajectory import trajectory_section  # noqa: E402
+from bench_trajectory2 import trajectory2_section  # noqa: E402
 from bench_threads import threads_section  # noqa: E402
 from bench_encoder_speed import encoder_speed_section  # noqa: E402
 from bench_web import web_section  # noqa: E402
@@ -449,6 +450,7 @@ def parse_args():
 # and its failures from (args, sequences).
 SECTIONS = (
     lambda a, s: trajectory_section(a.animc, s, a.runs),
+    lambda a, s: trajectory2_section(a.animc, s, a.runs),
     lambda a, s: encoder_speed_section(a.animc, None, s, a.runs),
     lambda a, s: threads_section(a.animc, s, a.runs),
     lambda a, s: wavelet_section(a.animc, s, a.runs, os.path.dirname(os.path.abspath(a.out))),
