@@ -10,10 +10,11 @@ from bpy_extras.io_utils import ExportHelper
 
 from . import module
 
-CODECS = [('auto', "Auto", "Per frame group, the smaller of the trajectory codec and the other one (animc's default)"),
-          ('trajectory', "Trajectory", "Principal components of the vertex trajectories: the smallest files"),
+CODECS = [('auto', "Auto", "Per frame group, the smaller of the trajectory2 codec and the other one (animc's default)"),
+          ('trajectory', "Trajectory", "Principal components of the vertex trajectories"),
           ('affine-octree', "Affine-Octree", "Frame-to-frame affine motion of octree cells"),
-          ('wavelet', "Wavelet", "Progressive wavelet coding (target KG only)")]
+          ('wavelet', "Wavelet", "Progressive wavelet coding (target KG only)"),
+          ('trajectory2', "Trajectory 2", "Trajectory codec with a basis per part of the mesh: the smallest files")]
 
 
 class ExportAms(bpy.types.Operator, ExportHelper):

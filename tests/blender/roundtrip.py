@@ -102,7 +102,8 @@ def main():
     original = played(obj, range(1, FRAMES + 1))
     check(float(np.abs(original[20] - original[0]).max()) > 0.5, 'the armature moves the mesh')
 
-    for settings in ({'max_error': 1.0}, {'codec': 'trajectory', 'rate_mode': 'TARGET_KG', 'target_kg': 0.3}):
+    for settings in ({'max_error': 1.0}, {'codec': 'trajectory', 'rate_mode': 'TARGET_KG', 'target_kg': 0.3},
+                     {'codec': 'trajectory2', 'rate_mode': 'TARGET_KG', 'target_kg': 0.3}):
         for other in bpy.context.view_layer.objects:
             other.select_set(False)
         bpy.context.view_layer.objects.active = obj
