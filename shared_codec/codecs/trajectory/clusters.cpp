@@ -15,6 +15,8 @@ constexpr uint32_t kMaxClusterFrames = 64;
 // Rounds of k-means: labels hardly change after a dozen.
 constexpr int kIterations = 12;
 constexpr uint32_t kVerticesPerTask = 1024;
+// The most parts clusterTrajectories() makes (labels are bytes).
+constexpr uint32_t kMaxParts = 256;
 
 struct Features {
   uint32_t dims = 0;
@@ -58,17 +60,25 @@ std::vector<double> seeds(const Features& f, uint32_t vertices, uint32_t parts) 
   return centres;
 }
 
+// Each vertex to its nearest centre (the first of equal ones). The distances to all centres
+// are summed side by side, a feature at a time, from the centres laid out feature-major: each
+// sum still adds its terms in feature order, as squaredDistance() does, so the labels are the
+// same, and the vertex's features are read once instead of once a centre.
 void assign(const Features& f, const std::vector<double>& centres, uint32_t parts, std::vector<uint8_t>& labels) {
+  std::vector<double> by_feature(centres.size());
+  for (uint32_t c = 0; c < parts; ++c)
+    for (uint32_t d = 0; d < f.dims; ++d) by_feature[size_t(d) * parts + c] = centres[size_t(c) * f.dims + d];
   parallelForBlocks(labels.size(), kVerticesPerTask, double(parts) * f.dims, [&](size_t, size_t begin, size_t end) {
+    double sums[kMaxParts];
     for (size_t v = begin; v < end; ++v) {
-      double best = HUGE_VAL;
-      for (uint32_t c = 0; c < parts; ++c) {
-        const double d = squaredDistance(f.row(uint32_t(v)), &centres[size_t(c) * f.dims], f.dims);
-        if (d < best) {
-          best = d;
-          labels[v] = uint8_t(c);
-        }
+      std::fill(sums, sums + parts, 0.0);
+      const float* row = f.row(uint32_t(v));
+      for (uint32_t d = 0; d < f.dims; ++d) {
+        const double x = row[d];
+        const double* centre = &by_feature[size_t(d) * parts];
+        for (uint32_t c = 0; c < parts; ++c) sums[c] += (x - centre[c]) * (x - centre[c]);
       }
+      labels[v] = uint8_t(std::min_element(sums, sums + parts) - sums);
     }
   });
 }
@@ -90,7 +100,7 @@ void update(const Features& f, const std::vector<uint8_t>& labels, uint32_t part
 
 std::vector<uint8_t> clusterTrajectories(const float* frames, uint32_t vertices, uint32_t frame_count, uint32_t parts,
                                          uint32_t& count) {
-  parts = std::max(1u, std::min({parts, vertices, 256u}));
+  parts = std::max(1u, std::min({parts, vertices, kMaxParts}));
   std::vector<uint8_t> labels(vertices, 0);
   if (parts > 1) {
     const Features f = sampled(frames, vertices, frame_count);
