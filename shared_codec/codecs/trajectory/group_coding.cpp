@@ -179,6 +179,12 @@ void writeTrajectoryGroupFields(const TrajectoryGroup& g, const CodingOrder& ord
   raw.appendTo(out);
 }
 
+Status multiplyAddsAboveLimit(const std::string& what, uint64_t work, uint64_t limit) {
+  return limitExceeded(what + " costs " + std::to_string(work) + " multiply-adds, above the limit of " +
+                       std::to_string(limit) +
+                       "; raise it for a trusted file (DecoderLimits::max_multiply_adds, animc --max-multiply-adds)");
+}
+
 Status readTrajectoryGroup(ByteReader payload, const CodingOrder& order, uint64_t max_multiply_adds, TrajectoryGroup& g,
                            const std::atomic<uint32_t>* done) {
   const uint64_t n = order.vertex.size();
@@ -196,10 +202,9 @@ Status readTrajectoryGroup(ByteReader payload, const CodingOrder& order, uint64_
                 "the largest group must be within the default limit");
   const uint64_t work = uint64_t(3) * components * n * frames;
   if (work > max_multiply_adds)
-    return limitExceeded("trajectory group of " + std::to_string(components) + " components, " + std::to_string(n) +
-                         " vertices and " + std::to_string(frames) + " frames costs " + std::to_string(work) +
-                         " multiply-adds, above the limit of " + std::to_string(max_multiply_adds) +
-                         "; raise it for a trusted file (DecoderLimits::max_multiply_adds, animc --max-multiply-adds)");
+    return multiplyAddsAboveLimit("trajectory group of " + std::to_string(components) + " components, " +
+                                      std::to_string(n) + " vertices and " + std::to_string(frames) + " frames",
+                                  work, max_multiply_adds);
   g.frames = frames;
   g.components = components;
   ANIMC_ASSIGN_OR_RETURN(g.coefficient_step, payload.f32("Coefficient_Step"));

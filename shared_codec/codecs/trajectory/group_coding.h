@@ -7,6 +7,7 @@
 #include <atomic>
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "core/adjacency.h"
@@ -69,6 +70,9 @@ constexpr uint8_t kTrajectoryNextFrame = 1;   // the group's next frame: nothing
 void writeTrajectoryGroup(const TrajectoryGroup& group, const CodingOrder& order, std::vector<uint8_t>& out);
 // The same without Frame_Type: what readTrajectoryGroup() reads (a part of a codec-5 group).
 void writeTrajectoryGroupFields(const TrajectoryGroup& group, const CodingOrder& order, std::vector<uint8_t>& out);
+// The error of a group whose reconstruction (`what`) costs `work` multiply-adds, above `limit`.
+Status multiplyAddsAboveLimit(const std::string& what, uint64_t work, uint64_t limit);
+
 // Reads a group payload after its Frame_Type byte; a group whose reconstruction would cost more
 // than max_multiply_adds (3 x components x vertices x frames) is refused before any decoding.
 // `done`, when not null, is a walk's count of the positions of `order` done so far: the reading

@@ -13,8 +13,6 @@
 namespace animc {
 namespace {
 
-// Integers of the payload stay below 2^30 in magnitude (their differences below 2^31).
-constexpr double kMaxQuantised = double(1 << 29);
 // The fewest components computed more at a time.
 constexpr Eigen::Index kMinMoreComponents = 16;
 // Vertices the rate search quantises and measures at a time, on one thread: a block's

@@ -37,6 +37,9 @@ struct GroupContext {
   double modelledAllowance() const { return allowance(0.1); }
 };
 
+// Integers of the payload stay below 2^30 in magnitude (their differences below 2^31).
+constexpr double kMaxQuantised = double(1 << 29);
+
 // The squared error a bit buys at a uniform quantiser's slope, per squared step: 2 ln 2 / 12.
 constexpr double kBitSlope = 0.1155;
 

@@ -61,17 +61,14 @@ Status readLabels(ByteReader coded, const CodingOrder& order, uint32_t part_coun
   labels.assign(n, 0);
   auto models = std::make_unique<LabelModels>();
   RangeDecoder rc(coded.cursor(), coded.remaining());
-  std::vector<uint8_t> seen(part_count, 0);
   for (uint32_t p = 0; p < n; ++p) {
     const LabelPrediction pred = predictLabel(order, labels, p);
     uint32_t label = pred.label;
     if (!pred.any || !rc.decode(models->repeat[pred.agree])) label = decodeTree(rc, models->label);
     if (label >= part_count) return corrupt("trajectory group: a vertex's part is past Part_Count");
     labels[order.vertex[p]] = uint8_t(label);
-    seen[label] = 1;
   }
   if (rc.overran()) return corrupt("trajectory group: the parts' labels end early or are damaged");
-  if (std::find(seen.begin(), seen.end(), 0) != seen.end()) return corrupt("trajectory group: a part holds no vertex");
   return Status();
 }
 
@@ -133,6 +130,8 @@ Status readPartedGroupHead(ByteReader payload, const CodingOrder& mesh_order, Pa
   }
   std::vector<uint64_t> sizes(part_count, 0);
   for (uint8_t label : head.labels) ++sizes[label];
+  if (std::find(sizes.begin(), sizes.end(), 0) != sizes.end())
+    return corrupt("trajectory group: a part holds no vertex");
   head.parts.clear();
   head.multiply_adds = 0;
   for (uint32_t c = 0; c < part_count; ++c) {

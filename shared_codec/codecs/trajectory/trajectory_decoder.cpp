@@ -74,7 +74,8 @@ class TrajectoryDecoder final : public FrameDecoder {
   }
 
   Status readWhole(ByteReader payload) {
-    TrajectoryGroup group;
+    groups_.resize(1);
+    TrajectoryGroup& group = groups_[0];
     // The order is made with the first group: the decoder of an auto file holds one for each
     // candidate, and a large mesh's order takes a while to compute.
     if (order_) {
@@ -94,21 +95,17 @@ class TrajectoryDecoder final : public FrameDecoder {
     PartedGroupHead head;
     ANIMC_RETURN_IF_ERROR(readPartedGroupHead(payload, *order_, head));
     if (head.multiply_adds > max_multiply_adds_)
-      return limitExceeded("trajectory group of " + std::to_string(head.part_count) + " parts costs " +
-                           std::to_string(head.multiply_adds) + " multiply-adds, above the limit of " +
-                           std::to_string(max_multiply_adds_) +
-                           "; raise it for a trusted file (DecoderLimits::max_multiply_adds, animc "
-                           "--max-multiply-adds)");
+      return multiplyAddsAboveLimit("trajectory group of " + std::to_string(head.part_count) + " parts",
+                                    head.multiply_adds, max_multiply_adds_);
     parts_ = std::make_unique<MeshParts>(topology_, head.labels, head.part_count);
-    std::vector<TrajectoryGroup> groups(head.part_count);
+    groups_.resize(head.part_count);
     std::vector<Status> read(head.part_count);
     parallelFor(head.part_count, [&](size_t c) {
-      read[c] = readTrajectoryGroup(head.parts[c], *parts_->orders[c], max_multiply_adds_, groups[c]);
+      read[c] = readTrajectoryGroup(head.parts[c], *parts_->orders[c], max_multiply_adds_, groups_[c]);
     });
     for (const Status& s : read) ANIMC_RETURN_IF_ERROR(s);
-    std::vector<GroupFrames> frames(head.part_count);
-    for (uint32_t c = 0; c < head.part_count; ++c) frames[c].reset(groups[c], *parts_->orders[c], path_);
-    frames_ = std::move(frames);
+    frames_.resize(head.part_count);
+    for (uint32_t c = 0; c < head.part_count; ++c) frames_[c].reset(groups_[c], *parts_->orders[c], path_);
     return Status();
   }
 
@@ -118,6 +115,9 @@ class TrajectoryDecoder final : public FrameDecoder {
   SimdPath path_;
   bool parted_;
   std::unique_ptr<MeshParts> parts_;    // of the group decoded last (codec 5)
+  // Each part's integers, read here group after group: their buffers stay (a large group's
+  // would otherwise be new pages every group).
+  std::vector<TrajectoryGroup> groups_;
   std::vector<GroupFrames> frames_;     // of each part, of the group decoded last
   std::vector<uint8_t> group_payload_;  // of frames_, after its Frame_Type
   uint32_t next_ = 0;

@@ -276,7 +276,7 @@ class TrajectoryEncoder final : public GroupEncoder {
     for (const auto& part : parts_) largest = std::max(largest, part->largestCoefficient());
     const double scale = std::max({largest, context_.diagonal, 1e-30});
     StepSearch search;
-    search.lowest = std::log2(std::max(largest / double(1 << 29), scale * 1e-12));
+    search.lowest = std::log2(std::max(largest / kMaxQuantised, scale * 1e-12));
     search.highest = std::log2(2 * scale);
     return search;
   }
