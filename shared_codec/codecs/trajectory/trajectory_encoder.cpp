@@ -47,19 +47,22 @@ class TrajectoryEncoder final : public GroupEncoder {
 
   void encodeGroup(const float* frames, uint32_t frame_count, std::vector<std::vector<uint8_t>>& payloads) override {
     decoded_.clear();  // the last group's, no longer asked for
-    coded_ = CodedGroup();
     prepare(frames, frame_count);
-    for (uint32_t most : partCounts()) {
-      if (!coded_.payload.empty() && most >= coded_.parts()) continue;  // the mesh has fewer vertices
-      CodedGroup candidate = code(most);
-      if (!coded_.payload.empty() && !better(candidate, coded_)) break;
-      coded_ = std::move(candidate);
+    Candidate chosen = chooseParts();
+    current_ = &chosen;
+    std::vector<TrajectoryGroup> groups(chosen.count());
+    for (uint32_t c = 0; c < chosen.count(); ++c) {
+      chosen.encoders[c]->quantise(chosen.step, groups[c]);
+      chosen.encoders[c]->release();  // before the decoded frames take as much memory
     }
     payloads.assign(frame_count, std::vector<uint8_t>{kTrajectoryNextFrame});
-    payloads[0] = std::move(coded_.payload);
-    decoded_.resize(coded_.parts());
-    for (uint32_t c = 0; c < coded_.parts(); ++c) decoded_[c].reset(coded_.groups[c], orderOf(c), context_.path);
-    coded_.groups.clear();
+    payloads[0].clear();
+    write(groups, payloads[0]);
+    mesh_parts_ = std::move(chosen.mesh_parts);
+    decoded_.resize(groups.size());
+    for (uint32_t c = 0; c < groups.size(); ++c) decoded_[c].reset(groups[c], orderOf(c), context_.path);
+    current_ = nullptr;
+    trial_groups_.clear();
     context_.original = nullptr;
   }
 
@@ -68,32 +71,27 @@ class TrajectoryEncoder final : public GroupEncoder {
       decoded_[0].frame(k, xyz);
       return true;
     }
-    for (size_t c = 0; c < decoded_.size(); ++c) decoded_[c].frameInto(k, coded_.mesh_parts->members[c].data(), xyz);
+    for (size_t c = 0; c < decoded_.size(); ++c) decoded_[c].frameInto(k, mesh_parts_->members[c].data(), xyz);
     return true;
   }
 
  private:
-  // A group as coded with one count of parts.
-  struct CodedGroup {
-    std::vector<uint8_t> payload;
-    std::vector<TrajectoryGroup> groups;    // of each part
-    std::vector<uint8_t> labels;            // codec 5: the part of each vertex
-    std::unique_ptr<MeshParts> mesh_parts;  // codec 5: the sub-meshes of the parts
-    double squared_error = 0;               // of its decoded frames (a size budget's choice)
-    uint32_t parts() const { return uint32_t(groups.size()); }
+  // A group cut into parts, each with its encoder, while a count of parts is chosen and its
+  // step searched.
+  struct Candidate {
+    std::vector<std::unique_ptr<PartEncoder>> encoders;  // of each part
+    std::vector<uint8_t> labels;                         // codec 5: the part of each vertex
+    std::unique_ptr<MeshParts> mesh_parts;               // codec 5: the sub-meshes of the parts
+    double step = NAN;                                   // the coefficient step, or a guess of it
+    bool searched = false;
+    uint32_t count() const { return uint32_t(encoders.size()); }
   };
-
-  // Of two candidates that meet the rate mode: the smaller, or within a size budget, the one
-  // of smaller error.
-  bool better(const CodedGroup& a, const CodedGroup& b) const {
-    if (context_.options.rate == TrajectoryRate::kBitsPerVertexFrame) return a.squared_error < b.squared_error;
-    return a.payload.size() < b.payload.size();
-  }
 
   uint32_t vertices() const { return context_.mesh_vertices; }
   bool parted() const { return max_parts_ > 0; }
   const float* vertexOf(uint32_t t, uint32_t v) const { return context_.original + (size_t(t) * vertices() + v) * 3; }
-  const CodingOrder& orderOf(uint32_t part) const { return parted() ? *coded_.mesh_parts->orders[part] : order_; }
+  const CodingOrder& orderOf(uint32_t part) const { return parted() ? *mesh_parts_->orders[part] : order_; }
+  const std::vector<std::unique_ptr<PartEncoder>>& parts() const { return current_->encoders; }
 
   // The counts of parts tried, in this order, while each does better than the one before:
   // codec 3, one part; codec 5, the most parts asked for, then 2, then 1. A mesh moving as a
@@ -120,35 +118,58 @@ class TrajectoryEncoder final : public GroupEncoder {
     context_.spread = context_.options.rate == TrajectoryRate::kTargetKg ? spread() : 0;
   }
 
+  // The first count of parts is searched in full. Each next count is judged at the step found
+  // for the best so far, by its bits and error together, one trial and no search; only the
+  // count kept is then searched (docs/trajectory.md, "Parts").
+  Candidate chooseParts() {
+    const std::vector<uint32_t> counts = partCounts();
+    Candidate best = cut(counts[0]);
+    search(best);
+    double best_cost = counts.size() > 1 ? cost(best, best.step) : 0;
+    for (size_t i = 1; i < counts.size(); ++i) {
+      if (counts[i] >= best.count()) continue;  // the mesh has fewer vertices
+      Candidate next = cut(counts[i]);
+      extendFor(next, best.step);
+      const double next_cost = cost(next, best.step);
+      if (next_cost >= best_cost) break;
+      next.step = best.step;
+      best = std::move(next);
+      best_cost = next_cost;
+    }
+    if (!best.searched) search(best);
+    return best;
+  }
+
   // The group in at most `most` parts of a clustering of the trajectories (codec 5), or as
-  // one part, the whole mesh (codec 3).
-  CodedGroup code(uint32_t most) {
+  // one part, the whole mesh (codec 3), with the components the model's step asks for.
+  Candidate cut(uint32_t most) {
     static const std::vector<uint32_t> kWholeMesh;
-    CodedGroup coded;
-    parts_.clear();
+    Candidate candidate;
     if (!parted()) {
-      parts_.push_back(std::make_unique<PartEncoder>(context_, order_, kWholeMesh));
+      candidate.encoders.push_back(std::make_unique<PartEncoder>(context_, order_, kWholeMesh));
     } else {
       uint32_t count = 0;
-      coded.labels = clusterTrajectories(context_.original, vertices(), context_.frames, most, count);
-      coded.mesh_parts = std::make_unique<MeshParts>(topology_, coded.labels, count);
+      candidate.labels = clusterTrajectories(context_.original, vertices(), context_.frames, most, count);
+      candidate.mesh_parts = std::make_unique<MeshParts>(topology_, candidate.labels, count);
       for (uint32_t c = 0; c < count; ++c)
-        parts_.push_back(
-            std::make_unique<PartEncoder>(context_, *coded.mesh_parts->orders[c], coded.mesh_parts->members[c]));
+        candidate.encoders.push_back(std::make_unique<PartEncoder>(context_, *candidate.mesh_parts->orders[c],
+                                                                   candidate.mesh_parts->members[c]));
     }
-    current_ = &coded;
-    const double step = chooseComponentsAndStep();
-    if (context_.options.rate == TrajectoryRate::kBitsPerVertexFrame) coded.squared_error = measure(step).squared;
-    coded.groups.resize(parts_.size());
-    for (size_t c = 0; c < parts_.size(); ++c) {
-      parts_[c]->quantise(step, coded.groups[c]);
-      parts_[c]->release();  // before the next candidate or the decoded frames take as much memory
-    }
-    parts_.clear();
-    trial_groups_.clear();
-    write(coded.groups, coded.payload);
+    current_ = &candidate;
+    for (const auto& part : parts()) part->extend(kFirstComponents);
+    extendForModel();
     current_ = nullptr;
-    return coded;
+    return candidate;
+  }
+
+  // The bits of the candidate's payload at step q plus its squared error in bits, at the
+  // error a bit buys at that step.
+  double cost(Candidate& candidate, double q) {
+    current_ = &candidate;
+    const double bits = 8.0 * double(trialPayloadSize(q));
+    const double error = measure(q).squared;
+    current_ = nullptr;
+    return bits + error / (kBitSlope * q * q);
   }
 
   // The payload of groups, the parts of the candidate being coded.
@@ -157,32 +178,51 @@ class TrajectoryEncoder final : public GroupEncoder {
     writePartedGroup(context_.frames, current_->labels, order_, *current_->mesh_parts, groups, out);
   }
 
-  // The leading components only, as many as the step chosen might send: more while the
-  // weakest of a part's could still be worth its bits.
-  double chooseComponentsAndStep() {
-    std::vector<Eigen::Index> more(parts_.size(), kFirstComponents);
+  // The candidate's step, and the leading components only, as many as that step might send:
+  // more while the weakest of a part's could still be worth its bits.
+  void search(Candidate& candidate) {
+    current_ = &candidate;
     for (;;) {
-      for (size_t c = 0; c < parts_.size(); ++c)
-        if (more[c] > 0) parts_[c]->extend(std::exchange(more[c], 0));
-      // The model's step can be off by half: the parts are judged at twice it before any search.
+      candidate.step = chooseStep();
+      if (!extendForStep(candidate.step)) break;
+      extendForModel();
+    }
+    candidate.searched = true;
+    current_ = nullptr;
+  }
+
+  // The components a fixed step q might send, without a search.
+  void extendFor(Candidate& candidate, double q) {
+    current_ = &candidate;
+    while (extendForStep(q)) extendForModel();
+    current_ = nullptr;
+  }
+
+  // More components for the parts that clearly have too few at the model's step. The model's
+  // step can be off by half: the parts are judged at twice it.
+  void extendForModel() {
+    for (;;) {
       const double optimistic = 2 * predictedStep();
       bool any = false;
-      for (size_t c = 0; c < parts_.size(); ++c) {
-        const PartEncoder& part = *parts_[c];
-        if (part.components().complete || !part.clearlyTooFew(optimistic)) continue;
-        more[c] = part.moreComponents(optimistic);
+      for (const auto& part : parts()) {
+        if (part->components().complete || !part->clearlyTooFew(optimistic)) continue;
+        part->extend(part->moreComponents(optimistic));
         any = true;
       }
-      if (any) continue;
-      const double step = chooseStep();
-      for (size_t c = 0; c < parts_.size(); ++c) {
-        const PartEncoder& part = *parts_[c];
-        if (part.components().complete || part.carriesEnough(step) || part.sendsNoneOfTheWeakest(float(step))) continue;
-        more[c] = part.moreComponents(step);
-        any = true;
-      }
-      if (!any) return step;
+      if (!any) return;
     }
+  }
+
+  // More components for the parts whose weakest could still be worth their bits at step q;
+  // whether any part had some.
+  bool extendForStep(double q) {
+    bool any = false;
+    for (const auto& part : parts()) {
+      if (part->components().complete || part->carriesEnough(q) || part->sendsNoneOfTheWeakest(float(q))) continue;
+      part->extend(part->moreComponents(q));
+      any = true;
+    }
+    return any;
   }
 
   // The sides of frame t's bounding box.
@@ -263,8 +303,8 @@ class TrajectoryEncoder final : public GroupEncoder {
   // The payload of the group at step q, in trial_groups_ (their buffers kept from one trial to
   // the next: a large group's would otherwise be new pages at every trial).
   size_t trialPayloadSize(double q) const {
-    trial_groups_.resize(parts_.size());
-    for (size_t c = 0; c < parts_.size(); ++c) parts_[c]->quantise(q, trial_groups_[c]);
+    trial_groups_.resize(parts().size());
+    for (size_t c = 0; c < parts().size(); ++c) parts()[c]->quantise(q, trial_groups_[c]);
     std::vector<uint8_t> payload;
     write(trial_groups_, payload);
     return payload.size();
@@ -273,7 +313,7 @@ class TrajectoryEncoder final : public GroupEncoder {
   // log2 of the finest step the payload allows, and of a step past any error.
   StepSearch stepRange() const {
     double largest = 0;
-    for (const auto& part : parts_) largest = std::max(largest, part->largestCoefficient());
+    for (const auto& part : parts()) largest = std::max(largest, part->largestCoefficient());
     const double scale = std::max({largest, context_.diagonal, 1e-30});
     StepSearch search;
     search.lowest = std::log2(std::max(largest / kMaxQuantised, scale * 1e-12));
@@ -294,7 +334,7 @@ class TrajectoryEncoder final : public GroupEncoder {
     const double allowed = context_.modelledAllowance();
     auto model = [&](double u) {
       double e = 0;
-      for (const auto& part : parts_) {
+      for (const auto& part : parts()) {
         const Components& pc = part->components();
         const double per_component = part->vertices() * std::exp2(2 * u) / 12;
         double part_error = part->leftOut();
@@ -322,7 +362,7 @@ class TrajectoryEncoder final : public GroupEncoder {
     const bool max_error = context_.options.rate == TrajectoryRate::kMaxError;
     GroupError e;
     std::vector<double> frame_worst(max_error ? context_.frames : 0, 0);
-    for (const auto& part : parts_) {
+    for (const auto& part : parts()) {
       const PartError p = part->measure(step, max_error);
       e.squared += p.squared;
       for (size_t t = 0; t < frame_worst.size(); ++t) frame_worst[t] = std::max(frame_worst[t], p.frame_worst[t]);
@@ -338,10 +378,9 @@ class TrajectoryEncoder final : public GroupEncoder {
   CodingOrder order_;  // of the whole mesh
   uint32_t max_parts_;
   GroupContext context_;
-  std::vector<std::unique_ptr<PartEncoder>> parts_;  // of the candidate being coded
-  const CodedGroup* current_ = nullptr;              // the candidate being coded
-  CodedGroup coded_;                                 // the last group, as coded
-  std::vector<GroupFrames> decoded_;                 // the last group's parts as decoded
+  const Candidate* current_ = nullptr;     // the candidate being coded
+  std::unique_ptr<MeshParts> mesh_parts_;  // codec 5: the last group's parts
+  std::vector<GroupFrames> decoded_;       // the last group's parts as decoded
   mutable std::vector<TrajectoryGroup> trial_groups_;
 };
 
