@@ -13,8 +13,9 @@ Per sequence of --data and target KG error X in 0.1, 0.3, 0.45 and 1 %:
   (medians of R runs, one thread);
 - FAMC's best whole-file bpvf at X, read from --famc (../shared/tools/famc/RESULTS.md: the MPEG-4
   reference software over every mode and setting swept there).
-Issue 40 asks for codec 5 at most 0.8x codec 3's bpvf and 0.6x FAMC's at every point, and a
-decode of at least 100 M vertices/s on one core at KG 0.3 %.
+Issue 40 asks for codec 5 at most 0.8x codec 3's bpvf and 0.6x FAMC's at every point, a
+decode of at least 100 M vertices/s on one core at KG 0.3 %, and an encoder no slower than
+codec 3's.
 """
 import os
 import re
@@ -26,6 +27,7 @@ TARGETS_KG = [0.1, 0.3, 0.45, 1.0]
 TARGET_OF_CODEC3 = 0.8
 TARGET_OF_FAMC = 0.6
 TARGET_DECODE_MVPS = 100
+TARGET_ENCODE_OF_CODEC3 = 1.0
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 FAMC_RESULTS = os.path.normpath(os.path.join(REPO, '..', 'shared', 'tools', 'famc', 'RESULTS.md'))
 
@@ -61,7 +63,7 @@ def sequence_rows(animc, seq, runs, famc):
         c5 = run_bench(animc, seq['pc2'], seq['ply'], ['--codec', 'trajectory2'] + settings, runs)
         failed = next((r for r in (c3, c5) if 'error' in r), None)
         if failed:
-            rows.append([seq['name'], kg, failed_cell(failed)] + [''] * 9)
+            rows.append([seq['name'], kg, failed_cell(failed)] + [''] * 10)
             failures += 1
             continue
         reference = famc.get(seq['name'], {}).get(kg)
@@ -70,6 +72,7 @@ def sequence_rows(animc, seq, runs, famc):
                      ratio_cell(c5['bpvf'] / reference, TARGET_OF_FAMC) if reference else 'n/a',
                      f'{c3["kg_error"]:.3f} / {c5["kg_error"]:.3f}',
                      f'{c3["encode_seconds_median"]:.2f} / {c5["encode_seconds_median"]:.2f}',
+                     ratio_cell(c5['encode_seconds_median'] / c3['encode_seconds_median'], TARGET_ENCODE_OF_CODEC3),
                      num(c3['decode_mvps'], 1), num(c5['decode_mvps'], 1),
                      ratio_cell(c5['decode_mvps'] / c3['decode_mvps'], float('inf'))])
     return rows, failures
@@ -108,10 +111,10 @@ def trajectory2_section(animc, sequences, runs, famc_path=FAMC_RESULTS):
              f'software, every mode and setting swept in `../shared/tools/famc/RESULTS.md`). bpvf of the '
              f'whole file; encode seconds and decode M vertices/s are medians of {runs} `animc bench '
              f'--threads 1` runs. ✗ marks a ratio above issue 40\'s targets: {TARGET_OF_CODEC3}× codec 3, '
-             f'{TARGET_OF_FAMC}× FAMC; its decode target is {TARGET_DECODE_MVPS} M vertices/s a core at '
-             f'KG 0.3 %.', '']
+             f'{TARGET_OF_FAMC}× FAMC, encoding {TARGET_ENCODE_OF_CODEC3}× codec 3\'s time; its decode target is '
+             f'{TARGET_DECODE_MVPS} M vertices/s a core at KG 0.3 %.', '']
     lines += table(['sequence', 'KG %', 'codec 3 bpvf', 'codec 5 bpvf', '5 / 3', 'FAMC bpvf', '5 / FAMC',
-                    'KG reached (3 / 5)', 'encode s (3 / 5)', 'decode M v/s, 3', 'decode M v/s, 5',
+                    'KG reached (3 / 5)', 'encode s (3 / 5)', 'encode 5 / 3', 'decode M v/s, 3', 'decode M v/s, 5',
                     'decode 5 / 3'], rows)
     default_table = []
     for seq in sequences:

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // Codec 5's parts (docs/format.md, section 16): vertices moving apart are cut into parts that
-// cost fewer bits than one basis for all; the labels and the part table of a group payload
-// are checked before any part is decoded; a group's reconstruction is bounded as a whole.
+// cost fewer bits than one basis for all, and coarser cuts are unions of finer ones; the labels and the part table of a
+// group payload are checked before any part is decoded; a group's reconstruction is bounded as a whole.
 // (trajectory_test.cpp runs every rate mode of both trajectory codecs.)
 #include <gtest/gtest.h>
 
@@ -9,6 +9,7 @@
 #include <cmath>
 
 #include "animc/animc.h"
+#include "codecs/trajectory/clusters.h"
 #include "codecs/trajectory/parted_group.h"
 #include "group_codec_support.h"
 #include "test_sequences.h"
@@ -25,22 +26,27 @@ const auto encode = testing_support::encodeCollecting;
 
 // Two grids side by side, not joined: one waves, the other turns and drifts. One basis for
 // both needs the components of each motion on every vertex.
+constexpr int kGridX = 10, kGridY = 8;
+
+std::vector<std::vector<float>> twoMotionFrames(int frames) {
+  std::vector<std::vector<float>> all;
+  for (int f = 0; f < frames; ++f) {
+    std::vector<float> xyz = gridFrame(kGridX, kGridY, f, 1.0, 0.0);
+    const std::vector<float> other = gridFrame(kGridX, kGridY, 2 * f + 7, 0.5, 1.5);
+    for (size_t i = 0; i < other.size(); ++i) xyz.push_back(other[i] + (i % 3 == 0 ? 2.0f : 0.0f));
+    all.push_back(std::move(xyz));
+  }
+  return all;
+}
+
 MemorySequence twoMotions(int frames) {
-  const int nx = 10, ny = 8;
-  const Topology grid = gridTopology(nx, ny);
+  const Topology grid = gridTopology(kGridX, kGridY);
   Topology both;
   both.vertex_count = 2 * grid.vertex_count;
   both.triangles = grid.triangles;
   for (const Triangle& t : grid.triangles)
     both.triangles.push_back({t[0] + grid.vertex_count, t[1] + grid.vertex_count, t[2] + grid.vertex_count});
-  std::vector<std::vector<float>> all;
-  for (int f = 0; f < frames; ++f) {
-    std::vector<float> xyz = gridFrame(nx, ny, f, 1.0, 0.0);
-    const std::vector<float> other = gridFrame(nx, ny, 2 * f + 7, 0.5, 1.5);
-    for (size_t i = 0; i < other.size(); ++i) xyz.push_back(other[i] + (i % 3 == 0 ? 2.0f : 0.0f));
-    all.push_back(std::move(xyz));
-  }
-  return MemorySequence(both, std::move(all), 25.0, "two motions");
+  return MemorySequence(both, twoMotionFrames(frames), 25.0, "two motions");
 }
 
 EncoderOptions atKg(const char* codec, double target) {
@@ -59,6 +65,28 @@ TEST(TrajectoryParts, VerticesMovingApartCostLessInParts) {
     EXPECT_LE(kgError(seq, parts.reconstructions), target);
     EXPECT_LT(double(parts.bytes.size()), 0.9 * double(whole.bytes.size())) << "target " << target;
   }
+}
+
+// The coarser cuts the encoder judges are unions of the finer cut's parts; on the two grids,
+// two parts are the grids.
+TEST(TrajectoryParts, MergedPartsAreUnionsOfTheFinerOnes) {
+  std::vector<float> frames;
+  for (const std::vector<float>& xyz : twoMotionFrames(24)) frames.insert(frames.end(), xyz.begin(), xyz.end());
+  const uint32_t grid = kGridX * kGridY, vertices = 2 * grid;
+  uint32_t fine_count = 0, coarse_count = 0;
+  const std::vector<uint8_t> fine = clusterTrajectories(frames.data(), vertices, 24, 8, fine_count);
+  ASSERT_EQ(fine_count, 8u);
+  const std::vector<uint8_t> coarse = mergeParts(frames.data(), vertices, 24, fine, fine_count, 2, coarse_count);
+  ASSERT_EQ(coarse_count, 2u);
+  std::vector<int> coarse_of(fine_count, -1);
+  for (uint32_t v = 0; v < vertices; ++v) {
+    if (coarse_of[fine[v]] < 0) coarse_of[fine[v]] = coarse[v];
+    EXPECT_EQ(coarse_of[fine[v]], coarse[v]) << "vertex " << v;
+    EXPECT_EQ(coarse[v], v < grid ? 0 : 1) << "vertex " << v;
+  }
+  const std::vector<uint8_t> whole = mergeParts(frames.data(), vertices, 24, fine, fine_count, 1, coarse_count);
+  EXPECT_EQ(coarse_count, 1u);
+  EXPECT_TRUE(std::all_of(whole.begin(), whole.end(), [](uint8_t l) { return l == 0; }));
 }
 
 TEST(TrajectoryParts, OnePartIsTheWholeMesh) {

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 // The trajectory encoder's parts: the leading components by subspace iteration equal the full
-// eigendecomposition's, also when added in several steps; the step search finds a boundary
-// within its tolerance in few trials, and ends when no step can be acceptable.
+// eigendecomposition's, also when added in several steps; components merged from disjoint
+// sets equal their union's; the step search finds a boundary within its tolerance in few
+// trials, following the slope it measures, and ends when no step can be acceptable.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -115,6 +116,41 @@ TEST(TrajectoryComponents, AGramOfManyChunksIsTheSameOnAnyNumberOfThreads) {
   }
 }
 
+// The rows of x, split into two sets by row parity, their own means differing (the union's
+// mean is not the sets'). Every component of each set, merged, gives the union's.
+TEST(TrajectoryComponents, MergedFromCompleteSetsEqualTheUnions) {
+  RowMatrixF x = spectrumTrajectories(300, 60, 20);
+  for (Eigen::Index r = 0; r < x.rows(); r += 2) x.row(r).array() += 5.0f;
+  RowMatrixF even(x.rows() / 2, x.cols()), odd(x.rows() / 2, x.cols());
+  std::vector<RowSource> rows(size_t(x.rows()));
+  for (Eigen::Index r = 0; r < x.rows(); ++r) {
+    (r % 2 ? odd : even).row(r / 2) = x.row(r);
+    rows[size_t(r)] = {uint32_t(r % 2), uint32_t(r / 2)};
+  }
+  const Components a = allOf(even), b = allOf(odd), all = allOf(x);
+  const Components merged = mergedComponents({{&a, a.sigma.size()}, {&b, b.sigma.size()}}, rows);
+  EXPECT_TRUE(merged.complete);
+  EXPECT_NEAR(merged.energy, all.energy, 1e-6 * all.energy);
+  EXPECT_LT((merged.mean - all.mean).norm(), 1e-4);
+  expectSameLeading(merged, all, 20);
+}
+
+// A merge that takes only a set's leading components leaves the rest out: the union's
+// energy stays whole, its components carry only what was taken.
+TEST(TrajectoryComponents, MergedComponentsLeaveOutWhatIsNotTaken) {
+  const RowMatrixF x = spectrumTrajectories(200, 40, 30);
+  const Components a = allOf(x.topRows(100)), b = allOf(x.bottomRows(100));
+  std::vector<RowSource> rows(200);
+  for (uint32_t r = 0; r < 200; ++r) rows[r] = {r / 100, r % 100};
+  const Components merged = mergedComponents({{&a, 5}, {&b, 5}}, rows);
+  const double taken = a.sigma.head(5).squaredNorm() + b.sigma.head(5).squaredNorm();
+  EXPECT_NEAR(merged.energy, allOf(x).energy, 1e-6 * merged.energy);
+  EXPECT_LE(merged.sigma.size(), 12);  // 5 + 5 directions and 2 mean offsets
+  EXPECT_NEAR(merged.sigma.squaredNorm(),
+              taken + 100 * (a.mean - merged.mean).squaredNorm() + 100 * (b.mean - merged.mean).squaredNorm(),
+              1e-4 * taken);
+}
+
 TEST(StepSearch, FindsTheBoundaryWithinItsToleranceInFewTrials) {
   for (const double boundary : {-7.3, -2.05, 0.4}) {
     StepSearch s;
@@ -131,6 +167,27 @@ TEST(StepSearch, FindsTheBoundaryWithinItsToleranceInFewTrials) {
     EXPECT_LE(u, boundary + 0.01) << boundary;
     EXPECT_GE(u, boundary - s.tolerance - 0.01) << boundary;
     EXPECT_LE(trials, 10) << boundary;
+  }
+}
+
+// An excess growing at 1.2 per unit where the model says 2 (sydney_md2's at a KG target): the
+// steps follow the slope the trials measure, where the model's would creep up on the boundary
+// (each step falling short by 40 %), a trial or two per halving of the excess.
+TEST(StepSearch, FollowsTheSlopeItMeasuresBeforeABracket) {
+  for (const double start : {0.5, 1.0, 2.0}) {
+    StepSearch s;
+    s.lowest = -30;
+    s.highest = 5;
+    s.guess = -4 + start;
+    s.slope = 2;
+    int trials = 0;
+    const double u = searchStep(s, [&](double v) {
+      ++trials;
+      return 1.2 * (v + 4);
+    });
+    EXPECT_LE(u, -4.0) << start;
+    EXPECT_GE(u, -4 - s.tolerance) << start;
+    EXPECT_LE(trials, 5) << start;
   }
 }
 

@@ -12,7 +12,7 @@ namespace {
 // Frames the distances are measured on: at most this many, evenly spaced. Parts differ in
 // their slow motion, which a subsample keeps, and the cost stays O(vertices x parts).
 constexpr uint32_t kMaxClusterFrames = 64;
-// Rounds of k-means: labels hardly change after a dozen.
+// Rounds of k-means at most: labels hardly change after a dozen.
 constexpr int kIterations = 12;
 constexpr uint32_t kVerticesPerTask = 1024;
 // The most parts clusterTrajectories() makes (labels are bytes).
@@ -96,7 +96,66 @@ void update(const Features& f, const std::vector<uint8_t>& labels, uint32_t part
       centres[size_t(c) * f.dims + d] = sums[size_t(c) * f.dims + d] / counts[c];
 }
 
+// Labels renumbered by lowest vertex, empty parts dropped; returns their number.
+uint32_t numberByLowestVertex(std::vector<uint8_t>& labels, uint32_t parts) {
+  std::vector<int> number(parts, -1);
+  uint32_t count = 0;
+  for (uint8_t& label : labels) {
+    if (number[label] < 0) number[label] = int(count++);
+    label = uint8_t(number[label]);
+  }
+  return count;
+}
+
+// Weighted k-means of a few points (rows of `points`): the group of each.
+std::vector<uint32_t> groupPoints(const Features& points, const std::vector<uint32_t>& weights, uint32_t groups) {
+  const uint32_t n = uint32_t(weights.size());
+  std::vector<double> centres = seeds(points, n, groups);
+  std::vector<uint32_t> group(n, 0);
+  for (int i = 0; i < kIterations; ++i) {
+    for (uint32_t p = 0; p < n; ++p) {
+      double nearest = HUGE_VAL;
+      for (uint32_t g = 0; g < groups; ++g) {
+        const double d = squaredDistance(points.row(p), &centres[size_t(g) * points.dims], points.dims);
+        if (d < nearest) nearest = d, group[p] = g;
+      }
+    }
+    std::vector<double> sums(centres.size(), 0);
+    std::vector<double> totals(groups, 0);
+    for (uint32_t p = 0; p < n; ++p) {
+      totals[group[p]] += weights[p];
+      for (uint32_t d = 0; d < points.dims; ++d)
+        sums[size_t(group[p]) * points.dims + d] += weights[p] * points.row(p)[d];
+    }
+    for (uint32_t g = 0; g < groups; ++g)
+      for (uint32_t d = 0; totals[g] > 0 && d < points.dims; ++d)
+        centres[size_t(g) * points.dims + d] = sums[size_t(g) * points.dims + d] / totals[g];
+  }
+  return group;
+}
+
 }  // namespace
+
+std::vector<uint8_t> mergeParts(const float* frames, uint32_t vertices, uint32_t frame_count,
+                                const std::vector<uint8_t>& labels, uint32_t count, uint32_t parts, uint32_t& merged) {
+  std::vector<uint8_t> out(vertices, 0);
+  if (parts > 1 && count > parts) {
+    const Features f = sampled(frames, vertices, frame_count);
+    std::vector<double> centres(size_t(count) * f.dims, 0);
+    update(f, labels, count, centres);
+    Features points;
+    points.dims = f.dims;
+    points.values.assign(centres.begin(), centres.end());
+    std::vector<uint32_t> weights(count, 0);
+    for (uint8_t label : labels) ++weights[label];
+    const std::vector<uint32_t> group = groupPoints(points, weights, parts);
+    for (uint32_t v = 0; v < vertices; ++v) out[v] = uint8_t(group[labels[v]]);
+  } else if (parts > 1) {
+    out = labels;
+  }
+  merged = numberByLowestVertex(out, std::max(parts, count));
+  return out;
+}
 
 std::vector<uint8_t> clusterTrajectories(const float* frames, uint32_t vertices, uint32_t frame_count, uint32_t parts,
                                          uint32_t& count) {
@@ -105,18 +164,15 @@ std::vector<uint8_t> clusterTrajectories(const float* frames, uint32_t vertices,
   if (parts > 1) {
     const Features f = sampled(frames, vertices, frame_count);
     std::vector<double> centres = seeds(f, vertices, parts);
+    std::vector<uint8_t> before;
     for (int i = 0; i < kIterations; ++i) {
       assign(f, centres, parts, labels);
+      if (labels == before) break;  // settled: the rounds left would change nothing
       update(f, labels, parts, centres);
+      before = labels;
     }
   }
-  // Numbered by lowest vertex, empty parts dropped.
-  std::vector<int> number(parts, -1);
-  count = 0;
-  for (uint8_t& label : labels) {
-    if (number[label] < 0) number[label] = int(count++);
-    label = uint8_t(number[label]);
-  }
+  count = numberByLowestVertex(labels, parts);
   return labels;
 }
 

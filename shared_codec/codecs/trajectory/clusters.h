@@ -14,4 +14,11 @@ namespace animc {
 std::vector<uint8_t> clusterTrajectories(const float* frames, uint32_t vertices, uint32_t frame_count, uint32_t parts,
                                          uint32_t& count);
 
+// The `count` parts of `labels` grouped into at most `parts` by k-means of the parts' centres
+// (the means of their vertices' features), each weighted by its vertices: a coarser cut whose
+// parts are unions of the finer's. Numbered as clusterTrajectories() numbers them; `merged`
+// is set to their number.
+std::vector<uint8_t> mergeParts(const float* frames, uint32_t vertices, uint32_t frame_count,
+                                const std::vector<uint8_t>& labels, uint32_t count, uint32_t parts, uint32_t& merged);
+
 }  // namespace animc

@@ -142,6 +142,69 @@ constexpr double kSettled = 1e-3;
 
 }  // namespace
 
+Components mergedComponents(const std::vector<MergedSet>& sets, const std::vector<RowSource>& rows) {
+  const Eigen::Index dim = sets.front().components->mean.size();
+  Components pc;
+  pc.complete = true;
+  pc.mean = Eigen::RowVectorXd::Zero(dim);
+  Eigen::Index width = 0;
+  for (const MergedSet& set : sets) {
+    pc.mean += double(set.components->coefficients.rows()) * set.components->mean;
+    width += set.used + 1;
+  }
+  pc.mean /= double(rows.size());
+  // The union's centred trajectories, as far as the components taken carry them, have the
+  // scatter m m^T.
+  Eigen::MatrixXd m(dim, width);
+  Eigen::Index column = 0;
+  for (const MergedSet& set : sets) {
+    const Components& c = *set.components;
+    const double n = double(c.coefficients.rows());
+    const Eigen::RowVectorXd offset = c.mean - pc.mean;
+    m.middleCols(column, set.used) = c.basis.leftCols(set.used) * c.sigma.head(set.used).asDiagonal();
+    m.col(column + set.used) = std::sqrt(n) * offset.transpose();
+    column += set.used + 1;
+    pc.energy += c.energy + n * offset.squaredNorm();
+  }
+  // Its eigenvectors from the smaller of the two Gram matrices.
+  Eigen::MatrixXd vectors;
+  if (width <= dim) {
+    const Eigen::MatrixXd gram = m.transpose() * m;
+    leadingPairs(Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(gram), width, pc.sigma, vectors);
+    pc.basis = m * vectors;
+    for (Eigen::Index k = 0; k < width; ++k)
+      if (pc.sigma[k] > 0) pc.basis.col(k) /= pc.sigma[k];
+  } else {
+    const Eigen::MatrixXd gram = m * m.transpose();
+    leadingPairs(Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(gram), dim, pc.sigma, pc.basis);
+  }
+  // Directions of no energy (beyond the rank of m) are dropped.
+  Eigen::Index kept = 0;
+  while (kept < pc.sigma.size() && pc.sigma[kept] > 1e-9 * pc.sigma[0]) ++kept;
+  pc.sigma.conservativeResize(kept);
+  pc.basis.conservativeResize(Eigen::NoChange, kept);
+  // A row's coefficients: its set's reconstruction, less the union's mean, on the new basis.
+  std::vector<Eigen::MatrixXf> to_union;
+  std::vector<Eigen::RowVectorXf> offset_on_union;
+  for (const MergedSet& set : sets) {
+    const Components& c = *set.components;
+    to_union.push_back((c.basis.leftCols(set.used).transpose() * pc.basis).cast<float>());
+    offset_on_union.push_back(((c.mean - pc.mean) * pc.basis).cast<float>());
+  }
+  pc.coefficients.resize(Eigen::Index(rows.size()), kept);
+  const double row_cost = double(kept) * double(width) / double(sets.size());
+  parallelForBlocks(rows.size(), size_t(kProductRows), row_cost, [&](size_t, size_t begin, size_t end) {
+    for (size_t r = begin; r < end; ++r) {
+      const RowSource source = rows[r];
+      const MergedSet& set = sets[source.set];
+      pc.coefficients.row(Eigen::Index(r)) =
+          set.components->coefficients.row(source.row).head(set.used) * to_union[source.set] +
+          offset_on_union[source.set];
+    }
+  });
+  return pc;
+}
+
 TrajectoryDecomposition::TrajectoryDecomposition(RowMatrixF x) : mean_(columnMeans(x)), centred_(std::move(x)) {
   // Rows are centred and measured a block at a time, on any thread; the energy adds the
   // rows' in order, whatever the thread count.

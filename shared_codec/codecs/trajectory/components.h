@@ -5,6 +5,8 @@
 // results never depend on the thread count.
 #pragma once
 #include <Eigen/Dense>
+#include <cstdint>
+#include <vector>
 
 namespace animc {
 
@@ -21,6 +23,26 @@ struct Components {
   double energy = 0;        // sum of the squared centred trajectories: sigma's and the rest's
   bool complete = false;    // every component there is (K = min(N, 3G)), none left out
 };
+
+// One of the sets of trajectories merged by mergedComponents(), of which its leading `used`
+// components are taken.
+struct MergedSet {
+  const Components* components = nullptr;
+  Eigen::Index used = 0;
+};
+
+// Where a row of a union of sets of trajectories comes from.
+struct RowSource {
+  uint32_t set = 0;
+  uint32_t row = 0;
+};
+
+// The components of the union of disjoint sets of trajectories from the sets' own, without
+// the trajectories: the principal directions of the sets' bases, each scaled by its singular
+// values, and of their means' offsets from the union's mean. rows[r] is the source of the
+// union's row r. What the components taken leave out stays out. The result is complete:
+// nothing more can be computed for it.
+Components mergedComponents(const std::vector<MergedSet>& sets, const std::vector<RowSource>& rows);
 
 class TrajectoryDecomposition {
  public:

@@ -83,10 +83,17 @@ struct PartEncoder::Selection {
 };
 
 PartEncoder::PartEncoder(const GroupContext& group, const CodingOrder& order, const std::vector<uint32_t>& members)
-    : group_(group), order_(order), members_(members), vertices_(uint32_t(order.vertex.size())), position_(vertices_) {
-  for (uint32_t p = 0; p < vertices_; ++p) position_[order_.vertex[p]] = p;
+    : PartEncoder(group, order, members, Components()) {
   decomposition_ = std::make_unique<TrajectoryDecomposition>(trajectories());
   pc_ = decomposition_->none();
+}
+
+PartEncoder::PartEncoder(const GroupContext& group, const CodingOrder& order, const std::vector<uint32_t>& members,
+                         Components pc)
+    : group_(group), order_(order), members_(members), vertices_(uint32_t(order.vertex.size())), position_(vertices_) {
+  for (uint32_t p = 0; p < vertices_; ++p) position_[order_.vertex[p]] = p;
+  pc_ = std::move(pc);
+  pc_.complete = true;
 }
 
 // A row a vertex, in coding order (so are the coefficients then), of 3G values: x over the
@@ -103,7 +110,9 @@ RowMatrixF PartEncoder::trajectories() const {
   return x;
 }
 
-void PartEncoder::extend(Eigen::Index count) { decomposition_->extend(pc_, count, negligibleEnergy()); }
+void PartEncoder::extend(Eigen::Index count) {
+  if (decomposition_) decomposition_->extend(pc_, count, negligibleEnergy());
+}
 
 void PartEncoder::release() {
   decomposition_.reset();

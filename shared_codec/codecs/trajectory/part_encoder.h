@@ -55,11 +55,17 @@ class PartEncoder {
   // order's vertex indices) to the mesh's vertices, in increasing order. Both must outlive
   // the part.
   PartEncoder(const GroupContext& group, const CodingOrder& order, const std::vector<uint32_t>& members);
+  // The same part with components made elsewhere (their rows in the order's), complete: no
+  // more can be computed for it.
+  PartEncoder(const GroupContext& group, const CodingOrder& order, const std::vector<uint32_t>& members, Components pc);
 
   uint32_t vertices() const { return vertices_; }
   const CodingOrder& order() const { return order_; }
   uint32_t meshVertex(uint32_t v) const { return members_.empty() ? v : members_[v]; }
   const Components& components() const { return pc_; }
+  // The row of the part's vertex v (an index into its members) in the trajectories and
+  // the coefficients: its position in the coding order.
+  uint32_t row(uint32_t v) const { return position_[v]; }
 
   // Computes `count` more leading components (or all of them).
   void extend(Eigen::Index count);
@@ -72,6 +78,8 @@ class PartEncoder {
   bool clearlyTooFew(double q) const;
   // Whether none of the weakest eighth of the part's components is sent at step q.
   bool sendsNoneOfTheWeakest(float q) const;
+  // The energy of a component below which it is never worth sending at step q.
+  double leastWorthSending(double q) const;
   // How many more components step q probably needs.
   Eigen::Index moreComponents(double q) const;
   // Energy the components computed leave out.
@@ -93,7 +101,6 @@ class PartEncoder {
   }
   double share() const { return double(vertices_) / double(group_.mesh_vertices); }
   double negligibleEnergy() const;
-  double leastWorthSending(double q) const;
   std::vector<ColumnStats> columnStats(double q, Eigen::Index first) const;
   Selection selection(double q, Eigen::Index first = 0) const;
   Selection quantiseHeader(double step, TrajectoryGroup& g) const;

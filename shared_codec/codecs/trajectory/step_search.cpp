@@ -30,8 +30,16 @@ double searchStep(const StepSearch& s, const std::function<double(double u)>& ex
   double width_before = HUGE_VAL;  // the bracket two trials ago
   double width_last = HUGE_VAL;
   int flat_steps = 0;  // downward trials in a row, none acceptable, the excess hardly falling
+  // Before a bracket, the slope the last two trials measured (the excess of a group often
+  // grows slower than the model says, and steps by the model's slope would creep up on the
+  // boundary), within a quarter of the model's and the model's.
+  double slope = s.slope, u_before = NAN, f_before = NAN;
   for (int trial = 0; trial < kMaxTrials; ++trial) {
     const double f = std::clamp(excess(u), -kMaxExcess, kMaxExcess);
+    if (!std::isnan(f_before) && u != u_before)
+      slope = std::clamp((f - f_before) / (u - u_before), s.slope / 4, s.slope);
+    u_before = u;
+    f_before = f;
     if (f <= 0) {
       pass = u;
       f_pass = f;
@@ -58,9 +66,9 @@ double searchStep(const StepSearch& s, const std::function<double(double u)>& ex
       // Bisect when the predictions stop halving the bracket.
       if (width > width_before / 2) next = (pass + fail) / 2;
     } else if (f <= 0) {
-      next = u + std::clamp(-f / s.slope, tol, kMaxJump) + tol / 2;
+      next = u + std::clamp(-f / slope, tol, kMaxJump) + tol / 2;
     } else {
-      next = u - std::clamp(f / s.slope, tol, kMaxJump) - tol / 2;
+      next = u - std::clamp(f / slope, tol, kMaxJump) - tol / 2;
     }
     const double margin = std::min(tol / 4, width / 4);
     u = std::clamp(next, pass + margin, fail - margin);

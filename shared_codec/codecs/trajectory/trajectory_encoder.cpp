@@ -83,7 +83,6 @@ class TrajectoryEncoder final : public GroupEncoder {
     std::vector<uint8_t> labels;                         // codec 5: the part of each vertex
     std::unique_ptr<MeshParts> mesh_parts;               // codec 5: the sub-meshes of the parts
     double step = NAN;                                   // the coefficient step, or a guess of it
-    bool searched = false;
     uint32_t count() const { return uint32_t(encoders.size()); }
   };
 
@@ -118,38 +117,48 @@ class TrajectoryEncoder final : public GroupEncoder {
     context_.spread = context_.options.rate == TrajectoryRate::kTargetKg ? spread() : 0;
   }
 
-  // The first count of parts is searched in full. Each next count is judged at the step found
-  // for the best so far, by its bits and error together, one trial and no search; only the
-  // count kept is then searched (docs/trajectory.md, "Parts").
+  // The first count of parts is cut and searched in full. Each next count is a coarser cut,
+  // whose parts are unions of the first's, with components merged from the first's: it is
+  // judged at the first cut's step, by its bits and error together, in one trial. Only a
+  // coarser cut kept is then decomposed and searched (docs/trajectory.md, "Parts").
   Candidate chooseParts() {
     const std::vector<uint32_t> counts = partCounts();
-    Candidate best = cut(counts[0]);
-    search(best);
-    double best_cost = counts.size() > 1 ? cost(best, best.step) : 0;
+    uint32_t count = 0;
+    std::vector<uint8_t> labels =
+        parted() ? clusterTrajectories(context_.original, vertices(), context_.frames, counts[0], count)
+                 : std::vector<uint8_t>();
+    Candidate first = cut(std::move(labels), count);
+    search(first);
+    if (counts.size() == 1) return first;
+    const double q = first.step;
+    double best_cost = cost(first, q);
+    Candidate coarser;  // the best of the merged cuts, once one beats the first
     for (size_t i = 1; i < counts.size(); ++i) {
-      if (counts[i] >= best.count()) continue;  // the mesh has fewer vertices
-      Candidate next = cut(counts[i]);
-      extendFor(next, best.step);
-      const double next_cost = cost(next, best.step);
-      if (next_cost >= best_cost) break;
-      next.step = best.step;
-      best = std::move(next);
-      best_cost = next_cost;
+      if (counts[i] >= (coarser.count() > 0 ? coarser.count() : first.count())) continue;  // few vertices
+      Candidate merged = mergedFrom(first, counts[i], q);
+      const double merged_cost = cost(merged, q);
+      if (merged_cost >= best_cost) break;
+      best_cost = merged_cost;
+      coarser = std::move(merged);
     }
-    if (!best.searched) search(best);
-    return best;
+    if (coarser.count() == 0) return first;
+    first = Candidate();  // the memory of its components
+    // The merged components left out the fine parts' weakest: the parts kept get their own.
+    Candidate chosen = cut(std::move(coarser.labels), coarser.count());
+    chosen.step = q;
+    search(chosen);
+    return chosen;
   }
 
-  // The group in at most `most` parts of a clustering of the trajectories (codec 5), or as
-  // one part, the whole mesh (codec 3), with the components the model's step asks for.
-  Candidate cut(uint32_t most) {
+  // The group as one part, the whole mesh (codec 3), or in the `count` parts of `labels`
+  // (codec 5), with the components the model's step asks for.
+  Candidate cut(std::vector<uint8_t> labels, uint32_t count) {
     static const std::vector<uint32_t> kWholeMesh;
     Candidate candidate;
     if (!parted()) {
       candidate.encoders.push_back(std::make_unique<PartEncoder>(context_, order_, kWholeMesh));
     } else {
-      uint32_t count = 0;
-      candidate.labels = clusterTrajectories(context_.original, vertices(), context_.frames, most, count);
+      candidate.labels = std::move(labels);
       candidate.mesh_parts = std::make_unique<MeshParts>(topology_, candidate.labels, count);
       for (uint32_t c = 0; c < count; ++c)
         candidate.encoders.push_back(std::make_unique<PartEncoder>(context_, *candidate.mesh_parts->orders[c],
@@ -160,6 +169,47 @@ class TrajectoryEncoder final : public GroupEncoder {
     extendForModel();
     current_ = nullptr;
     return candidate;
+  }
+
+  // The cut of at most `most` parts that are unions of the fine cut's, each with components
+  // merged from those of its fine parts that step q might send.
+  Candidate mergedFrom(const Candidate& fine, uint32_t most, double q) const {
+    Candidate coarse;
+    uint32_t count = 0;
+    coarse.labels = mergeParts(context_.original, vertices(), context_.frames, fine.labels, fine.count(), most, count);
+    coarse.mesh_parts = std::make_unique<MeshParts>(topology_, coarse.labels, count);
+    std::vector<uint32_t> index_in_fine(vertices());
+    for (const std::vector<uint32_t>& members : fine.mesh_parts->members)
+      for (uint32_t i = 0; i < members.size(); ++i) index_in_fine[members[i]] = i;
+    for (uint32_t c = 0; c < count; ++c) {
+      const CodingOrder& order = *coarse.mesh_parts->orders[c];
+      const std::vector<uint32_t>& members = coarse.mesh_parts->members[c];
+      std::vector<MergedSet> sets;
+      std::vector<int> set_of(fine.count(), -1);
+      std::vector<RowSource> rows(order.vertex.size());
+      for (size_t p = 0; p < rows.size(); ++p) {
+        const uint32_t v = members[order.vertex[p]], f = fine.labels[v];
+        if (set_of[f] < 0) {
+          set_of[f] = int(sets.size());
+          sets.push_back({&fine.encoders[f]->components(), 0});
+        }
+        rows[p] = {uint32_t(set_of[f]), fine.encoders[f]->row(index_in_fine[v])};
+      }
+      for (uint32_t f = 0; f < fine.count(); ++f)
+        if (set_of[f] >= 0) sets[size_t(set_of[f])].used = worthMerging(*fine.encoders[f], q);
+      coarse.encoders.push_back(std::make_unique<PartEncoder>(context_, order, members, mergedComponents(sets, rows)));
+    }
+    return coarse;
+  }
+
+  // The components of a fine part a merge takes at step q: those worth sending in the part
+  // itself (a union needs no weaker ones unless the same weak motion runs through its parts).
+  static Eigen::Index worthMerging(const PartEncoder& part, double q) {
+    const Eigen::VectorXd& sigma = part.components().sigma;
+    const double least = part.leastWorthSending(q);
+    Eigen::Index k = 0;
+    while (k < sigma.size() && sigma[k] * sigma[k] >= least) ++k;
+    return k;
   }
 
   // The bits of the candidate's payload at step q plus its squared error in bits, at the
@@ -183,18 +233,10 @@ class TrajectoryEncoder final : public GroupEncoder {
   void search(Candidate& candidate) {
     current_ = &candidate;
     for (;;) {
-      candidate.step = chooseStep();
+      candidate.step = chooseStep(candidate.step);
       if (!extendForStep(candidate.step)) break;
       extendForModel();
     }
-    candidate.searched = true;
-    current_ = nullptr;
-  }
-
-  // The components a fixed step q might send, without a search.
-  void extendFor(Candidate& candidate, double q) {
-    current_ = &candidate;
-    while (extendForStep(q)) extendForModel();
     current_ = nullptr;
   }
 
@@ -270,28 +312,30 @@ class TrajectoryEncoder final : public GroupEncoder {
   }
 
   // The coefficient step of the rate mode: fixed, or searched on its logarithm (the error
-  // grows and the size falls with the step), starting from a model's prediction.
-  double chooseStep() const {
+  // grows and the size falls with the step), starting from `near` (a step found before, for
+  // components or parts that differ little), or else from a model's prediction.
+  double chooseStep(double near = NAN) const {
     const double value = context_.options.rate_value;
     StepSearch search = stepRange();
+    const bool known = std::isfinite(near) && near > 0;
     std::function<double(double)> excess;
     switch (context_.options.rate) {
       case TrajectoryRate::kStep: return std::max(value * context_.diagonal, std::exp2(search.lowest));
       case TrajectoryRate::kTargetKg: {
-        search.guess = modelledStep(search);
+        search.guess = known ? std::log2(near) : modelledStep(search);
         search.slope = 2;  // a squared error
         const double allowed = context_.allowedAtMost();
         excess = [&, allowed](double u) { return log2Ratio(measure(std::exp2(u)).squared, allowed); };
         break;
       }
       case TrajectoryRate::kMaxError:
-        search.guess = modelledStep(search);
+        search.guess = known ? std::log2(near) : modelledStep(search);
         excess = [&](double u) { return log2Ratio(measure(std::exp2(u)).worst, 1) / 2; };
         break;
       case TrajectoryRate::kBitsPerVertexFrame: {
         // The size falls as the step grows: the search runs on -u.
         const double budget = value * vertices() * context_.frames / 8;
-        search = {-search.highest, -search.lowest, 8 - search.highest};
+        search = {-search.highest, -search.lowest, known ? -std::log2(near) : 8 - search.highest};
         search.slope = 0.5;
         excess = [&, budget](double v) { return log2Ratio(double(trialPayloadSize(std::exp2(-v))), budget); };
         return std::exp2(-searchStep(search, excess));
