@@ -92,13 +92,13 @@ class TrajectoryEncoder final : public GroupEncoder {
   const CodingOrder& orderOf(uint32_t part) const { return parted() ? *mesh_parts_->orders[part] : order_; }
   const std::vector<std::unique_ptr<PartEncoder>>& parts() const { return current_->encoders; }
 
-  // The counts of parts tried, in this order, while each does better than the one before:
-  // codec 3, one part; codec 5, the most parts asked for, then 2, then 1. A mesh moving as a
-  // few large parts pays for the labels and bases of more parts than it has
-  // (docs/trajectory.md, "Parts").
+  // The counts of parts tried, most first: codec 3, one part; codec 5, the most parts asked
+  // for, then half as many each time, and 2 and 1. A mesh moving as a few large parts pays for
+  // the labels and bases of more parts than it has (docs/trajectory.md, "Parts").
   std::vector<uint32_t> partCounts() const {
     if (!parted()) return {1};
     std::vector<uint32_t> counts = {max_parts_};
+    for (uint32_t fewer = max_parts_ / 2; fewer > 2; fewer /= 2) counts.push_back(fewer);
     for (uint32_t fewer : {2u, 1u})
       if (fewer < max_parts_) counts.push_back(fewer);
     return counts;
@@ -117,10 +117,11 @@ class TrajectoryEncoder final : public GroupEncoder {
     context_.spread = context_.options.rate == TrajectoryRate::kTargetKg ? spread() : 0;
   }
 
-  // The first count of parts is cut and searched in full. Each next count is a coarser cut,
+  // The first count of parts is cut and searched in full. Each other count is a coarser cut,
   // whose parts are unions of the first's, with components merged from the first's: it is
-  // judged at the first cut's step, by its bits and error together, in one trial. Only a
-  // coarser cut kept is then decomposed and searched (docs/trajectory.md, "Parts").
+  // judged at the first cut's step, by its bits and error together, in one trial. Only the
+  // best coarser cut, if it beats the first, is then decomposed and searched
+  // (docs/trajectory.md, "Parts").
   Candidate chooseParts() {
     const std::vector<uint32_t> counts = partCounts();
     uint32_t count = 0;
@@ -134,10 +135,10 @@ class TrajectoryEncoder final : public GroupEncoder {
     double best_cost = cost(first, q);
     Candidate coarser;  // the best of the merged cuts, once one beats the first
     for (size_t i = 1; i < counts.size(); ++i) {
-      if (counts[i] >= (coarser.count() > 0 ? coarser.count() : first.count())) continue;  // few vertices
+      if (counts[i] >= first.count()) continue;  // the mesh has fewer vertices
       Candidate merged = mergedFrom(first, counts[i], q);
       const double merged_cost = cost(merged, q);
-      if (merged_cost >= best_cost) break;
+      if (merged_cost >= best_cost) continue;
       best_cost = merged_cost;
       coarser = std::move(merged);
     }

@@ -148,8 +148,8 @@ const CodecEntry kTrajectory2Entry = {
     {},
     "[--target-kg X | --step S | --max-error E | --bpvf B] [--group-frames G] [--parts P]\n"
     "           as trajectory's, each group cut into at most P parts of vertices moving\n"
-    "           together, each with its own basis (default 8; 2 parts are\n"
-    "           tried too, and the smaller group kept)",
+    "           together, each with its own basis (default 8; half as many,\n"
+    "           a quarter, ..., 2 and 1 are tried too, and the best kept)",
     fromFlags2,
     validateOptions<Trajectory2Options>,
     writeOptions<Trajectory2Options>,
