@@ -27,8 +27,11 @@ namespace {
 // kMaxTrajectoryCoefficients too.
 constexpr uint64_t kMaxGroupValues = uint64_t(1) << 25;
 static_assert(kMaxGroupValues <= kMaxTrajectoryCoefficients, "a group's coefficients must fit the format's limit");
-// The components computed first.
+// The components computed first: for the whole mesh, and for each part of a cut into several
+// (a part needs fewer, and the first cut's parts would otherwise cost more passes over the
+// trajectories than the whole mesh's).
 constexpr Eigen::Index kFirstComponents = 64;
+constexpr Eigen::Index kFirstPartComponents = 32;
 
 class TrajectoryEncoder final : public GroupEncoder {
  public:
@@ -166,7 +169,8 @@ class TrajectoryEncoder final : public GroupEncoder {
                                                                    candidate.mesh_parts->members[c]));
     }
     current_ = &candidate;
-    for (const auto& part : parts()) part->extend(kFirstComponents);
+    const Eigen::Index first = candidate.count() > 1 ? kFirstPartComponents : kFirstComponents;
+    for (const auto& part : parts()) part->extend(first);
     extendForModel();
     current_ = nullptr;
     return candidate;
