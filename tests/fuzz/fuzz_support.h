@@ -1,21 +1,40 @@
 // SPDX-License-Identifier: Apache-2.0
 // Shared by the fuzz harnesses: the library reads files by path, so each input is written to
-// a per-process scratch file first (several fuzzing jobs may run side by side).
+// a per-process scratch file first (several fuzzing jobs may run side by side). The scratch
+// files and folders are removed when the process exits: a campaign runs many processes.
 #pragma once
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <string>
+#include <vector>
 
 namespace animc::fuzz {
+
+inline std::vector<std::string>& scratchPaths() {
+  static std::vector<std::string> paths;
+  return paths;
+}
+
+inline void removeScratch() {
+  std::error_code ignored;
+  for (const std::string& path : scratchPaths()) std::filesystem::remove_all(path, ignored);
+}
 
 // A path in $TMPDIR (or /tmp) ending in `suffix`, unique to this process; readers pick the
 // format (and .xz decompression) from the suffix.
 inline std::string scratchPath(const std::string& suffix) {
   const char* dir = std::getenv("TMPDIR");
-  return std::string(dir && *dir ? dir : "/tmp") + "/animc_fuzz_" + std::to_string(getpid()) + suffix;
+  const std::string path = std::string(dir && *dir ? dir : "/tmp") + "/animc_fuzz_" + std::to_string(getpid()) + suffix;
+  std::vector<std::string>& paths = scratchPaths();                     // built before removeScratch is registered,
+  static const bool removed_at_exit = std::atexit(removeScratch) == 0;  // so it outlives the call
+  (void)removed_at_exit;
+  if (std::find(paths.begin(), paths.end(), path) == paths.end()) paths.push_back(path);
+  return path;
 }
 
 // Replaces the scratch file with these bytes; false if the file system refused.
