@@ -34,7 +34,6 @@ import json
 import lzma
 import os
 import platform
-import re
 import shlex
 import shutil
 import subprocess
