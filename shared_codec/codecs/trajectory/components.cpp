@@ -142,7 +142,7 @@ constexpr double kSettled = 1e-3;
 
 }  // namespace
 
-Components mergedComponents(const std::vector<MergedSet>& sets, const std::vector<RowSource>& rows) {
+Components mergedComponents(const std::vector<MergedSet>& sets, const std::vector<RowSource>& rows, double least) {
   const Eigen::Index dim = sets.front().components->mean.size();
   Components pc;
   pc.complete = true;
@@ -166,23 +166,22 @@ Components mergedComponents(const std::vector<MergedSet>& sets, const std::vecto
     column += set.used + 1;
     pc.energy += c.energy + n * offset.squaredNorm();
   }
-  // Its eigenvectors from the smaller of the two Gram matrices.
+  // Its eigenvectors from the smaller of the two Gram matrices, those of less energy than
+  // `least` (or none, beyond the rank of m) dropped.
+  const bool by_columns = width <= dim;
+  const Eigen::MatrixXd gram = by_columns ? Eigen::MatrixXd(m.transpose() * m) : Eigen::MatrixXd(m * m.transpose());
   Eigen::MatrixXd vectors;
-  if (width <= dim) {
-    const Eigen::MatrixXd gram = m.transpose() * m;
-    leadingPairs(Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(gram), width, pc.sigma, vectors);
-    pc.basis = m * vectors;
-    for (Eigen::Index k = 0; k < width; ++k)
-      if (pc.sigma[k] > 0) pc.basis.col(k) /= pc.sigma[k];
-  } else {
-    const Eigen::MatrixXd gram = m * m.transpose();
-    leadingPairs(Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(gram), dim, pc.sigma, pc.basis);
-  }
-  // Directions of no energy (beyond the rank of m) are dropped.
+  leadingPairs(Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(gram), gram.rows(), pc.sigma, vectors);
   Eigen::Index kept = 0;
-  while (kept < pc.sigma.size() && pc.sigma[kept] > 1e-9 * pc.sigma[0]) ++kept;
+  while (kept < pc.sigma.size() && pc.sigma[kept] > 1e-9 * pc.sigma[0] && pc.sigma[kept] * pc.sigma[kept] >= least)
+    ++kept;
   pc.sigma.conservativeResize(kept);
-  pc.basis.conservativeResize(Eigen::NoChange, kept);
+  if (by_columns) {
+    pc.basis = m * vectors.leftCols(kept);
+    for (Eigen::Index k = 0; k < kept; ++k) pc.basis.col(k) /= pc.sigma[k];
+  } else {
+    pc.basis = vectors.leftCols(kept);
+  }
   // A row's coefficients: its set's reconstruction, less the union's mean, on the new basis.
   std::vector<Eigen::MatrixXf> to_union;
   std::vector<Eigen::RowVectorXf> offset_on_union;

@@ -40,9 +40,10 @@ struct RowSource {
 // The components of the union of disjoint sets of trajectories from the sets' own, without
 // the trajectories: the principal directions of the sets' bases, each scaled by its singular
 // values, and of their means' offsets from the union's mean. rows[r] is the source of the
-// union's row r. What the components taken leave out stays out. The result is complete:
-// nothing more can be computed for it.
-Components mergedComponents(const std::vector<MergedSet>& sets, const std::vector<RowSource>& rows);
+// union's row r. What the components taken leave out stays out, and so do the union's
+// components of less energy than `least`. The result is complete: nothing more can be
+// computed for it.
+Components mergedComponents(const std::vector<MergedSet>& sets, const std::vector<RowSource>& rows, double least = 0);
 
 class TrajectoryDecomposition {
  public:

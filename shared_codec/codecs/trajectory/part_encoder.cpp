@@ -147,9 +147,11 @@ bool PartEncoder::sendsNoneOfTheWeakest(float q) const {
 
 // A component would remove at most its energy, and cost at least the bits of a zero for each
 // of its coefficients and basis values.
-double PartEncoder::leastWorthSending(double q) const {
-  return kBitSlope * q * q * estimatedBits(0) * (vertices_ + 3.0 * group_.frames);
+double leastWorthSending(double q, uint32_t vertices, uint32_t frames) {
+  return kBitSlope * q * q * estimatedBits(0) * (vertices + 3.0 * frames);
 }
+
+double PartEncoder::leastWorthSending(double q) const { return animc::leastWorthSending(q, vertices_, group_.frames); }
 
 // From the decay of the last half of the singular values: a quarter more than where they
 // fall below what is worth sending.

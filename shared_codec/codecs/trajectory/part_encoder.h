@@ -43,6 +43,11 @@ constexpr double kMaxQuantised = double(1 << 29);
 // The squared error a bit buys at a uniform quantiser's slope, per squared step: 2 ln 2 / 12.
 constexpr double kBitSlope = 0.1155;
 
+// The energy of a component below which it is never worth sending at step q, in a part of
+// `vertices` vertices over `frames` frames: the error it removes is less than the cost of its
+// coefficients and basis values all zero.
+double leastWorthSending(double q, uint32_t vertices, uint32_t frames);
+
 // The error of a part's decoded frames at one step.
 struct PartError {
   double squared = 0;               // summed over the part's vertices and frames

@@ -208,7 +208,9 @@ class TrajectoryEncoder final : public GroupEncoder {
       }
       for (uint32_t f = 0; f < fine.count(); ++f)
         if (set_of[f] >= 0) sets[size_t(set_of[f])].used = worthMerging(*fine.encoders[f], q);
-      coarse.encoders.push_back(std::make_unique<PartEncoder>(context_, order, members, mergedComponents(sets, rows)));
+      const double least = leastWorthSending(q, uint32_t(members.size()), context_.frames);
+      coarse.encoders.push_back(
+          std::make_unique<PartEncoder>(context_, order, members, mergedComponents(sets, rows, least)));
     }
     return coarse;
   }
