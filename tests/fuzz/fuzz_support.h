@@ -30,8 +30,9 @@ inline void removeScratch() {
 inline std::string scratchPath(const std::string& suffix) {
   const char* dir = std::getenv("TMPDIR");
   const std::string path = std::string(dir && *dir ? dir : "/tmp") + "/animc_fuzz_" + std::to_string(getpid()) + suffix;
-  std::vector<std::string>& paths = scratchPaths();                     // built before removeScratch is registered,
-  static const bool removed_at_exit = std::atexit(removeScratch) == 0;  // so it outlives the call
+  // The list is built before removeScratch is registered, so that it outlives the call.
+  std::vector<std::string>& paths = scratchPaths();
+  static const bool removed_at_exit = std::atexit(removeScratch) == 0;
   (void)removed_at_exit;
   if (std::find(paths.begin(), paths.end(), path) == paths.end()) paths.push_back(path);
   return path;

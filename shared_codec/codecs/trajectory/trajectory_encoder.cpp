@@ -63,9 +63,10 @@ class TrajectoryEncoder final : public GroupEncoder {
       chosen.encoders[c]->quantise(chosen.step, groups[c]);
       chosen.encoders[c]->release();  // before the decoded frames take as much memory
     }
+    std::vector<uint8_t> payload;
+    write(groups, payload);
     payloads.assign(frame_count, std::vector<uint8_t>{kTrajectoryNextFrame});
-    payloads[0].clear();
-    write(groups, payloads[0]);
+    payloads[0] = std::move(payload);
     mesh_parts_ = std::move(chosen.mesh_parts);
     decoded_.resize(groups.size());
     for (uint32_t c = 0; c < groups.size(); ++c) decoded_[c].reset(groups[c], orderOf(c), context_.path);
