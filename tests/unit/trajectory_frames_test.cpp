@@ -46,7 +46,8 @@ std::vector<std::vector<uint32_t>> refusedFrames(const TrajectoryGroup& g, const
   std::vector<std::vector<uint32_t>> refused(2);
   for (int backwards = 0; backwards < 2; ++backwards) {
     GroupFrames frames;
-    frames.reset(g, order, path);
+    GroupBasis basis = dequantisedBasis(g);
+    frames.reset(basis, g, order, path);
     std::vector<float> xyz(3 * order.vertex.size());
     for (uint32_t i = 0; i < kFrames; ++i) {
       const uint32_t t = backwards ? kFrames - 1 - i : i;
@@ -76,7 +77,8 @@ TEST(TrajectoryFrames, OnlyTheFramesWithABadValueAreRefused) {
           oneComponent(order, 1e29f, {0, 0, 0, 15, 0, 0}, 1e29f, {0, 0, 0, -15, 0, 0}, 1, 1);
       EXPECT_EQ(refusedFrames(cancelled, order, path), (std::vector<std::vector<uint32_t>>{{}, {}}));
       GroupFrames frames;
-      frames.reset(cancelled, order, path);
+      GroupBasis basis = dequantisedBasis(cancelled);
+      frames.reset(basis, cancelled, order, path);
       std::vector<float> xyz(3 * order.vertex.size(), 1.0f);
       ASSERT_TRUE(frames.frame(3, xyz.data()));
       EXPECT_EQ(xyz[0], 0.0f);
@@ -121,6 +123,45 @@ TEST(TrajectoryFrames, TheGroupIsKeptOnlyForTheSameBytes) {
     ASSERT_TRUE(kept->decodeFrame(ByteReader(group.data(), group.size()), kept_xyz, nullptr).ok());
     EXPECT_EQ(kept_xyz, xyz) << "byte " << at;
   }
+}
+
+// A group read with its basis as floats (as the decoders read it) has the floats that
+// dequantising its integers gives, bit for bit, and the same coefficients; it keeps no
+// integer rows. Every row has its own values and step, so a row stored with another's step,
+// or a mean stored as a basis row, shows.
+TEST(TrajectoryFrames, ABasisReadAsFloatsIsItsIntegersDequantised) {
+  const Topology topology = testing_support::gridTopology(4, 5);
+  const CodingOrder order(topology);
+  TrajectoryGroup g;
+  g.frames = 7;
+  g.components = 3;
+  g.coefficient_step = 0.75f;
+  g.mean_step = 0.3f;
+  g.basis_step = {0.1f, 0.013f, 7.5f};
+  const size_t row = size_t(3) * g.frames;
+  for (size_t i = 0; i < row; ++i) g.mean.push_back(int32_t(i * i) - 40);
+  for (size_t i = 0; i < g.components * row; ++i) g.basis.push_back(int32_t((i * 37) % 101) - 50);
+  for (size_t i = 0; i < order.vertex.size() * g.components; ++i)
+    g.coefficients.push_back(int32_t((i * 13) % 23) - 11);
+  std::vector<uint8_t> payload;
+  writeTrajectoryGroup(g, order, payload);
+  const ByteReader coded(payload.data() + 1, payload.size() - 1);  // after the Frame_Type
+
+  TrajectoryGroup as_integers, as_floats;
+  ASSERT_TRUE(readTrajectoryGroup(coded, order, UINT64_MAX, as_integers).ok());
+  EXPECT_EQ(as_integers.mean, g.mean);
+  EXPECT_EQ(as_integers.basis, g.basis);
+  GroupBasis floats;
+  ASSERT_TRUE(readTrajectoryGroup(coded, order, UINT64_MAX, as_floats, &floats).ok());
+  EXPECT_TRUE(as_floats.mean.empty());
+  EXPECT_TRUE(as_floats.basis.empty());
+  EXPECT_TRUE(std::equal(as_floats.coefficients.begin(), as_floats.coefficients.end(), g.coefficients.begin(),
+                         g.coefficients.end()));
+  const GroupBasis expected = dequantisedBasis(g);
+  EXPECT_EQ(floats.frames, expected.frames);
+  EXPECT_EQ(floats.components, expected.components);
+  EXPECT_TRUE(std::equal(floats.mean.begin(), floats.mean.end(), expected.mean.begin(), expected.mean.end()));
+  EXPECT_TRUE(std::equal(floats.basis.begin(), floats.basis.end(), expected.basis.begin(), expected.basis.end()));
 }
 
 }  // namespace

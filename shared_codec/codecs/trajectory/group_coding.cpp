@@ -74,17 +74,30 @@ void encodeRow(RangeEncoder& rc, RawBitWriter& raw, ClassedIntegerModel& m, cons
 
 bool fitsInt32(int64_t v) { return v >= INT32_MIN && v <= INT32_MAX; }
 
-bool decodeRow(RangeDecoder& rc, RawBitReader& raw, ClassedIntegerModel& m, int32_t* row, uint32_t frames) {
+// The values of a row, each handed to store(index in the row, value) as it is decoded.
+template <class Store>
+bool decodeRow(RangeDecoder& rc, RawBitReader& raw, ClassedIntegerModel& m, uint32_t frames, Store store) {
   for (uint32_t c = 0; c < 3; ++c) {
     int64_t previous = 0;
     for (uint32_t t = 0; t < frames; ++t) {
       const int64_t v = previous + decodeClassed(rc, raw, m);
       if (!fitsInt32(v)) return false;
-      row[c * frames + t] = int32_t(v);
+      store(c * frames + t, int32_t(v));
       previous = v;
     }
   }
   return true;
+}
+
+// The mean (row 0) and the basis vectors (rows 1 to K) of a group, each row's values handed
+// to the store that store_of(row) returns.
+template <class StoreOf>
+bool decodeRows(RangeDecoder& rc, RawBitReader& raw, GroupModels& models, const TrajectoryGroup& g,
+                StoreOf store_of) {
+  bool fits = decodeRow(rc, raw, models.mean, g.frames, store_of(0));
+  for (uint32_t k = 0; fits && k < g.components; ++k)
+    fits = decodeRow(rc, raw, models.basis[coefficientBand(k)], g.frames, store_of(k + 1));
+  return fits;
 }
 
 bool usableStep(float s) { return std::isfinite(s) && s > 0; }
@@ -186,7 +199,7 @@ Status multiplyAddsAboveLimit(const std::string& what, uint64_t work, uint64_t l
 }
 
 Status readTrajectoryGroup(ByteReader payload, const CodingOrder& order, uint64_t max_multiply_adds, TrajectoryGroup& g,
-                           const std::atomic<uint32_t>* done) {
+                           GroupBasis* basis, const std::atomic<uint32_t>* done) {
   const uint64_t n = order.vertex.size();
   ANIMC_ASSIGN_OR_RETURN(uint16_t frames, payload.u16("Frame_Count"));
   ANIMC_ASSIGN_OR_RETURN(uint16_t components, payload.u16("Component_Count"));
@@ -219,15 +232,31 @@ Status readTrajectoryGroup(ByteReader payload, const CodingOrder& order, uint64_
 
   const size_t row = size_t(3) * frames;
   // Every value is decoded below (a failed decode leaves the group unusable anyway).
-  g.mean.resize(row);
-  g.basis.resize(components * row);
   g.coefficients.resize(n * components);
   auto models = std::make_unique<GroupModels>();
   RangeDecoder rc(payload.cursor(), payload.remaining());
   RawBitReader raw(payload.cursor(), payload.remaining());
-  bool fits = decodeRow(rc, raw, models->mean, g.mean.data(), frames);
-  for (uint32_t k = 0; fits && k < components; ++k)
-    fits = decodeRow(rc, raw, models->basis[coefficientBand(k)], g.basis.data() + k * row, frames);
+  bool fits;
+  if (basis) {
+    basis->frames = frames;
+    basis->components = components;
+    basis->mean.resize(row);
+    basis->basis.resize(components * row);
+    g.mean.clear();
+    g.basis.clear();
+    fits = decodeRows(rc, raw, *models, g, [&](uint32_t r) {
+      float* out = r == 0 ? basis->mean.data() : basis->basis.data() + (r - 1) * row;
+      const float step = r == 0 ? g.mean_step : g.basis_step[r - 1];
+      return [out, step](uint32_t i, int32_t v) { out[i] = dequantised(v, step); };
+    });
+  } else {
+    g.mean.resize(row);
+    g.basis.resize(components * row);
+    fits = decodeRows(rc, raw, *models, g, [&](uint32_t r) {
+      int32_t* out = r == 0 ? g.mean.data() : g.basis.data() + (r - 1) * row;
+      return [out](uint32_t i, int32_t v) { out[i] = v; };
+    });
+  }
   // Damaged data is found at the end: the loops are as long whatever the bytes, and a
   // decoder that reads past its input gets zeros.
   Predictions predictions(components);
@@ -250,13 +279,14 @@ Status readTrajectoryGroup(ByteReader payload, const CodingOrder& order, uint64_
 }
 
 Status walkAndReadTrajectoryGroup(const Topology& topology, ByteReader payload, uint64_t max_multiply_adds,
-                                  std::unique_ptr<const CodingOrder>& order, TrajectoryGroup& g) {
+                                  std::unique_ptr<const CodingOrder>& order, TrajectoryGroup& g,
+                                  GroupBasis* basis) {
   const VertexAdjacency adjacency(topology);
   auto walking = std::make_unique<CodingOrder>(adjacency);
   std::atomic<uint32_t> done{0};
   Status read;
   runBeside([&] { walking->walk(adjacency, &done); },
-            [&] { read = readTrajectoryGroup(payload, *walking, max_multiply_adds, g, &done); });
+            [&] { read = readTrajectoryGroup(payload, *walking, max_multiply_adds, g, basis, &done); });
   order = std::move(walking);
   return read;
 }

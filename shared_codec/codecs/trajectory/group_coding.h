@@ -51,6 +51,18 @@ struct TrajectoryGroup {
   UninitialisedVector<int32_t> coefficients;  // per coding position, K values, in units of coefficient_step
 };
 
+// A group's mean and basis vectors as the decoders compute with them (docs/format.md 12.4).
+struct GroupBasis {
+  uint32_t frames = 0;
+  uint32_t components = 0;
+  UninitialisedVector<float> mean;   // 3G
+  UninitialisedVector<float> basis;  // K rows of 3G
+};
+
+// A quantised value (a mean, basis or coefficient value in units of its step) as the decoders
+// compute with it (docs/format.md 12.4).
+inline float dequantised(int32_t value, float step) { return float(value) * step; }
+
 // Components are coded in bands of doubling width (0, 1, 2-3, 4-7, ..., the last one open):
 // the first carry most of the motion and so the largest values. A component's band picks the
 // models of its basis vector and of its coefficients.
@@ -77,12 +89,18 @@ Status multiplyAddsAboveLimit(const std::string& what, uint64_t work, uint64_t l
 // than max_multiply_adds (3 x components x vertices x frames) is refused before any decoding.
 // `done`, when not null, is a walk's count of the positions of `order` done so far: the reading
 // waits for each position to be done (CodingOrder::walk).
+// When `basis` is not null, the mean and basis vectors go there as floats, each value
+// dequantised as it is decoded, and group.mean and group.basis are left empty: a decoder
+// holds them once, not also as integers.
 Status readTrajectoryGroup(ByteReader payload, const CodingOrder& order, uint64_t max_multiply_adds,
-                           TrajectoryGroup& group, const std::atomic<uint32_t>* done = nullptr);
+                           TrajectoryGroup& group, GroupBasis* basis = nullptr,
+                           const std::atomic<uint32_t>* done = nullptr);
 // The coding order of `topology` into `order`, and the group of `payload` read with it: the
 // order is walked on a second thread when the budget allows, and the reading follows it
-// position by position. `order` is complete even when the group is not read.
+// position by position. `order` is complete even when the group is not read. `basis` as for
+// readTrajectoryGroup().
 Status walkAndReadTrajectoryGroup(const Topology& topology, ByteReader payload, uint64_t max_multiply_adds,
-                                  std::unique_ptr<const CodingOrder>& order, TrajectoryGroup& group);
+                                  std::unique_ptr<const CodingOrder>& order, TrajectoryGroup& group,
+                                  GroupBasis* basis = nullptr);
 
 }  // namespace animc

@@ -21,16 +21,16 @@ GroupBasis dequantisedBasis(const TrajectoryGroup& g) {
   b.components = g.components;
   const size_t row = size_t(3) * g.frames;
   b.mean.resize(row);
-  for (size_t i = 0; i < row; ++i) b.mean[i] = float(g.mean[i]) * g.mean_step;
+  for (size_t i = 0; i < row; ++i) b.mean[i] = dequantised(g.mean[i], g.mean_step);
   b.basis.resize(g.components * row);
   for (uint32_t k = 0; k < g.components; ++k)
-    for (size_t i = 0; i < row; ++i) b.basis[k * row + i] = float(g.basis[k * row + i]) * g.basis_step[k];
+    for (size_t i = 0; i < row; ++i) b.basis[k * row + i] = dequantised(g.basis[k * row + i], g.basis_step[k]);
   return b;
 }
 
-void GroupFrames::reset(const TrajectoryGroup& g, const CodingOrder& order, SimdPath path) {
+void GroupFrames::reset(GroupBasis& basis, const TrajectoryGroup& g, const CodingOrder& order, SimdPath path) {
   path_ = path;
-  basis_ = dequantisedBasis(g);
+  std::swap(basis_, basis);
   vertices_ = uint32_t(order.vertex.size());
   const uint32_t components = g.components;
   // Panels: a kernel step reads one front to back instead of K rows far apart. Each vertex is
@@ -43,7 +43,7 @@ void GroupFrames::reset(const TrajectoryGroup& g, const CodingOrder& order, Simd
       float* panel = coefficients_.data() + FrameKernel::panelOffset(order.vertex[p], components);
       const int32_t* c = g.coefficients.data() + p * components;
       for (uint32_t k = 0; k < components; ++k)
-        panel[size_t(k) * kLanes] = dequantisedCoefficient(c[k], g.coefficient_step);
+        panel[size_t(k) * kLanes] = dequantised(c[k], g.coefficient_step);
     }
   });
   batch_.resize(size_t(kBatch) * 3 * vertices_);

@@ -11,20 +11,10 @@
 
 namespace animc {
 
-// A group's mean and basis vectors as the decoders compute with them (docs/format.md 12.4).
-struct GroupBasis {
-  uint32_t frames = 0;
-  uint32_t components = 0;
-  UninitialisedVector<float> mean;   // 3G
-  UninitialisedVector<float> basis;  // K rows of 3G
-};
 GroupBasis dequantisedBasis(const TrajectoryGroup& group);
 
 // The largest coordinate a decoder hands out, as for the other codecs.
 constexpr float kMaxDecodedValue = 1e30f;
-
-// A quantised coefficient as the decoders multiply with it.
-inline float dequantisedCoefficient(int32_t value, float step) { return float(value) * step; }
 
 // The frames of a group: every decoder and the encoder compute them with these float
 // operations in this order, so that they agree to the bit (docs/format.md 12.4). Frames are
@@ -58,7 +48,10 @@ class GroupFrames {
   static constexpr uint32_t kBatch = FrameKernel::kBatch;
   static constexpr uint32_t kLanes = FrameKernel::kLanes;
 
-  void reset(const TrajectoryGroup& group, const CodingOrder& order, SimdPath path);
+  // The frames of `group` with its mean and basis vectors `basis` (dequantisedBasis(), or as
+  // readTrajectoryGroup() decoded them), which are swapped in: `basis` is left with the
+  // previous group's, whose buffers the next group may reuse.
+  void reset(GroupBasis& basis, const TrajectoryGroup& group, const CodingOrder& order, SimdPath path);
   uint32_t frames() const { return basis_.frames; }
   // Frame t of the group (t < frames()) into xyz (3 floats a vertex, vertex order); false if
   // a value is not finite or above kMaxDecodedValue in size (a damaged group).

@@ -319,7 +319,7 @@ PartError PartEncoder::measure(double step, bool frame_worst) const {
       float* panel = panels.data() + FrameKernel::panelOffset(i, used);
       const Eigen::Index p = position_[v0 + i];
       for (uint32_t k = 0; k < used; ++k)
-        panel[size_t(k) * FrameKernel::kLanes] = dequantisedCoefficient(
+        panel[size_t(k) * FrameKernel::kLanes] = dequantised(
             quantiseCoefficient(pc_.coefficients(p, chosen.sent[k]), q), header.coefficient_step);
     }
     std::vector<float> xyz(size_t(FrameKernel::kBatch) * 3 * count);

@@ -75,16 +75,18 @@ class TrajectoryDecoder final : public FrameDecoder {
 
   Status readWhole(ByteReader payload) {
     groups_.resize(1);
+    bases_.resize(1);
     TrajectoryGroup& group = groups_[0];
     // The order is made with the first group: the decoder of an auto file holds one for each
     // candidate, and a large mesh's order takes a while to compute.
     if (order_) {
-      ANIMC_RETURN_IF_ERROR(readTrajectoryGroup(payload, *order_, max_multiply_adds_, group));
+      ANIMC_RETURN_IF_ERROR(readTrajectoryGroup(payload, *order_, max_multiply_adds_, group, &bases_[0]));
     } else {
-      ANIMC_RETURN_IF_ERROR(walkAndReadTrajectoryGroup(topology_, payload, max_multiply_adds_, order_, group));
+      ANIMC_RETURN_IF_ERROR(
+          walkAndReadTrajectoryGroup(topology_, payload, max_multiply_adds_, order_, group, &bases_[0]));
     }
     frames_.resize(1);
-    frames_[0].reset(group, *order_, path_);
+    frames_[0].reset(bases_[0], group, *order_, path_);
     return Status();
   }
 
@@ -99,13 +101,14 @@ class TrajectoryDecoder final : public FrameDecoder {
                                     head.multiply_adds, max_multiply_adds_);
     parts_ = std::make_unique<MeshParts>(topology_, head.labels, head.part_count);
     groups_.resize(head.part_count);
+    bases_.resize(head.part_count);
     std::vector<Status> read(head.part_count);
     parallelFor(head.part_count, [&](size_t c) {
-      read[c] = readTrajectoryGroup(head.parts[c], *parts_->orders[c], max_multiply_adds_, groups_[c]);
+      read[c] = readTrajectoryGroup(head.parts[c], *parts_->orders[c], max_multiply_adds_, groups_[c], &bases_[c]);
     });
     for (const Status& s : read) ANIMC_RETURN_IF_ERROR(s);
     frames_.resize(head.part_count);
-    for (uint32_t c = 0; c < head.part_count; ++c) frames_[c].reset(groups_[c], *parts_->orders[c], path_);
+    for (uint32_t c = 0; c < head.part_count; ++c) frames_[c].reset(bases_[c], groups_[c], *parts_->orders[c], path_);
     return Status();
   }
 
@@ -115,9 +118,11 @@ class TrajectoryDecoder final : public FrameDecoder {
   SimdPath path_;
   bool parted_;
   std::unique_ptr<MeshParts> parts_;    // of the group decoded last (codec 5)
-  // Each part's integers, read here group after group: their buffers stay (a large group's
-  // would otherwise be new pages every group).
+  // Each part's integers and its basis as floats, read here group after group: their buffers
+  // stay (a large group's would otherwise be new pages every group). A basis is swapped with
+  // the one its frames_ held.
   std::vector<TrajectoryGroup> groups_;
+  std::vector<GroupBasis> bases_;
   std::vector<GroupFrames> frames_;     // of each part, of the group decoded last
   std::vector<uint8_t> group_payload_;  // of frames_, after its Frame_Type
   uint32_t next_ = 0;

@@ -69,7 +69,10 @@ class TrajectoryEncoder final : public GroupEncoder {
     payloads[0] = std::move(payload);
     mesh_parts_ = std::move(chosen.mesh_parts);
     decoded_.resize(groups.size());
-    for (uint32_t c = 0; c < groups.size(); ++c) decoded_[c].reset(groups[c], orderOf(c), context_.path);
+    for (uint32_t c = 0; c < groups.size(); ++c) {
+      GroupBasis basis = dequantisedBasis(groups[c]);
+      decoded_[c].reset(basis, groups[c], orderOf(c), context_.path);
+    }
     current_ = nullptr;
     trial_groups_.clear();
     context_.original = nullptr;
