@@ -7,8 +7,9 @@ namespace animc::meshlab {
 namespace {
 
 // Enum order is the script value: append, never reorder.
-const QStringList kCodecs = {"Affine-Octree", "Wavelet", "Trajectory", "Auto"};
+const QStringList kCodecs = {"Affine-Octree", "Wavelet", "Trajectory", "Auto", "Trajectory 2"};
 constexpr int kAutoCodec = 3;  // the default
+constexpr int kTrajectory2Codec = 4;
 const QStringList kProfiles = {"predictive", "paper"};
 // How wavelet detail frames refer to the frame before them (animc encode: default,
 // --progressive-p-frames, --i-frames-only).
@@ -26,9 +27,10 @@ void addEncodeParameters(RichParameterList& par) {
                "(docs/affine_octree.md). Wavelet: progressive wavelet coding on a mesh hierarchy, "
                "error set by the step or the bits per vertex (docs/wavelet.md). Trajectory: each group of frames "
                "as principal trajectories, the smallest files at a KG error; its groups are the I-frame "
-               "interval, or up to 512 frames (docs/trajectory.md). Auto (the default): per group, the smaller "
-               "of Trajectory version 2 (parts of the mesh with a basis each) and Affine-Octree within the "
-               "max error, or of Trajectory version 2 and Wavelet at the "
+               "interval, or up to 512 frames (docs/trajectory.md). Trajectory 2: the same with each group cut "
+               "into up to 8 parts of the mesh that move together, each with its own basis: smaller files "
+               "(docs/trajectory.md, \"Parts\"). Auto (the default): per group, the smaller "
+               "of Trajectory 2 and Affine-Octree within the max error, or of Trajectory 2 and Wavelet at the "
                "target KG error when it is set (docs/auto.md)."));
   par.addParam(RichEnum(
       "Profile", 0, kProfiles, "Profile (Affine-Octree)",
@@ -47,10 +49,11 @@ void addEncodeParameters(RichParameterList& par) {
                          "Fixed rate: each frame is cut at this many bits per vertex (the paper's 1, 2, 4, 8); "
                          "0 = no limit, the step alone sets the quality."));
   par.addParam(RichFloat("WaveletTargetKG", float(wavelet_defaults.target_kg),
-                         "Target KG error (%) (Wavelet, Trajectory)",
-                         "Rate control by error: each frame (Wavelet) or group of frames (Trajectory) gets the "
+                         "Target KG error (%) (Wavelet, Trajectory, Trajectory 2, Auto)",
+                         "Rate control by error: each frame (Wavelet) or group of frames (the others) gets the "
                          "fewest bits that keep the animation's KG error at or below this (Wavelet: down to "
-                         "what the step allows). 0 = off for Wavelet, 0.3 % for Trajectory."));
+                         "what the step allows). 0 = off for Wavelet and Auto (which then takes the max error), "
+                         "0.3 % for Trajectory and Trajectory 2."));
   par.addParam(RichEnum("WaveletFrames", 0, kWaveletFrames, "Detail frames (Wavelet)",
                         "P-frames: each frame predicted from the last (smallest files). Progressive P-frames: "
                         "the same without temporal contexts, so a decoder may cut them (animc decode "
@@ -96,7 +99,7 @@ Status readWaveletParameters(const RichParameterList& par, WaveletOptions& o) {
   return Status();
 }
 
-// The trajectory codec has no parameters of its own, so that every script written for the two
+// The trajectory codecs have no parameters of their own, so that every script written for the two
 // earlier codecs still runs (MeshLab 2020.09's meshlabserver aborts on a script that lacks one
 // of a filter's parameters): it takes the target KG error of the wavelet codec (0 = its own
 // default), and the I-frame interval, when set, as its group length.
@@ -130,6 +133,8 @@ Result<EncodeSettings> encodeSettingsFrom(const RichParameterList& par) {
     ANIMC_RETURN_IF_ERROR(readWaveletParameters(par, s.wavelet()));
   } else if (codec == 2) {
     ANIMC_RETURN_IF_ERROR(readTrajectoryParameters(par, s.trajectory()));
+  } else if (codec == kTrajectory2Codec) {
+    ANIMC_RETURN_IF_ERROR(readTrajectoryParameters(par, s.trajectory2().trajectory));
   } else if (codec == kAutoCodec) {
     ANIMC_RETURN_IF_ERROR(readAutoParameters(par, s.automatic()));
   } else {

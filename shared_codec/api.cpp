@@ -24,6 +24,11 @@ TrajectoryOptions& EncodeSettings::trajectory() {
   return std::get<TrajectoryOptions>(options);
 }
 
+Trajectory2Options& EncodeSettings::trajectory2() {
+  if (!std::holds_alternative<Trajectory2Options>(options)) options = Trajectory2Options();
+  return std::get<Trajectory2Options>(options);
+}
+
 AutoOptions& EncodeSettings::automatic() {
   if (!std::holds_alternative<AutoOptions>(options)) options = withCandidates(AutoOptions());
   return std::get<AutoOptions>(options);

@@ -30,6 +30,7 @@ struct EncodeSettings {
   AffineOctreeOptions& octree();
   WaveletOptions& wavelet();
   TrajectoryOptions& trajectory();
+  Trajectory2Options& trajectory2();
   AutoOptions& automatic();
   const AffineOctreeOptions& octree() const { return std::get<AffineOctreeOptions>(options); }
   const WaveletOptions& wavelet() const { return std::get<WaveletOptions>(options); }

@@ -80,7 +80,8 @@ case_dump() {
               "Max error (%)" "I-frame interval" "Output .ams file" "Add reconstructed layers" "Colour by error" \
               "Visible layers only" "First original layer" "First reconstructed layer" "Colour scale max" \
               "Compressed animation" "Last frame" "Step (% of diagonal) (Wavelet)" \
-              "Bits per vertex per frame (Wavelet)" "Target KG error (%) (Wavelet, Trajectory)" "Profile (Affine-Octree)" \
+              "Bits per vertex per frame (Wavelet)" "Target KG error (%) (Wavelet, Trajectory, Trajectory 2, Auto)" \
+              "Trajectory 2: the same with each group cut" "Profile (Affine-Octree)" \
               "(animcompress $("$ANIMC" --version | cut -d' ' -f2))"; do
     grep -qF -- "$text" dump.txt || check_failed "dump: '$text' missing"
   done
@@ -219,6 +220,9 @@ case_trajectory() {
   # Trajectory takes the wavelet's target KG and the I-frame interval (docs/meshlab.md).
   filter_matches_animc trajectory "codec: trajectory, target KG 0.5 %, groups of up to 512 frames" \
     Codec=2 WaveletTargetKG=0.5 IFrameInterval=10 -- --codec trajectory --target-kg 0.5 --iframe-interval 10
+  # Trajectory 2 takes the same two, and cuts its groups into up to 8 parts (docs/trajectory.md).
+  filter_matches_animc trajectory2 "codec: trajectory2, target KG 0.5 %, groups of up to 512 frames in up to 8 parts" \
+    Codec=4 WaveletTargetKG=0.5 IFrameInterval=10 -- --codec trajectory2 --target-kg 0.5 --iframe-interval 10
   # Auto, the default codec: the max error, or the target KG when it is set.
   filter_matches_animc auto "codec: auto, max error 0.02 of the cube's side, per group trajectory2 or affine-octree" \
     Codec=3 MaxErrorPercent=2 IFrameInterval=2 -- --max-error 0.02 --iframe-interval 2
