@@ -48,14 +48,14 @@ def parse_arguments(doc):
     return p.parse_args()
 
 
-def trajectory_files(args, work):
-    """Every shared sequence encoded by the trajectory codec at every KG target, one after the
+def trajectory_files(args, work, codec='trajectory'):
+    """Every shared sequence encoded by a trajectory codec at every KG target, one after the
     other into work/NAME.ams: yields (name, pc2, ply, kg, ams, animc's JSON report)."""
     for name, pc2, ply in find_sequences(args.data):
         for kg in (float(x) for x in args.kg.split(',')):
             log(f'{name}: KG {kg:g} %')
             ams = os.path.join(work, f'{name}.ams')
-            encoded = run_json([args.animc, 'encode', pc2, '--mesh', ply, '-o', ams, '--codec', 'trajectory',
+            encoded = run_json([args.animc, 'encode', pc2, '--mesh', ply, '-o', ams, '--codec', codec,
                                 '--target-kg', str(kg), '--json'])
             yield name, pc2, ply, kg, ams, encoded
 
