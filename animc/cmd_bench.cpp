@@ -1,11 +1,12 @@
 // SPDX-License-Identifier: Apache-2.0
 // animc bench: median encode and decode throughput over R runs on --threads N threads (0 =
-// one per core, the default), plus every
+// one per core, the default), the encode's median CPU time, plus every
 // metric of the decoded result. The input is read into memory first so that file reading
 // and xz decompression are not timed. Given an .ams file, it times decoding only (the file
 // stays in the page cache after the first run): the loop to measure a decoder change with,
 // each build decoding the same bytes. With --read-only it times the sequence readers instead:
 // opening the input and reading every frame, what a reader change is measured with.
+#include <time.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -28,6 +29,15 @@ namespace animc::cli {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+// CPU seconds of the whole process so far, every thread's: with --threads 1 an encode's own
+// work, which a busy or virtual machine's waits (another process's turn, stolen time) do not
+// lengthen as they lengthen the wall clock.
+double processCpuSeconds() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
+}
 
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
@@ -211,16 +221,18 @@ int runBench(const std::vector<std::string>& argv) {
       args.has("output") ? args.get("output") : "/tmp/animc-bench-" + std::to_string(getpid()) + ".ams";
   // The scratch output is rewritten every run: an interrupted bench removes it too.
   const int scratch_slot = args.has("output") ? -1 : registerTemporary(out, TemporaryKind::kFile);
-  std::vector<double> encode_s, decode_s;
+  std::vector<double> encode_s, encode_cpu_s, decode_s;
   EncodeSummary report;
   ProgressFn progress = progressLine("bench", args.has("progress"));
   for (long long r = 0; r < runs.value(); ++r) {
     if (progress) progress(int(100 * r / runs.value()), "encoding and decoding");
     seq.rewind();
     const auto t0 = Clock::now();
+    const double cpu0 = processCpuSeconds();
     auto rep = encodeSequence(seq, settings, out);
     if (!rep.ok()) return fail(rep.status());
     encode_s.push_back(std::chrono::duration<double>(Clock::now() - t0).count());
+    encode_cpu_s.push_back(processCpuSeconds() - cpu0);
     report = rep.value();
     auto d = timeDecode([&] { return Decoder::openFile(out, withThreads(settings.threads)); });
     if (!d.ok()) return fail(d.status());
@@ -248,6 +260,7 @@ int runBench(const std::vector<std::string>& argv) {
     o.add("cells", report.cells);
     o.add("runs", runs.value());
     o.add("encode_seconds_median", median(encode_s));
+    o.add("encode_cpu_seconds_median", median(encode_cpu_s));
     o.add("decode_seconds_median", median(decode_s));
     o.add("encode_mvps", encode_mvps);
     o.add("decode_mvps", decode_mvps);
