@@ -111,13 +111,56 @@ void adaptiveDecode(const Values& v, const std::vector<uint8_t>& coded, std::vec
   for (size_t i = 0; i < n; ++i) out[i] = int32_t(animc::decodeClassed(rc, raw, models[v.model[i]]));
 }
 
+// The raw bits of a value of class c >= 1 (the sign, then the low bits), as encodeClassed()
+// writes them.
+inline void writeRawOfClass(animc::RawBitWriter& raw, uint32_t c, int64_t value) {
+  const int low_bits = animc::lowBitsOfClass(c);
+  const uint64_t magnitude = uint64_t(value < 0 ? -value : value);
+  raw.write(uint32_t((uint64_t(value < 0) << low_bits) | (magnitude & ((uint64_t(1) << low_bits) - 1))),
+            animc::rawBitsOfClass(c));
+}
+
+// The value of class c >= 1 from its raw bits (the sign, then the low bits), as
+// decodeClassed() makes it.
+inline int32_t valueOfClass(uint32_t c, animc::RawBitReader& raw) {
+  const int low_bits = animc::lowBitsOfClass(c);
+  const uint32_t r = raw.read(animc::rawBitsOfClass(c));
+  const int64_t magnitude = int64_t(animc::magnitudeOf(c, r & ((1u << low_bits) - 1)));
+  const int64_t negative = -int64_t(r >> low_bits);
+  return int32_t((magnitude ^ negative) - negative);
+}
+
+// rANS with kStates interleaved states, value i in state i % kStates: the encoder's bytes
+// come last to first (each state flushed at the end), so the decoder reads them in order.
+constexpr int kStates = 4;
+
+// Ends an encoding: the states, then the bytes reversed into the stream's order.
+std::vector<uint8_t> finishStates(const uint32_t (&state)[kStates], std::vector<uint8_t>& reversed) {
+  for (int k = kStates; k-- > 0;)
+    for (int b = 0; b < 4; ++b) reversed.push_back(uint8_t(state[k] >> (8 * b)));
+  return std::vector<uint8_t>(reversed.rbegin(), reversed.rend());
+}
+
+// Decodes the n values of a stream that starts at p: decode_one(state, p, i) gives value i.
+template <class DecodeOne>
+void decodeInterleaved(const uint8_t* p, size_t n, std::vector<int32_t>& out, DecodeOne decode_one) {
+  uint32_t x[kStates];
+  for (int k = 0; k < kStates; ++k) {
+    x[k] = 0;
+    for (int b = 3; b >= 0; --b) x[k] = (x[k] << 8) | *p++;
+  }
+  size_t i = 0;
+  for (; i + kStates <= n; i += kStates)
+    for (int k = 0; k < kStates; ++k) out[i + k] = decode_one(x[k], p, i + k);
+  for (; i < n; ++i) out[i] = decode_one(x[i % kStates], p, i);
+}
+
 // ---- static: rANS over magnitude classes ----
 
 constexpr int kClasses = 32;  // 0 = zero, 1..30, 31 = escape (5 raw bits more)
 constexpr int kFrequencyBits = 12;
 constexpr uint32_t kTotal = 1u << kFrequencyBits;
 constexpr uint32_t kLow = 1u << 23;  // states live in [kLow, 256 kLow)
-constexpr int kStates = 4;
 
 uint32_t classOf(int32_t v) {
   const uint32_t c = animc::magnitudeClass(uint64_t(v < 0 ? -int64_t(v) : v));
@@ -187,10 +230,7 @@ StaticStream staticEncode(const Values& v, const std::vector<StaticModel>* model
     s.ideal_bits -= std::log2(double(s.models[v.model[i]].frequency[classOf(value)]) / kTotal);
     if (c == 0) continue;
     if (c >= kClasses - 1) raw.write(c - (kClasses - 1), 5);
-    const int low_bits = animc::lowBitsOfClass(c);
-    const uint64_t magnitude = uint64_t(value < 0 ? -int64_t(value) : value);
-    raw.write(uint32_t((uint64_t(value < 0) << low_bits) | (magnitude & ((uint64_t(1) << low_bits) - 1))),
-              animc::rawBitsOfClass(c));
+    writeRawOfClass(raw, c, value);
   }
   raw.appendTo(s.raw);
   // rANS codes last to first: value i goes through state i % kStates.
@@ -208,9 +248,7 @@ StaticStream staticEncode(const Values& v, const std::vector<StaticModel>* model
     }
     x = ((x / f) << kFrequencyBits) + (x % f) + m.start[c];
   }
-  for (int k = kStates; k-- > 0;)
-    for (int b = 0; b < 4; ++b) reversed.push_back(uint8_t(state[k] >> (8 * b)));
-  s.rans.assign(reversed.rbegin(), reversed.rend());
+  s.rans = finishStates(state, reversed);
   return s;
 }
 
@@ -224,28 +262,14 @@ __attribute__((always_inline)) inline int32_t decodeStatic(uint32_t& x, const ui
     if (x < kLow) x = (x << 8) | *p++;
   }
   if (s == 0) return 0;
-  uint32_t c = s;
-  if (s == kClasses - 1) c += raw.read(5);
-  const int low_bits = animc::lowBitsOfClass(c);
-  const uint32_t r = raw.read(animc::rawBitsOfClass(c));
-  const int64_t magnitude = int64_t(animc::magnitudeOf(c, r & ((1u << low_bits) - 1)));
-  const int64_t negative = -int64_t(r >> low_bits);
-  return int32_t((magnitude ^ negative) - negative);
+  return valueOfClass(s == kClasses - 1 ? s + raw.read(5) : s, raw);
 }
 
 void staticDecode(const Values& v, const StaticStream& s, std::vector<int32_t>& out) {
-  const uint8_t* p = s.rans.data();
-  uint32_t x[kStates];
-  for (int k = 0; k < kStates; ++k) {
-    x[k] = 0;
-    for (int b = 3; b >= 0; --b) x[k] = (x[k] << 8) | *p++;
-  }
   animc::RawBitReader raw(s.raw.data(), s.raw.size());
-  const size_t n = v.value.size();
-  size_t i = 0;
-  for (; i + kStates <= n; i += kStates)
-    for (int k = 0; k < kStates; ++k) out[i + k] = decodeStatic(x[k], p, s.models[v.model[i + k]], raw);
-  for (; i < n; ++i) out[i] = decodeStatic(x[i % kStates], p, s.models[v.model[i]], raw);
+  decodeInterleaved(s.rans.data(), v.value.size(), out, [&](uint32_t& x, const uint8_t*& p, size_t i) {
+    return decodeStatic(x, p, s.models[v.model[i]], raw);
+  });
 }
 
 // ---- adaptive rANS: today's models, rANS instead of the range coder ----
@@ -277,8 +301,7 @@ AnsStream ansEncode(const Values& v) {
     spans.push_back(value == 0 ? Span{0, uint16_t(p0)} : Span{uint16_t(p0), uint16_t(animc::kProbOne - p0)});
     m.zero.update(value != 0);
     if (value == 0) continue;
-    const uint64_t magnitude = uint64_t(value < 0 ? -value : value);
-    const uint32_t c = animc::magnitudeClass(magnitude);
+    const uint32_t c = animc::magnitudeClass(uint64_t(value < 0 ? -value : value));
     auto symbol = [&](animc::SymbolModel& model, uint32_t s) {
       spans.push_back({model.start[s], uint16_t(model.start[s + 1] - model.start[s])});
       model.update(s);
@@ -286,9 +309,7 @@ AnsStream ansEncode(const Values& v) {
     symbol(m.low, animc::lowSymbol(c));
     if (c >= animc::kFirstHighClass) symbol(m.high, animc::highSymbol(c));
     if (c >= animc::kFirstRawClass) raw.write(c - animc::kFirstRawClass, 5);
-    const int low_bits = animc::lowBitsOfClass(c);
-    raw.write(uint32_t((uint64_t(value < 0) << low_bits) | (magnitude & ((uint64_t(1) << low_bits) - 1))),
-              animc::rawBitsOfClass(c));
+    writeRawOfClass(raw, c, value);
   }
   first_span.push_back(uint32_t(spans.size()));
   AnsStream out;
@@ -308,9 +329,7 @@ AnsStream ansEncode(const Values& v) {
       x = ((x / f) << animc::kProbBits) + (x % f) + spans[j].start;
     }
   }
-  for (int k = kStates; k-- > 0;)
-    for (int b = 0; b < 4; ++b) reversed.push_back(uint8_t(state[k] >> (8 * b)));
-  out.rans.assign(reversed.rbegin(), reversed.rend());
+  out.rans = finishStates(state, reversed);
   return out;
 }
 
@@ -341,27 +360,14 @@ __attribute__((always_inline)) inline int32_t ansValue(uint32_t& x, const uint8_
     c = animc::kFirstHighClass + ansSymbol(x, p, m.high);
     if (c >= animc::kFirstRawClass) c = std::min(animc::kFirstRawClass + raw.read(5), animc::kMaxMagnitudeClass);
   }
-  const int low_bits = animc::lowBitsOfClass(c);
-  const uint32_t r = raw.read(animc::rawBitsOfClass(c));
-  const int64_t magnitude = int64_t(animc::magnitudeOf(c, r & ((1u << low_bits) - 1)));
-  const int64_t negative = -int64_t(r >> low_bits);
-  return int32_t((magnitude ^ negative) - negative);
+  return valueOfClass(c, raw);
 }
 
 void ansDecode(const Values& v, const AnsStream& s, std::vector<int32_t>& out) {
   std::vector<ClassedIntegerModel> models(kModels);
-  const uint8_t* p = s.rans.data();
-  uint32_t x[kStates];
-  for (int k = 0; k < kStates; ++k) {
-    x[k] = 0;
-    for (int b = 3; b >= 0; --b) x[k] = (x[k] << 8) | *p++;
-  }
   animc::RawBitReader raw(s.raw.data(), s.raw.size());
-  const size_t n = v.value.size();
-  size_t i = 0;
-  for (; i + kStates <= n; i += kStates)
-    for (int k = 0; k < kStates; ++k) out[i + k] = ansValue(x[k], p, models[v.model[i + k]], raw);
-  for (; i < n; ++i) out[i] = ansValue(x[i % kStates], p, models[v.model[i]], raw);
+  decodeInterleaved(s.rans.data(), v.value.size(), out,
+                    [&](uint32_t& x, const uint8_t*& p, size_t i) { return ansValue(x, p, models[v.model[i]], raw); });
 }
 
 }  // namespace
