@@ -112,7 +112,8 @@ def trajectory2_section(animc, sequences, runs, famc_path=FAMC_RESULTS):
              f'software, every mode and setting swept in `../shared/tools/famc/RESULTS.md`). bpvf of the '
              f'whole file; encode CPU seconds (`encode_cpu_seconds_median`: the encoder\'s own work, which '
              f'this virtual machine\'s waits do not lengthen as they do its wall-clock medians) and decode M '
-             f'vertices/s are medians of {runs} `animc bench --threads 1` runs. ✗ marks a ratio above issue 40\'s targets: {TARGET_OF_CODEC3}× codec 3, '
+             f'vertices/s are medians of {runs} `animc bench --threads 1` runs. ✗ marks a ratio above issue '
+             f'40\'s targets: {TARGET_OF_CODEC3}× codec 3, '
              f'{TARGET_OF_FAMC}× FAMC, encoding {TARGET_ENCODE_OF_CODEC3}× codec 3\'s time; its decode target is '
              f'{TARGET_DECODE_MVPS} M vertices/s a core at KG 0.3 %.', '']
     lines += table(['sequence', 'KG %', 'codec 3 bpvf', 'codec 5 bpvf', '5 / 3', 'FAMC bpvf', '5 / FAMC',

@@ -101,8 +101,8 @@ Status readWaveletParameters(const RichParameterList& par, WaveletOptions& o) {
 
 // The trajectory codecs have no parameters of their own, so that every script written for the two
 // earlier codecs still runs (MeshLab 2020.09's meshlabserver aborts on a script that lacks one
-// of a filter's parameters): it takes the target KG error of the wavelet codec (0 = its own
-// default), and the I-frame interval, when set, as its group length.
+// of a filter's parameters): they take the target KG error of the wavelet codec (0 = their own
+// default), and the I-frame interval, when set, as their group length.
 Status readTrajectoryParameters(const RichParameterList& par, TrajectoryOptions& o) {
   const double target = typedValue(par, "WaveletTargetKG");
   if (target > 0) o.rate_value = target;

@@ -89,14 +89,16 @@ bool decodeRow(RangeDecoder& rc, RawBitReader& raw, ClassedIntegerModel& m, uint
   return true;
 }
 
-// The mean (row 0) and the basis vectors (rows 1 to K) of a group, each row's values handed
-// to the store that store_of(row) returns.
-template <class StoreOf>
-bool decodeRows(RangeDecoder& rc, RawBitReader& raw, GroupModels& models, const TrajectoryGroup& g,
-                StoreOf store_of) {
-  bool fits = decodeRow(rc, raw, models.mean, g.frames, store_of(0));
+// The mean and the basis vectors (K rows of 3G) of a group into `mean` and `basis`, each
+// value as convert(value, its row's step) makes it.
+template <class Value, class Convert>
+bool decodeRows(RangeDecoder& rc, RawBitReader& raw, GroupModels& models, const TrajectoryGroup& g, Value* mean,
+                Value* basis, Convert convert) {
+  auto into = [&](Value* out, float step) { return [=](uint32_t i, int32_t v) { out[i] = convert(v, step); }; };
+  bool fits = decodeRow(rc, raw, models.mean, g.frames, into(mean, g.mean_step));
+  const size_t row = size_t(3) * g.frames;
   for (uint32_t k = 0; fits && k < g.components; ++k)
-    fits = decodeRow(rc, raw, models.basis[coefficientBand(k)], g.frames, store_of(k + 1));
+    fits = decodeRow(rc, raw, models.basis[coefficientBand(k)], g.frames, into(basis + k * row, g.basis_step[k]));
   return fits;
 }
 
@@ -244,18 +246,12 @@ Status readTrajectoryGroup(ByteReader payload, const CodingOrder& order, uint64_
     basis->basis.resize(components * row);
     g.mean.clear();
     g.basis.clear();
-    fits = decodeRows(rc, raw, *models, g, [&](uint32_t r) {
-      float* out = r == 0 ? basis->mean.data() : basis->basis.data() + (r - 1) * row;
-      const float step = r == 0 ? g.mean_step : g.basis_step[r - 1];
-      return [out, step](uint32_t i, int32_t v) { out[i] = dequantised(v, step); };
-    });
+    fits = decodeRows(rc, raw, *models, g, basis->mean.data(), basis->basis.data(),
+                      [](int32_t v, float step) { return dequantised(v, step); });
   } else {
     g.mean.resize(row);
     g.basis.resize(components * row);
-    fits = decodeRows(rc, raw, *models, g, [&](uint32_t r) {
-      int32_t* out = r == 0 ? g.mean.data() : g.basis.data() + (r - 1) * row;
-      return [out](uint32_t i, int32_t v) { out[i] = v; };
-    });
+    fits = decodeRows(rc, raw, *models, g, g.mean.data(), g.basis.data(), [](int32_t v, float) { return v; });
   }
   // Damaged data is found at the end: the loops are as long whatever the bytes, and a
   // decoder that reads past its input gets zeros.
