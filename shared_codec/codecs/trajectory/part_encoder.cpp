@@ -55,6 +55,24 @@ double estimatedBits(int64_t v) {
   return magnitude < small.size() ? small[magnitude] : 2 + 2 * std::log2(double(magnitude));
 }
 
+// Quantised values as the decoders make them, a column a vector.
+Eigen::MatrixXd dequantisedColumns(const std::vector<std::vector<int32_t>>& values, const std::vector<float>& steps) {
+  Eigen::MatrixXd out(Eigen::Index(values.empty() ? 0 : values[0].size()), Eigen::Index(values.size()));
+  for (Eigen::Index k = 0; k < out.cols(); ++k)
+    for (Eigen::Index j = 0; j < out.rows(); ++j)
+      out(j, k) = dequantised(values[size_t(k)][size_t(j)], steps[size_t(k)]);
+  return out;
+}
+
+// Coefficients quantised at step q and dequantised as the decoders do.
+Eigen::MatrixXd dequantisedCoefficients(const Eigen::MatrixXd& values, double q) {
+  Eigen::MatrixXd out(values.rows(), values.cols());
+  for (Eigen::Index j = 0; j < out.rows(); ++j)
+    for (Eigen::Index k = 0; k < out.cols(); ++k)
+      out(j, k) = dequantised(quantiseCoefficient(values(j, k), q), float(q));
+  return out;
+}
+
 }  // namespace
 
 double GroupContext::allowance(double share) const {
@@ -80,6 +98,12 @@ struct PartEncoder::Selection {
   std::vector<Eigen::Index> sent;
   std::vector<std::vector<int32_t>> basis;  // of each sent
   std::vector<float> basis_step;
+  RowMatrixF refined;  // N x sent, the coefficients refine() fitted to the basis; empty: the components'
+
+  // The coefficient of the part's row p on the k-th component sent.
+  float coefficient(const Components& pc, Eigen::Index p, size_t k) const {
+    return refined.size() ? refined(p, Eigen::Index(k)) : pc.coefficients(p, sent[k]);
+  }
 };
 
 PartEncoder::PartEncoder(const GroupContext& group, const CodingOrder& order, const std::vector<uint32_t>& members)
@@ -248,6 +272,7 @@ PartEncoder::Selection PartEncoder::quantiseHeader(double step, TrajectoryGroup&
   g.coefficient_step = float(step);
   const double q = g.coefficient_step;
   Selection chosen = selection(q);
+  if (group_.refinement_rounds > 0 && !chosen.sent.empty()) refine(q, chosen);
   const size_t row = size_t(3) * group_.frames;
   const uint32_t used = uint32_t(chosen.sent.size());
   g.components = used;
@@ -262,6 +287,57 @@ PartEncoder::Selection PartEncoder::quantiseHeader(double step, TrajectoryGroup&
   return chosen;
 }
 
+// The basis vectors sent and their coefficients fitted to each other as quantised, by
+// alternating least squares (a Lloyd iteration over the two factors): the basis vectors that
+// best carry the part's trajectories given the coefficients as quantised at step q, quantised
+// at their steps, then the coefficients that best carry the trajectories on that basis as
+// dequantised. Either fit takes back part of the other's quantisation error, so a coarser
+// step meets the same error. The trajectories are taken as the part's components carry them
+// (C B^T, B orthonormal), so each fit is a small solve in the components' space and no pass
+// over the trajectories, and so is the error the fits are judged by. Only the components up to the last one sent take
+// part: the weaker ones are the least converged, and at the noise floor of a mesh of few motions their vectors are not
+// orthogonal, so they would not carry the trajectories. Quantisation can undo a fit (an ill-conditioned one most of
+// all): the refinement stops at the first round that does not lower the error, keeping the best.
+void PartEncoder::refine(double q, Selection& chosen) const {
+  const Eigen::Index n = pc_.coefficients.rows(), sent = Eigen::Index(chosen.sent.size());
+  const Eigen::Index leading = chosen.sent.back() + 1;
+  const Eigen::MatrixXd c = pc_.coefficients.leftCols(leading).cast<double>();  // N x K
+  const auto components = pc_.basis.leftCols(leading);                          // 3G x K
+  Eigen::MatrixXd fitted(n, sent);                                              // the coefficients to quantise
+  for (Eigen::Index k = 0; k < sent; ++k) fitted.col(k) = c.col(chosen.sent[size_t(k)]);
+  std::vector<std::vector<int32_t>> values = chosen.basis;
+  Eigen::MatrixXd basis = dequantisedColumns(values, chosen.basis_step);  // 3G x sent
+  Eigen::MatrixXd basis_gram = basis.transpose() * basis;
+  Eigen::MatrixXd basis_on_components = basis.transpose() * components;  // sent x K
+  double best = HUGE_VAL;
+  for (int round = 0;; ++round) {
+    const Eigen::MatrixXd quantised = dequantisedCoefficients(fitted, q);  // N x sent
+    const Eigen::MatrixXd gram = quantised.transpose() * quantised;
+    const Eigen::MatrixXd on_components = quantised.transpose() * c;  // sent x K
+    // |C B^T - Q B'^T|^2 less |C|^2, with B^T B = I.
+    const double error =
+        gram.cwiseProduct(basis_gram).sum() - 2 * on_components.cwiseProduct(basis_on_components).sum();
+    if (!(error < best)) return;
+    best = error;
+    if (round > 0) {
+      chosen.basis = values;
+      chosen.refined = fitted.cast<float>();
+    }
+    if (round == group_.refinement_rounds) return;
+    // B' = B C^T Q (Q^T Q)^-1, quantised; then C' = C B^T B' (B'^T B')^-1.
+    const Eigen::MatrixXd fit = components * gram.ldlt().solve(on_components).transpose();
+    if (!fit.allFinite()) return;
+    for (Eigen::Index k = 0; k < sent; ++k)
+      for (Eigen::Index j = 0; j < fit.rows(); ++j)
+        values[size_t(k)][size_t(j)] = quantiseValue(fit(j, k), chosen.basis_step[size_t(k)]);
+    basis = dequantisedColumns(values, chosen.basis_step);
+    basis_gram = basis.transpose() * basis;
+    basis_on_components = basis.transpose() * components;
+    fitted = c * basis_gram.ldlt().solve(basis_on_components).transpose();
+    if (!fitted.allFinite()) return;
+  }
+}
+
 // Into g, whose buffers the search's trials reuse (a large group's would otherwise be new
 // pages at every trial).
 void PartEncoder::quantise(double step, TrajectoryGroup& g) const {
@@ -272,7 +348,7 @@ void PartEncoder::quantise(double step, TrajectoryGroup& g) const {
   forVertexBlocks(vertices_, 10.0 * double(used), [&](size_t, uint32_t begin, uint32_t end) {
     for (uint32_t p = begin; p < end; ++p)
       for (size_t k = 0; k < used; ++k)
-        g.coefficients[p * used + k] = quantiseCoefficient(pc_.coefficients(p, chosen.sent[k]), q);
+        g.coefficients[p * used + k] = quantiseCoefficient(chosen.coefficient(pc_, p, k), q);
   });
 }
 
@@ -319,8 +395,8 @@ PartError PartEncoder::measure(double step, bool frame_worst) const {
       float* panel = panels.data() + FrameKernel::panelOffset(i, used);
       const Eigen::Index p = position_[v0 + i];
       for (uint32_t k = 0; k < used; ++k)
-        panel[size_t(k) * FrameKernel::kLanes] = dequantised(
-            quantiseCoefficient(pc_.coefficients(p, chosen.sent[k]), q), header.coefficient_step);
+        panel[size_t(k) * FrameKernel::kLanes] =
+            dequantised(quantiseCoefficient(chosen.coefficient(pc_, p, k), q), header.coefficient_step);
     }
     std::vector<float> xyz(size_t(FrameKernel::kBatch) * 3 * count);
     for (uint32_t first = 0; first < frames; first += FrameKernel::kBatch) {

@@ -27,6 +27,8 @@ struct GroupContext {
   double diagonal = 0;             // of the group's first frame's bounding box
   std::vector<double> cube_sides;  // of each frame (kMaxError)
   double spread = 0;               // sum of |x - centroid|^2 over the frames (kTargetKg)
+  // Rounds of PartEncoder::refine() in each quantisation: none while a first step is searched.
+  int refinement_rounds = 0;
 
   // The squared error over the group a rate mode allows: the KG target's, or for a max
   // error, every vertex at `share` of the bound.
@@ -109,6 +111,7 @@ class PartEncoder {
   std::vector<ColumnStats> columnStats(double q, Eigen::Index first) const;
   Selection selection(double q, Eigen::Index first = 0) const;
   Selection quantiseHeader(double step, TrajectoryGroup& g) const;
+  void refine(double q, Selection& chosen) const;
   bool worthSending(Eigen::Index k, double q, const ColumnStats& column, const std::vector<int32_t>& basis,
                     float basis_step) const;
 
