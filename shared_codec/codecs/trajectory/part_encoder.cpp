@@ -293,17 +293,20 @@ PartEncoder::Selection PartEncoder::quantiseHeader(double step, TrajectoryGroup&
 // at their steps, then the coefficients that best carry the trajectories on that basis as
 // dequantised. Either fit takes back part of the other's quantisation error, so a coarser
 // step meets the same error. The trajectories are taken as the part's components carry them
-// (C B^T, B orthonormal), so each fit is a small solve in the components' space and no pass
-// over the trajectories, and so is the error the fits are judged by. Only the components up to the last one sent take
-// part: the weaker ones are the least converged, and at the noise floor of a mesh of few motions their vectors are not
-// orthogonal, so they would not carry the trajectories. Quantisation can undo a fit (an ill-conditioned one most of
-// all): the refinement stops at the first round that does not lower the error, keeping the best.
+// (C B^T, B orthonormal), so each fit, and the error the fits are judged by, is a small solve
+// or product in the components' space, with no pass over the trajectories. Only the
+// components up to the last one sent take part: the weaker ones are the least converged, and
+// at the noise floor of a mesh of few motions their vectors are not orthogonal, so they would
+// not carry the trajectories. Quantisation can undo a fit (an ill-conditioned one most of
+// all): the refinement stops at the first round that does not lower the error, keeping the
+// best.
 void PartEncoder::refine(double q, Selection& chosen) const {
   const Eigen::Index n = pc_.coefficients.rows(), sent = Eigen::Index(chosen.sent.size());
   const Eigen::Index leading = chosen.sent.back() + 1;
   const Eigen::MatrixXd c = pc_.coefficients.leftCols(leading).cast<double>();  // N x K
   const auto components = pc_.basis.leftCols(leading);                          // 3G x K
-  Eigen::MatrixXd fitted(n, sent);                                              // the coefficients to quantise
+  // The coefficients to quantise: the components' at first, then fitted to the basis.
+  Eigen::MatrixXd fitted(n, sent);
   for (Eigen::Index k = 0; k < sent; ++k) fitted.col(k) = c.col(chosen.sent[size_t(k)]);
   std::vector<std::vector<int32_t>> values = chosen.basis;
   Eigen::MatrixXd basis = dequantisedColumns(values, chosen.basis_step);  // 3G x sent
