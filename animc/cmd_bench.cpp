@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // animc bench: median encode and decode throughput over R runs on --threads N threads (0 =
-// one per core, the default), the encode's median CPU time, plus every
+// one per core, the default), the encode's and the decode's median CPU time, plus every
 // metric of the decoded result. The input is read into memory first so that file reading
 // and xz decompression are not timed. Given an .ams file, it times decoding only (the file
 // stays in the page cache after the first run): the loop to measure a decoder change with,
@@ -30,9 +30,9 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// CPU seconds of the whole process so far, every thread's: with --threads 1 an encode's own
-// work, which a busy or virtual machine's waits (another process's turn, stolen time) do not
-// lengthen as they lengthen the wall clock.
+// CPU seconds of the whole process so far, every thread's: across an encode or a decode with
+// --threads 1, its own work, which a busy or virtual machine's waits (another process's turn,
+// stolen time) do not lengthen as they lengthen the wall clock.
 double processCpuSeconds() {
   timespec t{};
   clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
@@ -44,11 +44,18 @@ double median(std::vector<double> v) {
   return v.empty() ? 0 : (v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]));
 }
 
-// Seconds to open a stream and decode all its frames through the public Decoder: in order, in
+// Seconds a piece of work took: on the wall clock, and of the process's CPU time.
+struct Timing {
+  double wall = 0;
+  double cpu = 0;
+};
+
+// Times to open a stream and decode all its frames through the public Decoder: in order, in
 // the runs of frames a reader takes (decodeChunkEnd(), several groups at once with threads), or
 // from the last to the first (every frame then a random access into its group).
-Result<double> timeDecode(const std::function<Result<Decoder>()>& open, bool backwards = false) {
+Result<Timing> timeDecode(const std::function<Result<Decoder>()>& open, bool backwards = false) {
   const auto t0 = Clock::now();
+  const double cpu0 = processCpuSeconds();
   ANIMC_ASSIGN_OR_RETURN(Decoder decoder, open());
   const size_t size = 3 * size_t(decoder.info().vertices);
   // Not zero-filled, as a reader's buffer need not be: the decoder writes every value, on its
@@ -64,7 +71,7 @@ Result<double> timeDecode(const std::function<Result<Decoder>()>& open, bool bac
     xyz.resize(size_t(end - first) * size);
     ANIMC_RETURN_IF_ERROR(decoder.frames(first, end, xyz.data()));
   }
-  return std::chrono::duration<double>(Clock::now() - t0).count();
+  return Timing{std::chrono::duration<double>(Clock::now() - t0).count(), processCpuSeconds() - cpu0};
 }
 
 DecoderOptions withThreads(uint32_t threads) {
@@ -84,16 +91,17 @@ int runDecodeBench(const Args& args, long long runs) {
   auto bytes = readWholeFile(path);
   if (!bytes.ok()) return fail(bytes.status());
   const std::vector<uint8_t>& stream = bytes.value();
-  std::vector<double> decode_s, memory_s;
+  std::vector<double> decode_s, decode_cpu_s, memory_s;
   ProgressFn progress = progressLine("bench", args.has("progress"));
   for (long long r = 0; r < runs; ++r) {
     if (progress) progress(int(100 * r / runs), "decoding");
     auto d = timeDecode([&] { return Decoder::openFile(path, options); }, backwards);
     if (!d.ok()) return fail(d.status());
-    decode_s.push_back(d.value());
+    decode_s.push_back(d.value().wall);
+    decode_cpu_s.push_back(d.value().cpu);
     d = timeDecode([&] { return Decoder::openMemory(stream.data(), stream.size(), options, path); }, backwards);
     if (!d.ok()) return fail(d.status());
-    memory_s.push_back(d.value());
+    memory_s.push_back(d.value().wall);
   }
   if (progress) progress(100, "done");
   endProgressLine();
@@ -103,6 +111,7 @@ int runDecodeBench(const Args& args, long long runs) {
   const uint32_t vertices = info.header.vertex_count;
   const int64_t frames = int64_t(info.frame_count);
   const double decode_mvps = double(vertices) * double(frames) / median(decode_s) / 1e6;
+  const double decode_cpu_mvps = double(vertices) * double(frames) / median(decode_cpu_s) / 1e6;
   const double memory_mvps = double(vertices) * double(frames) / median(memory_s) / 1e6;
   if (args.has("json")) {
     JsonObject o = newReport();
@@ -115,6 +124,8 @@ int runDecodeBench(const Args& args, long long runs) {
     o.add("order", backwards ? "backwards" : "forwards");
     o.add("decode_seconds_median", median(decode_s));
     o.add("decode_mvps", decode_mvps);
+    o.add("decode_cpu_seconds_median", median(decode_cpu_s));
+    o.add("decode_cpu_mvps", decode_cpu_mvps);
     o.add("decode_memory_seconds_median", median(memory_s));
     o.add("decode_memory_mvps", memory_mvps);
     std::printf("%s\n", o.str().c_str());
@@ -221,7 +232,7 @@ int runBench(const std::vector<std::string>& argv) {
       args.has("output") ? args.get("output") : "/tmp/animc-bench-" + std::to_string(getpid()) + ".ams";
   // The scratch output is rewritten every run: an interrupted bench removes it too.
   const int scratch_slot = args.has("output") ? -1 : registerTemporary(out, TemporaryKind::kFile);
-  std::vector<double> encode_s, encode_cpu_s, decode_s;
+  std::vector<double> encode_s, encode_cpu_s, decode_s, decode_cpu_s;
   EncodeSummary report;
   ProgressFn progress = progressLine("bench", args.has("progress"));
   for (long long r = 0; r < runs.value(); ++r) {
@@ -236,7 +247,8 @@ int runBench(const std::vector<std::string>& argv) {
     report = rep.value();
     auto d = timeDecode([&] { return Decoder::openFile(out, withThreads(settings.threads)); });
     if (!d.ok()) return fail(d.status());
-    decode_s.push_back(d.value());
+    decode_s.push_back(d.value().wall);
+    decode_cpu_s.push_back(d.value().cpu);
   }
   if (progress) progress(100, "done");
   endProgressLine();
@@ -250,6 +262,7 @@ int runBench(const std::vector<std::string>& argv) {
   const double vertex_frames = double(report.vertices) * double(report.frames);
   const double encode_mvps = vertex_frames / median(encode_s) / 1e6;
   const double decode_mvps = vertex_frames / median(decode_s) / 1e6;
+  const double decode_cpu_mvps = vertex_frames / median(decode_cpu_s) / 1e6;
   if (args.has("json")) {
     JsonObject o = newReport();
     o.add("input", args.positional()[0]);
@@ -264,6 +277,8 @@ int runBench(const std::vector<std::string>& argv) {
     o.add("decode_seconds_median", median(decode_s));
     o.add("encode_mvps", encode_mvps);
     o.add("decode_mvps", decode_mvps);
+    o.add("decode_cpu_seconds_median", median(decode_cpu_s));
+    o.add("decode_cpu_mvps", decode_cpu_mvps);
     std::printf("%s\n", o.str().c_str());
     return 0;
   }

@@ -9,8 +9,8 @@ usage: bench/bench_trajectory2.py [--animc PATH] [--data DIR] [--out FILE] [--ru
 
 Per sequence of --data and target KG error X in 0.1, 0.3, 0.45 and 1 %:
 - `animc bench IN --mesh M --codec trajectory --target-kg X --threads 1 --runs R`, and the same
-  with `--codec trajectory2`: whole-file bpvf, KG reached, encode CPU seconds and decode speed
-  (medians of R runs, one thread);
+  with `--codec trajectory2`: whole-file bpvf, KG reached, encode CPU seconds and decode vertices
+  a CPU second (medians of R runs, one thread);
 - FAMC's best whole-file bpvf at X, read from --famc (../shared/tools/famc/RESULTS.md: the MPEG-4
   reference software over every mode and setting swept there).
 Issue 40 asks for codec 5 at most 0.8x codec 3's bpvf and 0.6x FAMC's at every point, a
@@ -27,6 +27,7 @@ TARGETS_KG = [0.1, 0.3, 0.45, 1.0]
 TARGET_OF_CODEC3 = 0.8
 TARGET_OF_FAMC = 0.6
 TARGET_DECODE_MVPS = 100
+TARGET_DECODE_KG = 0.3
 TARGET_ENCODE_OF_CODEC3 = 1.0
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 FAMC_RESULTS = os.path.normpath(os.path.join(REPO, '..', 'shared', 'tools', 'famc', 'RESULTS.md'))
@@ -54,6 +55,12 @@ def ratio_cell(value, bound):
     return f'{value:.3f}' + ('' if value <= bound else ' ✗')
 
 
+def decode_cell(mvps, kg):
+    """Codec 5's decode speed, marked where issue 40's target (at KG 0.3 %) is missed."""
+    missed = kg == TARGET_DECODE_KG and mvps < TARGET_DECODE_MVPS
+    return num(mvps, 1) + (' ✗' if missed else '')
+
+
 def sequence_rows(animc, seq, runs, famc):
     rows, failures = [], 0
     for kg in TARGETS_KG:
@@ -74,8 +81,8 @@ def sequence_rows(animc, seq, runs, famc):
                      f'{c3["encode_cpu_seconds_median"]:.2f} / {c5["encode_cpu_seconds_median"]:.2f}',
                      ratio_cell(c5['encode_cpu_seconds_median'] / c3['encode_cpu_seconds_median'],
                                 TARGET_ENCODE_OF_CODEC3),
-                     num(c3['decode_mvps'], 1), num(c5['decode_mvps'], 1),
-                     ratio_cell(c5['decode_mvps'] / c3['decode_mvps'], float('inf'))])
+                     num(c3['decode_cpu_mvps'], 1), decode_cell(c5['decode_cpu_mvps'], kg),
+                     ratio_cell(c5['decode_cpu_mvps'] / c3['decode_cpu_mvps'], float('inf'))])
     return rows, failures
 
 
@@ -112,13 +119,14 @@ def trajectory2_section(animc, sequences, runs, famc_path=FAMC_RESULTS):
              f'software, every mode and setting swept in `../shared/tools/famc/RESULTS.md`). bpvf of the '
              f'whole file; encode CPU seconds (`encode_cpu_seconds_median`: the encoder\'s own work, which '
              f'this virtual machine\'s waits do not lengthen as they do its wall-clock medians) and decode M '
-             f'vertices/s are medians of {runs} `animc bench --threads 1` runs. ✗ marks a ratio above issue '
-             f'40\'s targets: {TARGET_OF_CODEC3}× codec 3, '
-             f'{TARGET_OF_FAMC}× FAMC, encoding {TARGET_ENCODE_OF_CODEC3}× codec 3\'s time; its decode target is '
-             f'{TARGET_DECODE_MVPS} M vertices/s a core at KG 0.3 %.', '']
+             f'vertices a CPU second (`decode_cpu_mvps`: vertices × frames over the median CPU time of a decode, '
+             f'the file\'s opening included) come from {runs} `animc bench --threads 1` runs. ✗ marks a ratio '
+             f'above issue 40\'s targets ({TARGET_OF_CODEC3}× codec 3, {TARGET_OF_FAMC}× FAMC, encoding '
+             f'{TARGET_ENCODE_OF_CODEC3}× codec 3\'s time) and a decode below its {TARGET_DECODE_MVPS} M '
+             f'vertices/s a core at KG {TARGET_DECODE_KG} %.', '']
     lines += table(['sequence', 'KG %', 'codec 3 bpvf', 'codec 5 bpvf', '5 / 3', 'FAMC bpvf', '5 / FAMC',
-                    'KG reached (3 / 5)', 'encode CPU s (3 / 5)', 'encode 5 / 3', 'decode M v/s, 3', 'decode M v/s, 5',
-                    'decode 5 / 3'], rows)
+                    'KG reached (3 / 5)', 'encode CPU s (3 / 5)', 'encode 5 / 3', 'decode M v/CPU s, 3',
+                    'decode M v/CPU s, 5', 'decode 5 / 3'], rows)
     default_table = []
     for seq in sequences:
         cells, seq_failures = default_rows(animc, seq, runs)

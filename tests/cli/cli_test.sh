@@ -48,10 +48,12 @@ json_check "d['animc_version'] == '$VERSION'" "$TMP/compare_ams.out"
 
 run bench "$ANIMC" bench "$PC2" --mesh "$MESH" --runs 1 --json
 json_check 'd["encode_mvps"] > 0 and d["decode_mvps"] > 0 and d["encode_cpu_seconds_median"] > 0' "$TMP/bench.out"
+json_check 'd["decode_cpu_seconds_median"] > 0 and abs(d["decode_cpu_mvps"] * d["decode_cpu_seconds_median"] - d["vertices"] * d["frames"] / 1e6) < 1e-12 * d["vertices"] * d["frames"]' "$TMP/bench.out"
 same_kg "$TMP/bench.out" "$TMP/encode.out"
 # Given the .ams itself, bench decodes that file only.
 run bench_ams "$ANIMC" bench "$AMS" --runs 2 --json
 json_check 'd["decode_mvps"] > 0 and d["runs"] == 2 and d["frames"] == 50 and "encode_mvps" not in d' "$TMP/bench_ams.out"
+json_check 'd["decode_cpu_seconds_median"] > 0 and d["decode_cpu_mvps"] > 0' "$TMP/bench_ams.out"
 json_check 'd["file_bytes"] == e["file_bytes"] and d["codec"] == e["codec"] == "auto" and d["rate_mode"] == "max error"' \
   "$TMP/bench_ams.out" "$TMP/encode.out"
 # --backwards decodes the last frame first: every frame a random access into its group.
