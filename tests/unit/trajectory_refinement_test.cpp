@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // The refinement of a part's basis and coefficients (PartEncoder::refine()): the frames a
 // decoder makes of the part have less error at every step, and never more where the part's
-// weakest components are noise (a mesh of few motions).
+// weakest components are noise (a mesh of few motions); a very large part is left alone.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -18,6 +18,8 @@ using testing_support::gridFrame;
 using testing_support::gridSequence;
 using testing_support::gridTopology;
 
+const std::vector<uint32_t> kWholeMesh;  // a part's members: every vertex of the mesh
+
 // One group of a sequence as the trajectory encoder holds it: its frames, one after another,
 // and what its parts share.
 class Group {
@@ -33,10 +35,11 @@ class Group {
     context_.spread = spread(sequence.frames());
   }
 
+  bool wholeMeshIsRefinable() { return PartEncoder(context_, order_, kWholeMesh).refinable(); }
+
   // The squared error of the whole mesh as one part, quantised at step q after `rounds`
   // rounds of refinement.
   double squaredError(double q, int rounds) {
-    static const std::vector<uint32_t> kWholeMesh;
     context_.refinement_rounds = 0;
     PartEncoder part(context_, order_, kWholeMesh);
     part.extend(32);  // as the encoder starts a part: by subspace iteration
@@ -88,6 +91,13 @@ TEST(TrajectoryRefinement, NeverRaisesTheErrorOfAMeshOfFewMotions) {
     const double plain = group.squaredError(q, 0), refined = group.squaredError(q, 2);
     EXPECT_LE(refined, plain) << "step " << q;
   }
+}
+
+// Above 2^16 vertices a part is not refined: its products would cost more than the rest of
+// the encoder.
+TEST(TrajectoryRefinement, LeavesAPartOfMoreThan65536VerticesAlone) {
+  EXPECT_TRUE(Group(gridSequence(256, 256, 2, 1.0, 1.0)).wholeMeshIsRefinable());
+  EXPECT_FALSE(Group(gridSequence(257, 256, 2, 1.0, 1.0)).wholeMeshIsRefinable());
 }
 
 }  // namespace

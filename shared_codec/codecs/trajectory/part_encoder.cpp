@@ -15,6 +15,11 @@ namespace {
 
 // The fewest components computed more at a time.
 constexpr Eigen::Index kMinMoreComponents = 16;
+// The most vertices of a part whose basis and coefficients are refined (refine()): its
+// products run on one thread and hold the part's coefficients in double three times over,
+// which on a 727 395-vertex group took 2.4 times the rest of the encoder's time and half as
+// much memory again (docs/trajectory.md, "Quantisation").
+constexpr uint32_t kMostRefinedVertices = 1 << 16;
 // Vertices the rate search quantises and measures at a time, on one thread: a block's
 // coefficients and frames stay in cache.
 constexpr uint32_t kVertexBlock = 2048;
@@ -142,6 +147,8 @@ void PartEncoder::release() {
   decomposition_.reset();
   pc_ = Components();
 }
+
+bool PartEncoder::refinable() const { return vertices_ <= kMostRefinedVertices; }
 
 bool PartEncoder::carriesEnough(double q) const {
   if (pc_.sigma.size() == 0) return pc_.complete;
@@ -272,7 +279,7 @@ PartEncoder::Selection PartEncoder::quantiseHeader(double step, TrajectoryGroup&
   g.coefficient_step = float(step);
   const double q = g.coefficient_step;
   Selection chosen = selection(q);
-  if (group_.refinement_rounds > 0 && !chosen.sent.empty()) refine(q, chosen);
+  if (group_.refinement_rounds > 0 && refinable() && !chosen.sent.empty()) refine(q, chosen);
   const size_t row = size_t(3) * group_.frames;
   const uint32_t used = uint32_t(chosen.sent.size());
   g.components = used;

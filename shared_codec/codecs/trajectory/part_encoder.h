@@ -79,6 +79,10 @@ class PartEncoder {
   // Drops the decomposition and the components (after the group is quantised).
   void release();
 
+  // Whether quantising the part refines its basis and coefficients (refine()), when the group
+  // asks for it.
+  bool refinable() const;
+
   // Whether a component weaker than all of the part's would never be worth sending at step q.
   bool carriesEnough(double q) const;
   // Whether the part's components cannot do, before any search (q the model's step, doubled).

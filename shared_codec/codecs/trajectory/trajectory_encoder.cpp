@@ -173,9 +173,11 @@ class TrajectoryEncoder final : public GroupEncoder {
   // coefficients refined in every quantisation, which lowers the squared error at a step.
   // The cuts are compared and the components chosen without it, which it changes little. A
   // max error is not refined: the fits lower the sum of squares, not the largest error, which
-  // they moved either way.
+  // they moved either way. Nor is a cut of parts too large to refine.
   Candidate refined(Candidate candidate) {
     if (context_.options.rate == TrajectoryRate::kMaxError) return candidate;
+    const auto& parts = candidate.encoders;
+    if (std::none_of(parts.begin(), parts.end(), [](const auto& part) { return part->refinable(); })) return candidate;
     context_.refinement_rounds = kRefinementRounds;
     current_ = &candidate;
     candidate.step = chooseStep(candidate.step);
