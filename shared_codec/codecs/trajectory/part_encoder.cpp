@@ -69,12 +69,15 @@ Eigen::MatrixXd dequantisedColumns(const std::vector<std::vector<int32_t>>& valu
   return out;
 }
 
-// Coefficients quantised at step q and dequantised as the decoders do.
+// A coefficient quantised at step q (a float's value, as the file holds it) and dequantised
+// as the decoders do.
+float decodedCoefficient(double value, double q) { return dequantised(quantiseCoefficient(value, q), float(q)); }
+
+// The same for a matrix of them.
 Eigen::MatrixXd dequantisedCoefficients(const Eigen::MatrixXd& values, double q) {
   Eigen::MatrixXd out(values.rows(), values.cols());
   for (Eigen::Index j = 0; j < out.rows(); ++j)
-    for (Eigen::Index k = 0; k < out.cols(); ++k)
-      out(j, k) = dequantised(quantiseCoefficient(values(j, k), q), float(q));
+    for (Eigen::Index k = 0; k < out.cols(); ++k) out(j, k) = decodedCoefficient(values(j, k), q);
   return out;
 }
 
@@ -405,8 +408,7 @@ PartError PartEncoder::measure(double step, bool frame_worst) const {
       float* panel = panels.data() + FrameKernel::panelOffset(i, used);
       const Eigen::Index p = position_[v0 + i];
       for (uint32_t k = 0; k < used; ++k)
-        panel[size_t(k) * FrameKernel::kLanes] =
-            dequantised(quantiseCoefficient(chosen.coefficient(pc_, p, k), q), header.coefficient_step);
+        panel[size_t(k) * FrameKernel::kLanes] = decodedCoefficient(chosen.coefficient(pc_, p, k), q);
     }
     std::vector<float> xyz(size_t(FrameKernel::kBatch) * 3 * count);
     for (uint32_t first = 0; first < frames; first += FrameKernel::kBatch) {
