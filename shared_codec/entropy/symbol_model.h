@@ -41,10 +41,12 @@ struct SymbolModel {
     // they lie within ±(2^15 - 1), so that is exact.
     typedef uint16_t Lanes __attribute__((vector_size(32), aligned(2)));
     typedef int16_t SignedLanes __attribute__((vector_size(32), aligned(2)));
-    const Lanes index = {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16};
-    const Lanes above = Lanes(index > uint16_t(symbol)) & uint16_t(kSymbolCeiling);
+    // The index is compared signed: SSE2 has no unsigned 16-bit comparison, and without one
+    // GCC compares lane by lane.
+    const SignedLanes index = {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16};
+    const Lanes above = Lanes(index > int16_t(symbol)) & uint16_t(kSymbolCeiling);
     Lanes& lanes = *reinterpret_cast<Lanes*>(&start[1]);
-    const Lanes distance = (index + above) - lanes;
+    const Lanes distance = (Lanes(index) + above) - lanes;
     lanes += Lanes(SignedLanes(distance) >> rate);
   }
 
