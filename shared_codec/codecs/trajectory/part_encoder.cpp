@@ -35,10 +35,6 @@ void forVertexBlocks(uint32_t vertices, double vertex_cost,
                     [&](size_t b, size_t begin, size_t end) { block(b, uint32_t(begin), uint32_t(end)); });
 }
 
-int32_t quantiseValue(double value, double step) {
-  return int32_t(std::clamp(std::nearbyint(value / step), -kMaxQuantised, kMaxQuantised));
-}
-
 // Coefficients are rounded towards zero a little (a value within 0.6 of a step of zero
 // becomes 0, and so on): a zero costs far fewer bits than a 1, and the step the target then
 // needs is only a little finer. 0.6 beat 0.5 and 0.7 on the shared sequences (trajectory.md).
@@ -217,6 +213,18 @@ double PartEncoder::negligibleEnergy() const {
   return 0;
 }
 
+// A step of the mean or of a basis vector moves the part's vertices by `weight` times its
+// square: the part's vertex count, or the energy of the component's quantised coefficients.
+// A bit is worth the error it buys at coefficient step q, kBitSlope q^2. The rows are priced
+// where the refinement is (the chosen cut's last search: the cuts are compared without it,
+// which it changes little, for less time), and always in a part too large to refine, whose
+// rows cost little next to its vertices. A max error is not priced: the prices trade the
+// squared error for bits and moved the largest error either way.
+RowPrices PartEncoder::rowPrices(double q, double weight, double row_step) const {
+  if (group_.options.rate == TrajectoryRate::kMaxError || (group_.refinement_rounds == 0 && refinable())) return {};
+  return {weight * row_step * row_step, kBitSlope * q * q};
+}
+
 // A vertex block at a time (rows of the coefficients, on any thread), the blocks' sums added
 // in order.
 std::vector<PartEncoder::ColumnStats> PartEncoder::columnStats(double q, Eigen::Index first) const {
@@ -262,8 +270,13 @@ PartEncoder::Selection PartEncoder::selection(double q, Eigen::Index first) cons
     // cost the squared error of one coefficient's step.
     steps[i] = float(std::clamp(q / pc_.sigma[k], 1.0 / kMaxQuantised, 2.0));
     basis[i].resize(size_t(3) * group_.frames);
-    for (size_t j = 0; j < basis[i].size(); ++j) basis[i][j] = quantiseValue(pc_.basis(Eigen::Index(j), k), steps[i]);
+    // Whether it is sent is judged with its basis vector rounded to nearest; then the
+    // vector is quantised for its bits too.
+    quantiseRow(pc_.basis.col(k).data(), group_.frames, steps[i], RowPrices{}, basis[i].data());
     sent[i] = worthSending(k, q, stats[i], basis[i], steps[i]);
+    const RowPrices prices = rowPrices(q, stats[i].energy, steps[i]);
+    if (sent[i] && prices.error_per_bit > 0)
+      quantiseRow(pc_.basis.col(k).data(), group_.frames, steps[i], prices, basis[i].data());
   });
   Selection out;
   for (size_t i = 0; i < stats.size(); ++i) {
@@ -293,7 +306,7 @@ PartEncoder::Selection PartEncoder::quantiseHeader(double step, TrajectoryGroup&
   const double mean_reach = pc_.mean.cwiseAbs().maxCoeff();
   g.mean_step = float(std::max(q / std::sqrt(double(vertices_)), mean_reach / kMaxQuantised + 1e-30));
   g.mean.resize(row);
-  for (size_t i = 0; i < row; ++i) g.mean[i] = quantiseValue(pc_.mean[Eigen::Index(i)], g.mean_step);
+  quantiseRow(pc_.mean.data(), group_.frames, g.mean_step, rowPrices(q, vertices_, g.mean_step), g.mean.data());
   return chosen;
 }
 
@@ -340,9 +353,10 @@ void PartEncoder::refine(double q, Selection& chosen) const {
     // B' = B C^T Q (Q^T Q)^-1, quantised; then C' = C B^T B' (B'^T B')^-1.
     const Eigen::MatrixXd fit = components * gram.ldlt().solve(on_components).transpose();
     if (!fit.allFinite()) return;
-    for (Eigen::Index k = 0; k < sent; ++k)
-      for (Eigen::Index j = 0; j < fit.rows(); ++j)
-        values[size_t(k)][size_t(j)] = quantiseValue(fit(j, k), chosen.basis_step[size_t(k)]);
+    for (Eigen::Index k = 0; k < sent; ++k) {
+      const double step = chosen.basis_step[size_t(k)];
+      quantiseRow(fit.col(k).data(), group_.frames, step, rowPrices(q, gram(k, k), step), values[size_t(k)].data());
+    }
     basis = dequantisedColumns(values, chosen.basis_step);
     basis_gram = basis.transpose() * basis;
     basis_on_components = basis.transpose() * components;

@@ -13,6 +13,7 @@
 #include "codecs/trajectory/components.h"
 #include "codecs/trajectory/group_coding.h"
 #include "codecs/trajectory/options.h"
+#include "codecs/trajectory/row_quantiser.h"
 #include "core/simd_math.h"
 
 namespace animc {
@@ -38,9 +39,6 @@ struct GroupContext {
   // the root mean square (docs/trajectory.md, "Rate control").
   double modelledAllowance() const { return allowance(0.1); }
 };
-
-// Integers of the payload stay below 2^30 in magnitude (their differences below 2^31).
-constexpr double kMaxQuantised = double(1 << 29);
 
 // The squared error a bit buys at a uniform quantiser's slope, per squared step: 2 ln 2 / 12.
 constexpr double kBitSlope = 0.1155;
@@ -116,6 +114,7 @@ class PartEncoder {
   Selection selection(double q, Eigen::Index first = 0) const;
   Selection quantiseHeader(double step, TrajectoryGroup& g) const;
   void refine(double q, Selection& chosen) const;
+  RowPrices rowPrices(double q, double weight, double row_step) const;
   bool worthSending(Eigen::Index k, double q, const ColumnStats& column, const std::vector<int32_t>& basis,
                     float basis_step) const;
 
