@@ -135,7 +135,8 @@ def replace_section(report, heading, lines, command):
     when = datetime.datetime.now(datetime.timezone.utc).strftime('%Y-%m-%d %H:%M UTC')
     measured = (f'Measured by `{command}` ({when}, commit `{commit}`, {os.cpu_count()} CPUs), apart from '
                 'the rest of this report.')
-    section = '\n'.join(lines[:2] + [measured, ''] + lines[2:]) + '\n'
+    # A blank line before the next heading, which a table would otherwise run into.
+    section = '\n'.join(lines[:2] + [measured, ''] + lines[2:]).rstrip('\n') + '\n\n'
     start = text.find(heading)
     if start < 0:
         start = end = text.find('## Peak memory')
