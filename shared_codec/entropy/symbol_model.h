@@ -35,19 +35,33 @@ struct SymbolModel {
     for (int i = 0; i <= kSymbols; ++i) start[i] = uint16_t(i * (kProbOne / kSymbols));
   }
 
+  // Lane k holds start[k + 1], which moves towards k + 1, or k + 1 + kSymbolCeiling above the
+  // symbol. The sums and differences are taken modulo 2^16 and the differences read as
+  // signed: they lie within ±(2^15 - 1), so that is exact.
   void update(uint32_t symbol) {
     const int rate = nextAdaptationShift(seen);
-    // Lane k holds start[k + 1]. The differences are taken modulo 2^16 and read as signed:
-    // they lie within ±(2^15 - 1), so that is exact.
+#if defined(__SSE2__)
+    // In intrinsics: from vector extensions GCC compared the constant lane indices with the
+    // symbol one lane at a time, with scalar instructions, where it inlined the update into
+    // the trajectory decoder.
+    const __m128i s = _mm_set1_epi16(int16_t(symbol)), ceiling = _mm_set1_epi16(int16_t(kSymbolCeiling));
+    const __m128i shift = _mm_cvtsi32_si128(rate);
+    const __m128i index[2] = {_mm_setr_epi16(1, 2, 3, 4, 5, 6, 7, 8), _mm_setr_epi16(9, 10, 11, 12, 13, 14, 15, 16)};
+    for (int half = 0; half < 2; ++half) {
+      __m128i* at = reinterpret_cast<__m128i*>(&start[1 + 8 * half]);
+      const __m128i lanes = _mm_loadu_si128(at);
+      const __m128i target = _mm_add_epi16(index[half], _mm_and_si128(_mm_cmpgt_epi16(index[half], s), ceiling));
+      _mm_storeu_si128(at, _mm_add_epi16(lanes, _mm_sra_epi16(_mm_sub_epi16(target, lanes), shift)));
+    }
+#else
     typedef uint16_t Lanes __attribute__((vector_size(32), aligned(2)));
     typedef int16_t SignedLanes __attribute__((vector_size(32), aligned(2)));
-    // The index is compared signed: SSE2 has no unsigned 16-bit comparison, and without one
-    // GCC compares lane by lane.
     const SignedLanes index = {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16};
     const Lanes above = Lanes(index > int16_t(symbol)) & uint16_t(kSymbolCeiling);
     Lanes& lanes = *reinterpret_cast<Lanes*>(&start[1]);
     const Lanes distance = (Lanes(index) + above) - lanes;
     lanes += Lanes(SignedLanes(distance) >> rate);
+#endif
   }
 
   // The symbol whose span holds `target` (< 2^15): the number of starts 1..15 at or below it.
