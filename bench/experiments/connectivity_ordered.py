@@ -22,7 +22,6 @@ section_CONN_bytes, after an encode).
 
   usage: bench/experiments/connectivity_ordered.py ANIMC DATA_DIR
 """
-import argparse
 import os
 import sys
 from collections import defaultdict
@@ -30,9 +29,8 @@ from collections import defaultdict
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.dirname(HERE))
 sys.path.insert(0, HERE)
-import ply  # noqa: E402
-from bench_common import find_sequences, table  # noqa: E402
-from connectivity_traversal import Symbols, conn_bytes  # noqa: E402
+from bench_common import table  # noqa: E402
+from connectivity_traversal import Symbols, meshes  # noqa: E402
 
 EDGE_SLOTS = 32
 VERTEX_SLOTS = 16
@@ -153,14 +151,8 @@ def reference_bits(faces):
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument('animc')
-    parser.add_argument('data_dir')
-    args = parser.parse_args()
     rows = []
-    for name, pc2_path, ply_path in find_sequences(args.data_dir):
-        faces = ply.read_ply_faces(ply_path)
-        today = conn_bytes(args.animc, pc2_path, ply_path)
+    for name, faces, today in meshes(__doc__):
         row = [name, len(faces), today, f'{8 * today / len(faces):.1f}']
         for bits in (fifo_bits(faces), reference_bits(faces)):
             row += [f'{bits / 8:.0f}', f'{bits / len(faces):.1f}', f'{bits / 8 / today:.3f}']

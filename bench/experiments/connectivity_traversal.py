@@ -170,16 +170,21 @@ def conn_bytes(animc, pc2_path, ply_path):
     return info['section_CONN_bytes']
 
 
-def main():
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+def meshes(doc):
+    """(name, faces, CONN bytes of today's file) of each sequence of the command line's
+    DATA_DIR, the usage `doc` ANIMC DATA_DIR."""
+    parser = argparse.ArgumentParser(description=doc.splitlines()[0])
     parser.add_argument('animc')
     parser.add_argument('data_dir')
     args = parser.parse_args()
-    rows = []
     for name, pc2_path, ply_path in find_sequences(args.data_dir):
-        faces = ply.read_ply_faces(ply_path)
+        yield name, ply.read_ply_faces(ply_path), conn_bytes(args.animc, pc2_path, ply_path)
+
+
+def main():
+    rows = []
+    for name, faces, today in meshes(__doc__):
         vertex_count = int(np.max(faces)) + 1
-        today = conn_bytes(args.animc, pc2_path, ply_path)
         estimate = traversal_bits(vertex_count, faces) / 8
         t = len(faces)
         rows.append([name, t, today, f'{8 * today / t:.1f}', f'{estimate:.0f}', f'{8 * estimate / t:.1f}',
