@@ -8,6 +8,7 @@
 #include <random>
 #include <vector>
 
+#include "codecs/trajectory/part_encoder.h"
 #include "entropy/classed_integer.h"
 
 namespace animc {
@@ -16,8 +17,8 @@ namespace {
 constexpr uint32_t kFrames = 200;
 constexpr double kStep = 0.01;
 // The trajectory encoders' price of a bit, in squared steps of a row whose step moves the
-// part by one squared coefficient step (part_encoder.h, kBitSlope).
-constexpr RowPrices kPriced = {1, 0.1155};
+// part by one squared coefficient step.
+constexpr RowPrices kPriced = {1, kBitSlope};
 
 // Three smooth runs with noise of a few tenths of a step, as a weak basis vector has.
 std::vector<double> noisyRow(uint32_t seed) {
